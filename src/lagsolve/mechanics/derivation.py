@@ -1,0 +1,191 @@
+"""``derive(problem) -> Derivation``: the frozen result of the whole mechanics stage.
+
+Every step a worked solution shows is recorded here (T, V, L; each constraint's
+a and b; each ∂L/∂q̇, its time derivative, ∂L/∂q; the augmented system; the
+results), so reports can never disagree with the results. The raw matrix form
+(``lagrange``) is kept unsimplified for numeric work; the display forms are
+simplified once, in :mod:`lagsolve.mechanics.simplify`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import sympy
+
+from lagsolve.errors import DerivationError
+from lagsolve.mechanics.constraints import ConstraintTerms, constraint_terms
+from lagsolve.mechanics.forces import ForceTerm, force_terms
+from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms, solve_augmented
+from lagsolve.mechanics.model import Model, build_model
+from lagsolve.mechanics.reactions import Reaction, reaction
+from lagsolve.mechanics.reduce import Elimination, eliminate
+from lagsolve.mechanics.simplify import norm, tidy, tidy_sum
+from lagsolve.problem.schema import Problem
+
+
+@dataclass(frozen=True)
+class ConstraintForce:
+    """Result for one constraint: the force on its particle (``vector``, ``magnitude``),
+    per-particle forces when it acts on several, and a ``note`` when no force is claimed."""
+
+    name: str
+    vector: tuple[Any, ...] | None
+    magnitude: Any | None
+    particles: tuple[tuple[str, tuple[Any, ...], Any], ...]
+    note: str
+
+
+@dataclass(frozen=True)
+class Derivation:
+    """Everything derived for one problem (immutable; nothing to "compute first").
+
+    Display forms (simplified): ``kinetic``, ``potential``, ``lagrangian``, ``constraints``
+    (coefficients), ``momenta``, ``momenta_rates``, ``gradients``, ``generalized_forces``,
+    ``equations``, ``constrained_equations``, ``accelerations``, ``multipliers``,
+    ``constraint_forces``. Raw forms: ``model``, ``lagrange`` (matrix form) and
+    ``raw_accelerations``/``raw_multipliers`` (the augmented solve, unsimplified).
+    """
+
+    problem: Problem
+    model: Model
+    kinetic: Any
+    potential: Any
+    lagrangian: Any
+    constraints: tuple[ConstraintTerms, ...]
+    force_terms: tuple[ForceTerm, ...]
+    lagrange: LagrangeTerms
+    momenta: tuple[Any, ...]
+    momenta_rates: tuple[Any, ...]
+    gradients: tuple[Any, ...]
+    generalized_forces: tuple[Any, ...]
+    equations: tuple[Any, ...]
+    elimination: Elimination
+    eliminated_accelerations: dict[Any, Any]
+    constrained_equations: tuple[Any, ...]
+    raw_accelerations: tuple[Any, ...]
+    raw_multipliers: tuple[Any, ...]
+    accelerations: dict[str, Any]
+    multipliers: dict[str, Any]
+    constraint_forces: dict[str, ConstraintForce]
+    reduced: dict[str, Any] | None = None
+    conserved: dict[str, Any] | None = None
+    effective_potential: dict[str, Any] | None = None
+
+    @property
+    def multiplier_symbols(self) -> tuple[Any, ...]:
+        return tuple(c.multiplier for c in self.constraints)
+
+
+def derive(problem: Problem) -> Derivation:
+    """Derive the equations of motion, multipliers and forces of constraint of ``problem``.
+
+    Raises
+    ------
+    DerivationError
+        When the accelerations and multipliers are not determined (singular system).
+    """
+    if problem.friction:
+        raise DerivationError(
+            "Coulomb friction is not supported yet: remove the 'friction:' section to derive the "
+            "frictionless equations (friction with a normal force from the constraints is planned)"
+        )
+    model = build_model(problem)
+    constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
+    loads = force_terms(problem, model)
+    n = len(model.coordinates)
+    q_forces = tuple(sum((t.generalized[i] for t in loads), sympy.Integer(0)) for i in range(n))
+    lagrange = lagrange_terms(model, constraints, q_forces)
+    raw_acc, raw_lam = solve_augmented(lagrange)
+
+    elimination = eliminate(constraints, model)
+    eliminated_acc = _eliminated_accelerations(constraints, model, elimination)
+
+    def result(expr: Any) -> Any:
+        return tidy(elimination.apply(expr))
+
+    accelerations = {c.name: result(a) for c, a in zip(problem.coordinates, raw_acc, strict=True)}
+    multipliers = {c.name: result(lam) for c, lam in zip(constraints, raw_lam, strict=True)}
+    forces = {}
+    for c in constraints:
+        forces[c.name] = _constraint_force(reaction(problem, model, c), multipliers[c.name], c, elimination)
+
+    constrained = tuple(
+        tidy_sum(elimination.apply(eq.xreplace(eliminated_acc))) for eq in lagrange.equations
+    )
+    display_constraints = tuple(
+        ConstraintTerms(c.name, c.kind, c.expression, c.on, tuple(tidy(a) for a in c.coefficients),
+                        tidy(c.offset), tidy(c.acceleration_rhs), c.multiplier)
+        for c in constraints
+    )
+    derivation = Derivation(
+        problem=problem,
+        model=model,
+        kinetic=tidy_sum(model.kinetic),
+        potential=tidy_sum(model.potential),
+        lagrangian=tidy_sum(model.lagrangian),
+        constraints=display_constraints,
+        force_terms=tuple(ForceTerm(t.label, tuple(tidy(x) for x in t.generalized)) for t in loads),
+        lagrange=lagrange,
+        momenta=tuple(tidy_sum(p) for p in lagrange.momenta),
+        momenta_rates=tuple(tidy_sum(p) for p in lagrange.momenta_rates),
+        gradients=tuple(tidy_sum(g) for g in lagrange.gradients),
+        generalized_forces=tuple(tidy(x) for x in q_forces),
+        equations=tuple(tidy_sum(e) for e in lagrange.equations),
+        elimination=elimination,
+        eliminated_accelerations=eliminated_acc,
+        constrained_equations=constrained,
+        raw_accelerations=raw_acc,
+        raw_multipliers=raw_lam,
+        accelerations=accelerations,
+        multipliers=multipliers,
+        constraint_forces=forces,
+    )
+    _check_free_symbols(derivation)
+    return derivation
+
+
+def _eliminated_accelerations(constraints: tuple[ConstraintTerms, ...], model: Model,
+                              elimination: Elimination) -> dict[Any, Any]:
+    """q̈_k of each eliminated variable, from its constraint at acceleration level."""
+    out: dict[Any, Any] = {}
+    by_name = {c.name: c for c in constraints}
+    index = {**{q: i for i, q in enumerate(model.coordinates)}, **{v: i for i, v in enumerate(model.velocities)}}
+    for symbol, source in elimination.sources.items():
+        c = by_name[source]
+        k = index[symbol]
+        rest = sum((c.coefficients[i] * model.accelerations[i] for i in range(len(model.coordinates)) if i != k),
+                   sympy.Integer(0))
+        out[model.accelerations[k]] = elimination.apply(sympy.cancel((c.acceleration_rhs - rest) / c.coefficients[k]))
+    return out
+
+
+def _constraint_force(react: Reaction, multiplier: Any, terms: ConstraintTerms,
+                      elimination: Elimination) -> ConstraintForce:
+    if not react.particles:
+        magnitude = None
+        if react.generalized:
+            magnitude = norm([elimination.apply(multiplier * a) for a in terms.coefficients])
+        return ConstraintForce(react.name, None, magnitude, (), react.note)
+    per_particle = []
+    for p in react.particles:
+        vector = tuple(tidy(elimination.apply(multiplier * d)) for d in p.direction)
+        per_particle.append((p.particle, vector, norm(vector)))
+    if len(per_particle) == 1:
+        _, vector, magnitude = per_particle[0]
+        return ConstraintForce(react.name, vector, magnitude, tuple(per_particle), react.note)
+    sizes = {sympy.srepr(m) for _, _, m in per_particle}
+    common = per_particle[0][2] if len(sizes) == 1 else None
+    return ConstraintForce(react.name, None, common, tuple(per_particle), react.note)
+
+
+def _check_free_symbols(derivation: Derivation) -> None:
+    """Every symbol in a result must be declared (style rule 5): a cheap guard against slips."""
+    problem = derivation.problem
+    allowed = set(problem.symbols.values()) | set(derivation.multiplier_symbols)
+    allowed |= set(derivation.model.accelerations)
+    for name, expr in {**derivation.accelerations, **derivation.multipliers}.items():
+        stray = expr.free_symbols - allowed
+        if stray:
+            raise DerivationError(f"internal error: result for {name} contains undeclared symbols {sorted(map(str, stray))}")

@@ -1,0 +1,135 @@
+r"""Lagrange's equations with multipliers, in matrix form.
+
+For each coordinate :math:`q_i`
+
+.. math::
+    \frac{d}{dt}\frac{\partial L}{\partial\dot q_i} - \frac{\partial L}{\partial q_i}
+    = Q_i + \sum_j \lambda_j a_{ji},
+
+which, with :math:`M_{ik} = \partial^2 L/\partial\dot q_i\partial\dot q_k`, reads
+:math:`M\ddot q = F + A^T\lambda`, where
+:math:`F_i = \partial L/\partial q_i + Q_i - \sum_k (\partial p_i/\partial q_k)\dot q_k - \partial p_i/\partial t`.
+With the constraints at acceleration level, :math:`A\ddot q = \beta`, the augmented system
+
+.. math::
+    \begin{pmatrix} M & -A^T \\ A & 0\end{pmatrix}
+    \begin{pmatrix}\ddot q\\ \lambda\end{pmatrix} = \begin{pmatrix}F\\ \beta\end{pmatrix}
+
+gives the accelerations and the multipliers.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import sympy
+
+from lagsolve.errors import DerivationError
+from lagsolve.mechanics.constraints import ConstraintTerms
+from lagsolve.mechanics.model import Model
+
+
+@dataclass(frozen=True)
+class LagrangeTerms:
+    """The pieces of each coordinate's equation, as a worked solution shows them.
+
+    Tuples run over coordinates in input order: ``momenta`` :math:`\\partial L/\\partial\\dot q_i`,
+    ``momenta_rates`` their total time derivatives, ``gradients`` :math:`\\partial L/\\partial q_i`,
+    ``generalized_forces`` :math:`Q_i`, ``constraint_forces`` :math:`\\sum_j\\lambda_j a_{ji}`.
+    ``equations`` are left minus right sides (zero along the motion).
+    """
+
+    momenta: tuple[Any, ...]
+    momenta_rates: tuple[Any, ...]
+    gradients: tuple[Any, ...]
+    generalized_forces: tuple[Any, ...]
+    constraint_forces: tuple[Any, ...]
+    equations: tuple[Any, ...]
+    mass_matrix: sympy.ImmutableMatrix
+    forcing: sympy.ImmutableMatrix
+    constraint_jacobian: sympy.ImmutableMatrix
+    constraint_rhs: sympy.ImmutableMatrix
+
+
+def lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...],
+                   generalized_forces: tuple[Any, ...]) -> LagrangeTerms:
+    """Build each Lagrange equation and the matrix form :math:`M\\ddot q = F + A^T\\lambda`."""
+    L = model.lagrangian
+    q, qd, qdd = model.coordinates, model.velocities, model.accelerations
+    momenta = tuple(sympy.diff(L, v) for v in qd)
+    rates = tuple(model.time_derivative(p, second_order=True) for p in momenta)
+    gradients = tuple(sympy.diff(L, c) for c in q)
+    C = tuple(sum((c.multiplier * c.coefficients[i] for c in constraints), sympy.Integer(0))
+              for i in range(len(q)))
+    equations = tuple(rates[i] - gradients[i] - generalized_forces[i] - C[i] for i in range(len(q)))
+
+    M = sympy.Matrix([[sympy.diff(p, v) for v in qd] for p in momenta])
+    zero_acc = {a: 0 for a in qdd}
+    F = sympy.Matrix([gradients[i] + generalized_forces[i] - rates[i].xreplace(zero_acc) for i in range(len(q))])
+    A = sympy.Matrix(len(constraints), len(q), lambda j, i: constraints[j].coefficients[i])
+    beta = sympy.Matrix([c.acceleration_rhs for c in constraints])
+    return LagrangeTerms(momenta, rates, gradients, tuple(generalized_forces), C, equations,
+                         sympy.ImmutableMatrix(M), sympy.ImmutableMatrix(F),
+                         sympy.ImmutableMatrix(A), sympy.ImmutableMatrix(beta))
+
+
+def solve_augmented(terms: LagrangeTerms) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
+    """Solve the augmented system for (accelerations, multipliers), unsimplified.
+
+    Raises
+    ------
+    DerivationError
+        When the system is singular (a coordinate without inertia that no
+        constraint fixes, or redundant constraints).
+    """
+    M, F, A, beta = terms.mass_matrix, terms.forcing, terms.constraint_jacobian, terms.constraint_rhs
+    n, m = M.rows, A.rows
+    if m == 0:
+        system, rhs = sympy.Matrix(M), sympy.Matrix(F)
+    else:
+        system = sympy.Matrix(sympy.BlockMatrix([[M, -A.T], [A, sympy.zeros(m, m)]]))
+        rhs = sympy.Matrix.vstack(sympy.Matrix(F), sympy.Matrix(beta))
+    try:
+        solution = solve_linear(system, rhs)
+    except (ValueError, ZeroDivisionError, sympy.matrices.common.NonInvertibleMatrixError) as exc:
+        raise DerivationError(
+            "the augmented system [[M, -A^T], [A, 0]] is singular, so the accelerations and multipliers "
+            "are not determined: a coordinate has no inertia and no constraint fixes it, or two "
+            f"constraints are redundant ({exc})"
+        ) from None
+    return tuple(solution[:n]), tuple(solution[n:])
+
+
+def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix) -> list[Any]:
+    """Solve a square symbolic system by Gaussian elimination that cancels as it goes.
+
+    Raises ``ValueError`` when no non-zero pivot is found (a singular system).
+    """
+    size = system.rows
+    work = [list(system.row(i)) + [rhs[i]] for i in range(size)]
+    for col in range(size):
+        pivot = next((r for r in range(col, size) if _nonzero(work[r][col])), None)
+        if pivot is None:
+            raise ValueError(f"no pivot in column {col + 1}")
+        work[col], work[pivot] = work[pivot], work[col]
+        p = work[col][col]
+        for r in range(col + 1, size):
+            factor = work[r][col]
+            if factor == 0:
+                continue
+            ratio = sympy.cancel(factor / p)
+            work[r] = [sympy.cancel(work[r][k] - ratio * work[col][k]) if k >= col else work[r][k]
+                       for k in range(size + 1)]
+    solution: list[Any] = [sympy.Integer(0)] * size
+    for r in reversed(range(size)):
+        acc = work[r][size] - sum((work[r][k] * solution[k] for k in range(r + 1, size)), sympy.Integer(0))
+        solution[r] = sympy.cancel(acc / work[r][r])
+    return solution
+
+
+def _nonzero(value: Any) -> bool:
+    if value == 0:
+        return False
+    simplified = sympy.cancel(value)
+    return simplified != 0

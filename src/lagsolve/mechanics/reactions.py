@@ -1,0 +1,96 @@
+r"""Physical forces of constraint.
+
+The generalized force of constraint :math:`j` is :math:`\lambda_j a_j`. On the particles
+:math:`p` it acts on (``on``), it is the force :math:`\mathbf f` with
+:math:`J^T\mathbf f = \lambda_j a_j`, :math:`J = \partial\mathbf r/\partial q` stacked over those
+particles. We take the least-norm solution :math:`\mathbf f = \lambda_j\,(J^T)^+ a_j`, which is
+:math:`(JJ^T)^{-1}J\lambda_j a_j` (the format's formula) when :math:`JJ^T` is invertible, and check
+:math:`J^T\mathbf f = \lambda_j a_j`: when that fails the constraint also acts on something
+not named in ``on`` and no force is claimed. With no particles at all the magnitude is
+:math:`|\lambda_j|\sqrt{\sum_i a_{ji}^2}` (exact when the coordinates are Cartesian).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import sympy
+
+from lagsolve.mechanics.constraints import ConstraintTerms
+from lagsolve.mechanics.forces import position_jacobian
+from lagsolve.mechanics.lagrange import solve_linear
+from lagsolve.mechanics.model import Model
+from lagsolve.mechanics.simplify import tidy
+from lagsolve.problem.schema import Problem
+
+
+@dataclass(frozen=True)
+class ParticleForce:
+    """The force of one constraint on one particle is ``multiplier * direction``."""
+
+    particle: str
+    direction: tuple[Any, ...]
+
+
+@dataclass(frozen=True)
+class Reaction:
+    """How constraint ``name`` pushes: per-particle forces, or a note saying why not.
+
+    With no particles at all, ``particles`` is empty and ``generalized`` is true:
+    the force is taken as λ a in the coordinates themselves."""
+
+    name: str
+    particles: tuple[ParticleForce, ...]
+    generalized: bool
+    note: str
+
+
+def reaction(problem: Problem, model: Model, terms: ConstraintTerms) -> Reaction:
+    """Direction and size of the force of one constraint, per unit multiplier."""
+    a = sympy.Matrix(terms.coefficients)
+    if not problem.particles and not problem.bodies:
+        return Reaction(terms.name, (), True,
+                        "no particles: magnitude taken as |λ|·|a| (exact for Cartesian coordinates)")
+    if not terms.on:
+        return Reaction(terms.name, (), False,
+                        "the problem has several particles and the constraint does not say which one it "
+                        "acts on; name it with 'on:' to get the physical force")
+    blocks = [position_jacobian(problem.particle(p).position, model) for p in terms.on]
+    J = sympy.Matrix.vstack(*blocks)
+    direction = _least_norm(J, a)
+    if direction is None or any(tidy(e) != 0 for e in (J.T * direction - a)):
+        named = ", ".join(terms.on)
+        return Reaction(terms.name, (), False,
+                        f"this constraint also acts elsewhere: λ·a is not the generalized force of any force on "
+                        f"{named} alone, so no physical force is claimed; list every particle it acts on in 'on:'")
+    forces = []
+    row = 0
+    for p, block in zip(terms.on, blocks, strict=True):
+        part = direction[row:row + block.rows, 0]
+        row += block.rows
+        forces.append(ParticleForce(p, tuple(tidy(c) for c in part)))
+    return Reaction(terms.name, tuple(forces), False, "")
+
+
+def _least_norm(J: sympy.Matrix, a: sympy.Matrix) -> sympy.Matrix | None:
+    """The least-norm solution of J^T f = a, or None when it cannot be formed.
+
+    Uses whichever Gram matrix is the smaller square (J^T J, the metric of the
+    coordinates, when J has at least as many rows as columns), simplified first,
+    and a linear solve rather than an inverse.
+    """
+    rows, cols = J.shape
+    grams = [("metric", J.T * J), ("rows", J * J.T)] if rows >= cols else [("rows", J * J.T), ("metric", J.T * J)]
+    for kind, gram in grams:
+        gram = gram.applyfunc(tidy)
+        rhs = a if kind == "metric" else J * a
+        try:
+            y = sympy.Matrix(solve_linear(gram, sympy.Matrix(rhs)))
+        except ValueError:
+            continue
+        return (J * y if kind == "metric" else y).applyfunc(sympy.cancel)
+    try:
+        return (J.T.pinv() * a).applyfunc(sympy.cancel)
+    except (ValueError, ZeroDivisionError, NotImplementedError):
+        return None

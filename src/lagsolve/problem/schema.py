@@ -1,0 +1,180 @@
+"""Frozen dataclasses of the problem format (``shared/problem-format.md``, section 1).
+
+No SymPy import and no I/O here: expression fields hold whatever the loader's
+parser produced (SymPy objects), typed ``Any`` at this boundary.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+Expr = Any  # a SymPy expression, made only by lagsolve.problem.expr
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A constant symbol; ``value`` is an optional default used by simulation."""
+
+    name: str
+    description: str
+    positive: bool
+    real: bool
+    value: float | None
+    symbol: Expr
+
+
+@dataclass(frozen=True)
+class FunctionDecl:
+    """An unspecified function such as the wire shape ``f``."""
+
+    name: str
+    description: str
+    function: Any  # sympy UndefinedFunction
+
+
+@dataclass(frozen=True)
+class Coordinate:
+    """A generalized coordinate with its velocity and acceleration symbols."""
+
+    name: str
+    description: str
+    symbol: Expr
+    velocity: Expr
+    acceleration: Expr
+
+
+@dataclass(frozen=True)
+class Particle:
+    name: str
+    mass: Expr
+    position: tuple[Expr, ...]
+
+
+@dataclass(frozen=True)
+class Body:
+    """A rigid body: planar (scalar ``inertia`` and ``angular_velocity``) or 3-D
+    (principal moments and body-frame angular velocity components)."""
+
+    name: str
+    mass: Expr
+    position: tuple[Expr, ...]
+    inertia: tuple[Expr, ...]
+    angular_velocity: tuple[Expr, ...]
+
+    @property
+    def planar(self) -> bool:
+        return len(self.inertia) == 1
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """``holonomic``: psi(q, t) = 0; ``nonholonomic``: sum a_i q_i_dot + b = 0 as written."""
+
+    name: str
+    kind: str  # "holonomic" | "nonholonomic"
+    expression: Expr
+    on: tuple[str, ...]  # particles it acts on; empty when unknown
+    line: int
+
+
+@dataclass(frozen=True)
+class Force:
+    """A generalized force on one coordinate, or a physical force on a particle."""
+
+    coordinate: str | None
+    on: str | None
+    value: tuple[Expr, ...]  # one component for a generalized force
+
+
+@dataclass(frozen=True)
+class Friction:
+    name: str
+    coefficient: Expr
+    static: Expr | None
+    on: str
+    normal: tuple[str, ...]
+    sliding: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class ConcreteFunction:
+    """``"f(u)": "u**2/2"``: a declared function made concrete for simulation."""
+
+    name: str
+    arguments: tuple[Expr, ...]
+    expression: Expr
+
+
+@dataclass(frozen=True)
+class Simulation:
+    values: Mapping[str, float] = field(default_factory=dict)
+    functions: Mapping[str, ConcreteFunction] = field(default_factory=dict)
+    initial: Mapping[str, float] = field(default_factory=dict)
+    t_end: float | None = None
+    samples: int | None = None
+    method: str | None = None
+    rtol: float | None = None
+    atol: float | None = None
+
+
+@dataclass(frozen=True)
+class Expected:
+    """Answers given in the file; each maps a name to a parsed expression (or a small dict)."""
+
+    accelerations: Mapping[str, Expr] = field(default_factory=dict)
+    multipliers: Mapping[str, Expr] = field(default_factory=dict)
+    constraint_forces: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
+    reduced: Mapping[str, Expr] = field(default_factory=dict)
+    conserved: Mapping[str, Expr] = field(default_factory=dict)
+    effective_potential: Mapping[str, Any] | None = None
+
+    def is_empty(self) -> bool:
+        return not (
+            self.accelerations or self.multipliers or self.constraint_forces or self.reduced
+            or self.conserved or self.effective_potential
+        )
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A validated problem: every name declared once, every expression parsed.
+
+    ``symbols`` maps each name an expression may use (time, parameters,
+    coordinates, velocities) to its SymPy object; ``lines`` maps a dotted field
+    path to its line in the file, for later messages.
+    """
+
+    source: str
+    name: str
+    description: str
+    time: Expr
+    parameters: tuple[Parameter, ...]
+    functions: tuple[FunctionDecl, ...]
+    coordinates: tuple[Coordinate, ...]
+    particles: tuple[Particle, ...]
+    bodies: tuple[Body, ...]
+    gravity: tuple[Expr, ...] | None
+    kinetic: Expr | None
+    potential: Expr | None
+    dissipation: Expr | None
+    forces: tuple[Force, ...]
+    constraints: tuple[Constraint, ...]
+    friction: tuple[Friction, ...]
+    expected: Expected
+    simulation: Simulation | None
+    symbols: Mapping[str, Expr]
+    lines: Mapping[str, int]
+
+    @property
+    def slug(self) -> str:
+        """The file's stem: ``problems/bead.yaml`` → ``bead`` (names output files)."""
+        stem = self.source.replace("\\", "/").rsplit("/", 1)[-1]
+        return stem.rsplit(".", 1)[0] if "." in stem else stem
+
+    def particle(self, name: str) -> Particle:
+        for p in self.particles:
+            if p.name == name:
+                return p
+        raise KeyError(name)
