@@ -43,7 +43,8 @@ class Derivation:
 
     Display forms (simplified): ``kinetic``, ``potential``, ``lagrangian``, ``constraints``
     (coefficients), ``momenta``, ``momenta_rates``, ``gradients``, ``generalized_forces``,
-    ``equations``, ``constrained_equations``, ``accelerations``, ``multipliers``,
+    ``equations`` (left minus right side), ``equation_sides`` and ``constrained_sides``
+    (each equation as (left, right), before and after using the constraints), ``accelerations``, ``multipliers``,
     ``constraint_forces``. Raw forms: ``model``, ``lagrange`` (matrix form) and
     ``raw_accelerations``/``raw_multipliers`` (the augmented solve, unsimplified).
     """
@@ -61,9 +62,10 @@ class Derivation:
     gradients: tuple[Any, ...]
     generalized_forces: tuple[Any, ...]
     equations: tuple[Any, ...]
+    equation_sides: tuple[tuple[Any, Any], ...]
     elimination: Elimination
     eliminated_accelerations: dict[Any, Any]
-    constrained_equations: tuple[Any, ...]
+    constrained_sides: tuple[tuple[Any, Any], ...]
     raw_accelerations: tuple[Any, ...]
     raw_multipliers: tuple[Any, ...]
     accelerations: dict[str, Any]
@@ -111,8 +113,12 @@ def derive(problem: Problem) -> Derivation:
     for c in constraints:
         forces[c.name] = _constraint_force(reaction(problem, model, c), multipliers[c.name], c, elimination)
 
+    lhs = tuple(r - g for r, g in zip(lagrange.momenta_rates, lagrange.gradients, strict=True))
+    rhs = tuple(q + c for q, c in zip(q_forces, lagrange.constraint_forces, strict=True))
+    sides = tuple((tidy_sum(a), tidy_sum(b)) for a, b in zip(lhs, rhs, strict=True))
     constrained = tuple(
-        tidy_sum(elimination.apply(eq.xreplace(eliminated_acc))) for eq in lagrange.equations
+        (tidy_sum(elimination.apply(a.xreplace(eliminated_acc))), tidy_sum(elimination.apply(b)))
+        for a, b in zip(lhs, rhs, strict=True)
     )
     display_constraints = tuple(
         ConstraintTerms(c.name, c.kind, c.expression, c.on, tuple(tidy(a) for a in c.coefficients),
@@ -124,7 +130,7 @@ def derive(problem: Problem) -> Derivation:
         model=model,
         kinetic=tidy_sum(model.kinetic),
         potential=tidy_sum(model.potential),
-        lagrangian=tidy_sum(model.lagrangian),
+        lagrangian=model.kinetic - model.potential,
         constraints=display_constraints,
         force_terms=tuple(ForceTerm(t.label, tuple(tidy(x) for x in t.generalized)) for t in loads),
         lagrange=lagrange,
@@ -133,9 +139,10 @@ def derive(problem: Problem) -> Derivation:
         gradients=tuple(tidy_sum(g) for g in lagrange.gradients),
         generalized_forces=tuple(tidy(x) for x in q_forces),
         equations=tuple(tidy_sum(e) for e in lagrange.equations),
+        equation_sides=sides,
         elimination=elimination,
         eliminated_accelerations=eliminated_acc,
-        constrained_equations=constrained,
+        constrained_sides=constrained,
         raw_accelerations=raw_acc,
         raw_multipliers=raw_lam,
         accelerations=accelerations,

@@ -223,14 +223,20 @@ class _Loader:
         coordinates = self.coordinates(data.get("coordinates", []))
 
         base = gateway.Namespace(self.symbols, self.functions, self.acceleration_names)
+        velocity_names = {n for n in self.symbols if n.endswith("_dot") and n[:-4] in self.kinds}
+        positions = gateway.Namespace(
+            {n: s for n, s in self.symbols.items() if n not in velocity_names}, self.functions,
+            {**self.acceleration_names,
+             **{n: "positions, masses and inertias cannot depend on velocities" for n in velocity_names}},
+        )
         constants = gateway.Namespace(
             {time_name: time, **{p.name: p.symbol for p in parameters}}, {},
             {**{c.name: "a coordinate cannot appear here (only parameters and the time)" for c in coordinates}},
         )
         if not isinstance(data.get("particles", {}), dict):
             self.mapping(("particles",), data["particles"])
-        particles = self.particles(data.get("particles") or {}, base)
-        bodies = self.bodies(data.get("bodies") or {}, base)
+        particles = self.particles(data.get("particles") or {}, positions)
+        bodies = self.bodies(data.get("bodies") or {}, positions, base)
         gravity = self.vector(("gravity",), data["gravity"], constants) if "gravity" in data else None
         self.check_dimensions(particles, bodies, gravity)
 
@@ -243,7 +249,7 @@ class _Loader:
                        "add particles, bodies, or a 'kinetic:' expression")
 
         particle_names = [p.name for p in particles]
-        forces = self.forces(data.get("forces", []), base, particle_names, coordinates)
+        forces = self.forces(data.get("forces", []), base, particles, coordinates)
         constraints = self.constraints(data.get("constraints", {}), base, particle_names)
         friction = self.friction(data.get("friction", {}), base, particle_names, constraints, coordinates)
         expected = self.expected(data.get("expected", {}), constraints)
@@ -338,7 +344,7 @@ class _Loader:
                 out.append(Particle(pname, mass, position))
         return out
 
-    def bodies(self, value: Any, names: gateway.Namespace) -> list[Body]:
+    def bodies(self, value: Any, names: gateway.Namespace, rates: gateway.Namespace) -> list[Body]:
         out = []
         if not isinstance(value, dict):
             self.mapping(("bodies",), value)
@@ -366,10 +372,10 @@ class _Loader:
                                "components")
                     continue
                 parts_i = [self.expression((*path, "inertia", i), v, names) for i, v in enumerate(inertia)]
-                parts_w = [self.expression((*path, "angular_velocity", i), v, names) for i, v in enumerate(omega)]
+                parts_w = [self.expression((*path, "angular_velocity", i), v, rates) for i, v in enumerate(omega)]
             else:
                 parts_i = [self.expression((*path, "inertia"), inertia, names)]
-                parts_w = [self.expression((*path, "angular_velocity"), omega, names)]
+                parts_w = [self.expression((*path, "angular_velocity"), omega, rates)]
             if mass is None or position is None or None in parts_i or None in parts_w:
                 continue
             if len(parts_i) == 3 and len(position) != 3:
@@ -387,8 +393,9 @@ class _Loader:
             self.issue(("gravity",), f"gravity has {len(gravity)} components but positions have {dims.pop()}",
                        "give gravity as many components as the positions")
 
-    def forces(self, value: Any, names: gateway.Namespace, particles: list[str],
+    def forces(self, value: Any, names: gateway.Namespace, particles: list[Particle],
                coordinates: list[Coordinate]) -> list[Force]:
+        dims = {p.name: len(p.position) for p in particles}
         out: list[Force] = []
         if not isinstance(value, list):
             self.issue(("forces",), f"expected a list, found {_kind(value)}",
@@ -414,11 +421,14 @@ class _Loader:
             elif "on" in spec:
                 if not self.keys(path, spec, ("on", "force"), ("on", "force")):
                     continue
-                if spec["on"] not in particles:
-                    self.issue((*path, "on"), f"unknown particle {spec['on']!r}", _known("particles", particles))
+                if spec["on"] not in dims:
+                    self.issue((*path, "on"), f"unknown particle {spec['on']!r}", _known("particles", dims))
                     continue
                 vec = self.vector((*path, "force"), spec["force"], names)
-                if vec is not None:
+                if vec is not None and len(vec) != dims[spec["on"]]:
+                    self.issue((*path, "force"), f"the force has {len(vec)} components but particle "
+                               f"{spec['on']!r} has {dims[spec['on']]}", "give it as many components as the position")
+                elif vec is not None:
                     out.append(Force(None, spec["on"], vec))
             else:
                 self.issue(path, "a force needs 'coordinate' (a generalized force) or 'on' (a force on a particle)")

@@ -1,0 +1,3 @@
+from lagsolve.cli import main
+
+main()

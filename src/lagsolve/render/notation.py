@@ -1,0 +1,173 @@
+"""Printing expressions the way a worked solution writes them.
+
+* LaTeX: dot notation (:math:`\\dot x`, :math:`\\ddot\\theta`), primes for declared
+  functions (:math:`f'(x)`, :math:`f''(x)`), Greek names as Greek letters;
+* plain text for terminals: ``ẋ``, ``θ̈``, ``f'(x)``;
+* TeX and Markdown escaping of user text (names, descriptions).
+
+The filters are registered in one table, :data:`FILTERS`, used by the Jinja2
+environment in :mod:`lagsolve.render.report`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import sympy
+from sympy.printing.latex import LatexPrinter
+from sympy.printing.str import StrPrinter
+
+_GREEK = {
+    "alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "zeta": "ζ", "eta": "η",
+    "theta": "θ", "iota": "ι", "kappa": "κ", "lambda": "λ", "mu": "μ", "nu": "ν", "xi": "ξ",
+    "rho": "ρ", "sigma": "σ", "tau": "τ", "phi": "φ", "chi": "χ", "psi": "ψ", "omega": "ω",
+    "Gamma": "Γ", "Delta": "Δ", "Theta": "Θ", "Lambda": "Λ", "Xi": "Ξ", "Pi": "Π", "Sigma": "Σ",
+    "Phi": "Φ", "Psi": "Ψ", "Omega": "Ω",
+}
+_DOT = "\u0307"
+_DDOT = "\u0308"
+
+
+def _split_rate(name: str) -> tuple[str, int]:
+    """``theta_ddot`` → (``theta``, 2); ``x_dot`` → (``x``, 1); other names → (name, 0)."""
+    if name.endswith("_ddot"):
+        return name[:-5], 2
+    if name.endswith("_dot"):
+        return name[:-4], 1
+    return name, 0
+
+
+def _prime(order: int) -> str:
+    return "'" * order if order <= 3 else f"^{{({order})}}"
+
+
+def _single_function_derivative(expr: Any) -> tuple[Any, int] | None:
+    """``Derivative(f(x), (x, n))`` of a one-argument declared function → (f(x), n)."""
+    inner = expr.expr
+    if not isinstance(inner, sympy.core.function.AppliedUndef) or len(inner.args) != 1:
+        return None
+    if len(expr.variable_count) != 1:
+        return None
+    var, order = expr.variable_count[0]
+    return (inner, int(order)) if var == inner.args[0] else None
+
+
+class MechanicsLatexPrinter(LatexPrinter):
+    """LaTeX with dots for rates and primes for declared functions of one variable."""
+
+    def __init__(self, rates: frozenset[str] = frozenset(), settings: dict | None = None) -> None:
+        super().__init__(settings or {})
+        self.rates = rates
+
+    def _print_Symbol(self, expr: Any, style: str = "plain") -> str:
+        base, order = _split_rate(expr.name)
+        if order and base in self.rates:
+            inner = super()._print_Symbol(sympy.Symbol(base))
+            return ("\\dot{%s}" if order == 1 else "\\ddot{%s}") % inner
+        return super()._print_Symbol(expr)
+
+    def _print_Derivative(self, expr: Any) -> str:
+        found = _single_function_derivative(expr)
+        if found is None:
+            return super()._print_Derivative(expr)
+        inner, order = found
+        name = self._print(sympy.Symbol(inner.func.__name__))
+        return f"{name}{_prime(order)}\\left({self._print(inner.args[0])}\\right)"
+
+
+class MechanicsTextPrinter(StrPrinter):
+    """One-line text for terminals: ``ẋ``, ``θ̈``, ``f'(x)``, Greek letters."""
+
+    def __init__(self, rates: frozenset[str] = frozenset()) -> None:
+        super().__init__({})
+        self.rates = rates
+
+    def _print_Symbol(self, expr: Any) -> str:
+        base, order = _split_rate(expr.name)
+        if order and base in self.rates:
+            return _GREEK.get(base, base) + (_DOT if order == 1 else _DDOT)
+        head, sep, tail = expr.name.partition("_")
+        return _GREEK.get(head, head) + sep + tail if sep else _GREEK.get(expr.name, expr.name)
+
+    def _print_Pow(self, expr: Any, rational: bool = False) -> str:
+        base, exp = expr.args
+        if exp.is_Integer and 2 <= exp <= 9 and (base.is_Symbol or base.is_Function or base.is_Derivative):
+            return self._print(base) + "⁰¹²³⁴⁵⁶⁷⁸⁹"[int(exp)]
+        return super()._print_Pow(expr, rational)
+
+    def _print_Derivative(self, expr: Any) -> str:
+        found = _single_function_derivative(expr)
+        if found is None:
+            return super()._print_Derivative(expr)
+        inner, order = found
+        return f"{inner.func.__name__}{_prime(order) if order <= 3 else f'^({order})'}({self._print(inner.args[0])})"
+
+
+class Notation:
+    """Printers bound to one problem's coordinates (which names get dots)."""
+
+    def __init__(self, coordinates: list[str] | tuple[str, ...]) -> None:
+        rates = frozenset(coordinates)
+        self._latex = MechanicsLatexPrinter(rates, {"mul_symbol": None})
+        self._text = MechanicsTextPrinter(rates)
+
+    def latex(self, expr: Any) -> str:
+        return self._latex.doprint(expr)
+
+    def text(self, expr: Any) -> str:
+        return self._text.doprint(expr)
+
+
+def to_json(expr: Any) -> str:
+    """SymPy's ``str()`` syntax with the input's names (``x_dot``, ``Derivative(f(x), x)``)."""
+    return sympy.sstr(expr, order=None)
+
+
+_TEX_ESCAPES = {
+    "\\": r"\textbackslash{}", "{": r"\{", "}": r"\}", "$": r"\$", "&": r"\&", "#": r"\#",
+    "^": r"\textasciicircum{}", "_": r"\_", "%": r"\%", "~": r"\textasciitilde{}",
+    "<": r"\textless{}", ">": r"\textgreater{}", "|": r"\textbar{}",
+}
+
+
+def tex_escape(text: str) -> str:
+    r"""User text as literal TeX: ``\input{/etc/passwd}`` prints, never runs.
+
+    >>> tex_escape(r"\input{x} 50% & $1")
+    '\\textbackslash{}input\\{x\\} 50\\% \\& \\$1'
+    """
+    out = "".join(_TEX_ESCAPES.get(ch, ch) for ch in str(text))
+    return "".join(ch if ord(ch) < 128 or ch.isprintable() else "?" for ch in out)
+
+
+_MD_SPECIAL = set("\\`*_{}[]()<>#+-.!|$~&")
+
+
+def md_escape(text: str) -> str:
+    """User text as literal Markdown (names): every Markdown and HTML special character escaped."""
+    out = []
+    for ch in str(text):
+        if ch == "<":
+            out.append("&lt;")
+        elif ch == ">":
+            out.append("&gt;")
+        elif ch == "&":
+            out.append("&amp;")
+        elif ch in _MD_SPECIAL:
+            out.append("\\" + ch)
+        else:
+            out.append(ch)
+    return "".join(out)
+
+
+def md_prose(text: str) -> str:
+    """A description for the Markdown report: Markdown is kept, raw HTML and math delimiters are not."""
+    return str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace("$", "\\$")
+
+
+FILTERS: dict[str, Callable[[str], str]] = {
+    "tex": tex_escape,
+    "md": md_escape,
+    "md_prose": md_prose,
+}

@@ -1,0 +1,262 @@
+"""Reports from a :class:`~lagsolve.mechanics.derivation.Derivation`.
+
+:func:`context` turns a derivation into plain strings (LaTeX, text, JSON syntax);
+the Jinja2 templates in ``templates/markdown`` and ``templates/latex`` lay them
+out as a worked solution; :func:`result_json` is the contract of the format's
+section 2; :func:`summary` is the short text shown in a terminal.
+Nothing here simplifies: every expression arrives in display form.
+"""
+
+from __future__ import annotations
+
+import json
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import jinja2
+import sympy
+
+from lagsolve.errors import RenderError
+from lagsolve.mechanics.derivation import Derivation
+from lagsolve.render.notation import FILTERS, Notation, to_json
+
+FORMAT_VERSION = 1
+FORMATS = {"md": ("markdown", "report.md.j2"), "tex": ("latex", "report.tex.j2"), "json": (None, None)}
+
+
+# -- context ------------------------------------------------------------------------------------
+
+
+def context(derivation: Derivation) -> dict[str, Any]:
+    """Everything a template needs, as plain strings, lists and dicts."""
+    problem = derivation.problem
+    model = derivation.model
+    names = [c.name for c in problem.coordinates]
+    note = Notation(names)
+    tex, text = note.latex, note.text
+
+    def both(expr: Any) -> dict[str, str]:
+        return {"tex": tex(expr), "text": text(expr), "json": to_json(expr)}
+
+    coords = [
+        {"name": c.name, "tex": tex(c.symbol), "velocity": tex(c.velocity), "acceleration": tex(c.acceleration),
+         "description": c.description}
+        for c in problem.coordinates
+    ]
+    constraints = []
+    for c in derivation.constraints:
+        velocity = sum((a * v for a, v in zip(c.coefficients, model.velocities, strict=True)), c.offset)
+        constraints.append({
+            "name": c.name,
+            "kind": c.kind,
+            "multiplier": tex(c.multiplier),
+            "expression": tex(c.expression),
+            "velocity_form": tex(velocity),
+            "coefficients": [{"coordinate": coords[i]["tex"], "value": tex(a)} for i, a in enumerate(c.coefficients)],
+            "offset": tex(c.offset),
+            "acceleration_rhs": tex(c.acceleration_rhs),
+            "on": list(c.on),
+        })
+    equations = []
+    for i, c in enumerate(problem.coordinates):
+        lhs, rhs = derivation.equation_sides[i]
+        equations.append({
+            "coordinate": coords[i]["tex"],
+            "velocity": coords[i]["velocity"],
+            "momentum": tex(derivation.momenta[i]),
+            "rate": tex(derivation.momenta_rates[i]),
+            "gradient": tex(derivation.gradients[i]),
+            "force": tex(derivation.generalized_forces[i]) if derivation.generalized_forces[i] != 0 else "",
+            "lhs": tex(lhs),
+            "rhs": tex(rhs),
+        })
+    elimination = derivation.elimination
+    substitutions = [
+        {"symbol": tex(sym), "value": tex(val), "source": elimination.sources.get(sym, "")}
+        for sym, val in [*elimination.positions.items(), *elimination.velocities.items()]
+    ]
+    substitutions += [{"symbol": tex(sym), "value": tex(val), "source": ""}
+                      for sym, val in derivation.eliminated_accelerations.items()]
+    constrained = [
+        {"coordinate": coords[i]["tex"], "lhs": tex(lhs), "rhs": tex(rhs)}
+        for i, (lhs, rhs) in enumerate(derivation.constrained_sides)
+    ]
+    lagrange = derivation.lagrange
+    accelerations = [
+        {"coordinate": c.name, "symbol": tex(c.acceleration), "symbol_text": text(c.acceleration),
+         **both(derivation.accelerations[c.name])}
+        for c in problem.coordinates
+    ]
+    multipliers = [
+        {"name": c.name, "symbol": tex(c.multiplier), "symbol_text": text(c.multiplier),
+         **both(derivation.multipliers[c.name])}
+        for c in derivation.constraints
+    ]
+    forces = []
+    for c in derivation.constraints:
+        result = derivation.constraint_forces[c.name]
+        forces.append({
+            "name": c.name,
+            "vector": [tex(v) for v in result.vector] if result.vector is not None else None,
+            "magnitude": both(result.magnitude) if result.magnitude is not None else None,
+            "particles": [{"name": p, "vector": [tex(v) for v in vec], "magnitude": both(mag)}
+                          for p, vec, mag in result.particles] if len(result.particles) > 1 else [],
+            "note": result.note,
+        })
+    return {
+        "name": problem.name,
+        "description": problem.description,
+        "slug": problem.slug,
+        "time": tex(problem.time),
+        "coordinates": coords,
+        "parameters": [{"name": p.name, "tex": tex(p.symbol), "description": p.description,
+                        "assumption": "positive" if p.positive else ("real" if p.real else "")}
+                       for p in problem.parameters],
+        "functions": [{"name": f.name, "tex": tex(sympy.Symbol(f.name)), "description": f.description}
+                      for f in problem.functions],
+        "particles": [{"name": p.name, "mass": tex(p.mass), "position": [tex(r) for r in p.position]}
+                      for p in problem.particles],
+        "bodies": [{"name": b.name, "mass": tex(b.mass), "position": [tex(r) for r in b.position],
+                    "inertia": [tex(i) for i in b.inertia], "angular_velocity": [tex(w) for w in b.angular_velocity],
+                    "planar": b.planar} for b in problem.bodies],
+        "gravity": [tex(g) for g in problem.gravity] if problem.gravity is not None else None,
+        "kinetic": tex(derivation.kinetic),
+        "potential": tex(derivation.potential),
+        "lagrangian": tex(derivation.lagrangian),
+        "loads": [{"label": t.label, "values": [{"coordinate": coords[i]["tex"], "value": tex(v)}
+                                                 for i, v in enumerate(t.generalized) if v != 0]}
+                  for t in derivation.force_terms],
+        "constraints": constraints,
+        "equations": equations,
+        "substitutions": substitutions,
+        "constrained": constrained if substitutions else [],
+        "matrices": {
+            "mass": tex(lagrange.mass_matrix.applyfunc(sympy.factor_terms)),
+            "forcing": tex(lagrange.forcing.applyfunc(sympy.factor_terms)),
+            "jacobian": tex(lagrange.constraint_jacobian) if derivation.constraints else "",
+            "rhs": tex(lagrange.constraint_rhs.applyfunc(sympy.factor_terms)) if derivation.constraints else "",
+            "unknowns": tex(sympy.Matrix(list(model.accelerations) + list(derivation.multiplier_symbols))),
+        },
+        "accelerations": accelerations,
+        "multipliers": multipliers,
+        "forces": forces,
+    }
+
+
+# -- templates ----------------------------------------------------------------------------------
+
+
+def template_dirs(kind: str, extra: Path | None = None) -> list[Path]:
+    """Where templates of ``kind`` are looked for: ``--templates`` dir, the installed package, the checkout."""
+    dirs = []
+    if extra is not None:
+        dirs.append(Path(extra) / kind)
+    packaged = resources.files("lagsolve").joinpath("templates", kind)
+    dirs.append(Path(str(packaged)))
+    dirs.append(Path(__file__).resolve().parents[3] / "templates" / kind)
+    return dirs
+
+
+def environment(kind: str, extra: Path | None = None) -> jinja2.Environment:
+    """A Jinja2 environment for ``kind`` ("markdown" or "latex"); LaTeX uses ``((* *))``-style delimiters."""
+    dirs = [str(d) for d in template_dirs(kind, extra) if d.is_dir()]
+    options: dict[str, Any] = {
+        "loader": jinja2.FileSystemLoader(dirs),
+        "autoescape": False,
+        "undefined": jinja2.StrictUndefined,
+        "keep_trailing_newline": True,
+        "trim_blocks": True,
+        "lstrip_blocks": True,
+    }
+    if kind == "latex":
+        options.update(block_start_string="((*", block_end_string="*))", variable_start_string="(((",
+                       variable_end_string=")))", comment_start_string="((=", comment_end_string="=))")
+    env = jinja2.Environment(**options)  # noqa: S701 - output is Markdown/TeX, escaped by filters
+    env.filters.update(FILTERS)
+    return env
+
+
+def render(derivation: Derivation, fmt: str, templates: Path | None = None) -> str:
+    """The report of ``derivation`` in ``fmt`` ("md", "tex" or "json")."""
+    if fmt == "json":
+        return result_json(derivation)
+    if fmt not in FORMATS:
+        raise RenderError(f"unknown format {fmt!r}; use md, tex or json")
+    kind, name = FORMATS[fmt]
+    env = environment(kind or "", templates)
+    try:
+        template = env.get_template(name or "")
+    except jinja2.TemplateNotFound:
+        searched = ", ".join(str(d) for d in template_dirs(kind or "", templates))
+        raise RenderError(f"template {kind}/{name} not found; searched: {searched}") from None
+    try:
+        return template.render(**context(derivation))
+    except jinja2.TemplateError as exc:
+        raise RenderError(f"template {kind}/{name} failed: {exc}") from None
+
+
+# -- JSON and terminal summary --------------------------------------------------------------------
+
+
+def result_dict(derivation: Derivation) -> dict[str, Any]:
+    """The result contract (format section 2) as a dict of strings."""
+    problem = derivation.problem
+    forces: dict[str, Any] = {}
+    for name, result in derivation.constraint_forces.items():
+        entry: dict[str, Any] = {}
+        if result.vector is not None:
+            entry["vector"] = [to_json(v) for v in result.vector]
+        entry["magnitude"] = to_json(result.magnitude) if result.magnitude is not None else None
+        if len(result.particles) > 1:
+            entry["particles"] = {p: {"vector": [to_json(v) for v in vec], "magnitude": to_json(mag)}
+                                  for p, vec, mag in result.particles}
+        if result.note:
+            entry["note"] = result.note
+        forces[name] = entry
+    return {
+        "format_version": FORMAT_VERSION,
+        "name": problem.name,
+        "coordinates": [c.name for c in problem.coordinates],
+        "parameters": [p.name for p in problem.parameters],
+        "kinetic": to_json(derivation.kinetic),
+        "potential": to_json(derivation.potential),
+        "lagrangian": to_json(derivation.lagrangian),
+        "constraints": {
+            c.name: {
+                "kind": c.kind,
+                "expression": to_json(c.expression),
+                "coefficients": {q.name: to_json(a) for q, a in zip(problem.coordinates, c.coefficients, strict=True)},
+                "offset": to_json(c.offset),
+            }
+            for c in derivation.constraints
+        },
+        "equations": [to_json(e) for e in derivation.equations],
+        "accelerations": {k: to_json(v) for k, v in derivation.accelerations.items()},
+        "multipliers": {k: to_json(v) for k, v in derivation.multipliers.items()},
+        "constraint_forces": forces,
+        "reduced": derivation.reduced,
+        "conserved": derivation.conserved,
+        "effective_potential": derivation.effective_potential,
+    }
+
+
+def result_json(derivation: Derivation) -> str:
+    """:func:`result_dict` as indented JSON text (stable key order, ASCII only)."""
+    return json.dumps(result_dict(derivation), indent=2, ensure_ascii=True) + "\n"
+
+
+def summary(derivation: Derivation) -> str:
+    """The key results, readable in a terminal."""
+    ctx = context(derivation)
+    lines = [f"{derivation.problem.name}"]
+    lines.append("  accelerations:")
+    lines += [f"    {a['symbol_text']} = {a['text']}" for a in ctx["accelerations"]]
+    if ctx["multipliers"]:
+        lines.append("  multipliers:")
+        lines += [f"    {m['symbol_text']} = {m['text']}" for m in ctx["multipliers"]]
+        lines.append("  forces of constraint (magnitude):")
+        for f in ctx["forces"]:
+            value = f["magnitude"]["text"] if f["magnitude"] else "— " + f["note"]
+            lines.append(f"    |F_{f['name']}| = {value}")
+    return "\n".join(lines) + "\n"
