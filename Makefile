@@ -19,7 +19,7 @@ test: $(STAMP)
 	$(BIN)/python -m pytest -q
 
 golden: $(STAMP)
-	$(BIN)/python -m lagsolve.tools.golden tests/golden problems/*.yaml
+	$(BIN)/lagsolve derive problems/*.yaml --golden tests/golden --update-golden
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests bench

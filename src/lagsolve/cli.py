@@ -10,11 +10,15 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
 
 from lagsolve import __version__
 from lagsolve.errors import LagsolveError, SpecError
+
+if TYPE_CHECKING:
+    from lagsolve.pipeline import Reports
 
 EXTENSIONS = {"md": ".md", "tex": ".tex", "json": ".json"}
 
@@ -26,6 +30,24 @@ def _fail(error: LagsolveError) -> int:
         return 2
     click.echo(f"error: {error}", err=True)
     return 1
+
+
+def _golden(reports: Reports, folder: Path, update: bool) -> int:
+    from lagsolve.pipeline import golden_differences
+
+    if update:
+        folder.mkdir(parents=True, exist_ok=True)
+        for fmt, text in reports.outputs.items():
+            target = folder / f"{reports.slug}.{fmt}"
+            target.write_text(text, encoding="utf-8")
+            click.echo(f"  wrote {target}")
+        return 0
+    diffs = golden_differences(reports, folder)
+    for diff in diffs:
+        click.echo(diff, nl=False)
+    verdict = "differs from" if diffs else "matches"
+    click.echo(f"{reports.source}: {verdict} the golden files in {folder}")
+    return 1 if diffs else 0
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
@@ -45,8 +67,11 @@ def main() -> None:
               help="Seconds allowed for each derivation.")
 @click.option("--templates", type=click.Path(file_okay=False, exists=True, path_type=Path),
               help="Folder with markdown/ and latex/ templates that override the packaged ones.")
+@click.option("--golden", type=click.Path(file_okay=False, path_type=Path),
+              help="Compare the reports with DIR/<problem>.<ext>; exit 1 with a diff when any differs.")
+@click.option("--update-golden", is_flag=True, help="With --golden: write the golden files instead.")
 def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeout: float,
-           templates: Path | None) -> None:
+           templates: Path | None, golden: Path | None, update_golden: bool) -> None:
     """Derive the equations of motion of each problem FILE.
 
     \b
@@ -56,6 +81,9 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     lagsolve derive problems/bead.yaml --format tex -o bead.tex
     """
     from lagsolve.pipeline import derive_file, safe_slug
+
+    if update_golden and golden is None:
+        raise click.UsageError("--update-golden needs --golden DIR")
 
     formats = (fmt,) if fmt else ("md", "tex", "json")
     slugs = [safe_slug(f) for f in files]
@@ -68,6 +96,9 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
             reports = derive_file(path, formats, templates=templates, timeout=timeout)
         except LagsolveError as error:
             status = max(status, _fail(error))
+            continue
+        if golden is not None:
+            status = max(status, _golden(reports, golden, update_golden))
             continue
         if fmt and output is None:
             click.echo(reports.outputs[fmt], nl=False)

@@ -60,3 +60,25 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json
     text, outputs = run_with_budget(_derive_and_render, (problem, formats, templates), timeout,
                                     f"the derivation of {path}")
     return Reports(str(path), safe_slug(path), problem.name, text, outputs)
+
+
+def golden_differences(reports: Reports, folder: Path) -> list[str]:
+    """Unified diffs between ``reports`` and the golden files ``folder/<slug>.<ext>``.
+
+    A missing golden file counts as a difference (its diff says so).
+    """
+    import difflib
+
+    diffs = []
+    for fmt, text in reports.outputs.items():
+        path = Path(folder) / f"{reports.slug}.{fmt}"
+        try:
+            expected = path.read_text(encoding="utf-8")
+        except FileNotFoundError:
+            diffs.append(f"--- {path} (missing; create it with --update-golden)\n")
+            continue
+        if expected != text:
+            diffs.append("".join(difflib.unified_diff(
+                expected.splitlines(keepends=True), text.splitlines(keepends=True),
+                fromfile=str(path), tofile=f"{reports.source} ({fmt}, now)")))
+    return diffs

@@ -16,12 +16,12 @@ import sympy
 
 from lagsolve.errors import DerivationError
 from lagsolve.mechanics.constraints import ConstraintTerms, constraint_terms
-from lagsolve.mechanics.forces import ForceTerm, force_terms
+from lagsolve.mechanics.forces import ForceTerm, FrictionTerm, force_terms, friction_term
 from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms, solve_augmented
 from lagsolve.mechanics.model import Model, build_model
 from lagsolve.mechanics.reactions import Reaction, reaction
 from lagsolve.mechanics.reduce import Elimination, eliminate
-from lagsolve.mechanics.simplify import norm, tidy, tidy_sum
+from lagsolve.mechanics.simplify import norm, root_of_sum_of_squares, tidy, tidy_sum
 from lagsolve.problem.schema import Problem
 
 
@@ -35,6 +35,14 @@ class ConstraintForce:
     magnitude: Any | None
     particles: tuple[tuple[str, tuple[Any, ...], Any], ...]
     note: str
+
+
+@dataclass(frozen=True)
+class FrictionResult:
+    """A friction contact (``term``, with the symbol N in its forces) and the closed form of N."""
+
+    term: FrictionTerm
+    normal_force: Any
 
 
 @dataclass(frozen=True)
@@ -71,6 +79,7 @@ class Derivation:
     accelerations: dict[str, Any]
     multipliers: dict[str, Any]
     constraint_forces: dict[str, ConstraintForce]
+    friction: tuple[FrictionResult, ...] = ()
     reduced: dict[str, Any] | None = None
     conserved: dict[str, Any] | None = None
     effective_potential: dict[str, Any] | None = None
@@ -88,16 +97,12 @@ def derive(problem: Problem) -> Derivation:
     DerivationError
         When the accelerations and multipliers are not determined (singular system).
     """
-    if problem.friction:
-        raise DerivationError(
-            "Coulomb friction is not supported yet: remove the 'friction:' section to derive the "
-            "frictionless equations (friction with a normal force from the constraints is planned)"
-        )
     model = build_model(problem)
     constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
     loads = force_terms(problem, model)
     n = len(model.coordinates)
-    q_forces = tuple(sum((t.generalized[i] for t in loads), sympy.Integer(0)) for i in range(n))
+    frictions = tuple(friction_term(f, problem, model) for f in problem.friction)
+    q_forces = tuple(sum((t.generalized[i] for t in (*loads, *frictions)), sympy.Integer(0)) for i in range(n))
     lagrange = lagrange_terms(model, constraints, q_forces)
     raw_acc, raw_lam = solve_augmented(lagrange)
 
@@ -107,11 +112,13 @@ def derive(problem: Problem) -> Derivation:
     def result(expr: Any) -> Any:
         return tidy(elimination.apply(expr))
 
-    accelerations = {c.name: result(a) for c, a in zip(problem.coordinates, raw_acc, strict=True)}
     multipliers = {c.name: result(lam) for c, lam in zip(constraints, raw_lam, strict=True)}
-    forces = {}
-    for c in constraints:
-        forces[c.name] = _constraint_force(reaction(problem, model, c), multipliers[c.name], c, elimination)
+    reactions = {c.name: reaction(problem, model, c) for c in constraints}
+    forces = {c.name: _constraint_force(reactions[c.name], multipliers[c.name], c, elimination)
+              for c in constraints}
+    normals = _normal_forces(frictions, raw_lam, constraints, reactions, elimination)
+    raw_acc = tuple(a.xreplace(normals) for a in raw_acc)
+    accelerations = {c.name: result(a) for c, a in zip(problem.coordinates, raw_acc, strict=True)}
 
     lhs = tuple(r - g for r, g in zip(lagrange.momenta_rates, lagrange.gradients, strict=True))
     rhs = tuple(q + c for q, c in zip(q_forces, lagrange.constraint_forces, strict=True))
@@ -148,9 +155,52 @@ def derive(problem: Problem) -> Derivation:
         accelerations=accelerations,
         multipliers=multipliers,
         constraint_forces=forces,
+        friction=tuple(FrictionResult(f, tidy(elimination.apply(normals[f.normal]))) for f in frictions),
     )
     _check_free_symbols(derivation)
     return derivation
+
+
+def _normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, ...],
+                   constraints: tuple[ConstraintTerms, ...], reactions: dict[str, Reaction],
+                   elimination: Elimination) -> dict[Any, Any]:
+    r"""Closed form of each friction contact's normal force :math:`N = |\sum_j \mathbf f_j|`.
+
+    Solved when the multipliers do not depend on any N (friction acts along a
+    direction that the constraints do not feel: a bead in a tube, on a wire, a
+    block on a fixed incline). Otherwise N and the multipliers are coupled; that
+    case is not handled yet and is reported as such.
+    """
+    out: dict[Any, Any] = {}
+    symbols = [f.normal for f in frictions]
+    for lam, c in zip(multipliers, constraints, strict=True):
+        coupled = [str(N) for N in symbols if tidy(sympy.diff(lam, N)) != 0]
+        if coupled:
+            raise DerivationError(
+                f"the multiplier of constraint {c.name!r} depends on the friction (through {', '.join(coupled)}): "
+                "the normal force and the friction are coupled, which lagsolve cannot solve yet; "
+                "friction along a direction the constraints do not feel is supported"
+            )
+    index = {c.name: j for j, c in enumerate(constraints)}
+    for f in frictions:
+        parts = []
+        for name in f.constraints:
+            react = reactions[name]
+            pushes = [p for p in react.particles if p.particle == f.particle]
+            if not pushes:
+                raise DerivationError(
+                    f"friction {f.name!r}: constraint {name!r} has no known force on {f.particle!r} "
+                    f"({react.note or 'it acts on other particles'}), so the normal force is unknown"
+                )
+            parts.append((sympy.Matrix(pushes[0].direction), elimination.apply(multipliers[index[name]])))
+        orthogonal = all(tidy((a.T * b)[0]) == 0 for i, (a, _) in enumerate(parts) for b, _ in parts[i + 1:])
+        if orthogonal:
+            # |sum f_j| = sqrt(sum |f_j|^2): keeps each force's factored form (the textbook's N)
+            out[f.normal] = root_of_sum_of_squares([lam * norm(list(u)) for u, lam in parts])
+        else:
+            total = sum((u * lam for u, lam in parts), sympy.zeros(parts[0][0].rows, 1))
+            out[f.normal] = norm([elimination.apply(v) for v in total])
+    return out
 
 
 def _eliminated_accelerations(constraints: tuple[ConstraintTerms, ...], model: Model,

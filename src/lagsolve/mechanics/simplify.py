@@ -9,6 +9,7 @@ because SymPy's long loops cannot be interrupted from inside.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from typing import Any
 
@@ -16,6 +17,13 @@ import sympy
 
 #: above this many operations the expensive general ``simplify`` is skipped
 SIMPLIFY_LIMIT = 400
+
+
+def _number(value: Any) -> Any:
+    """A plain Python number (from an empty sum, say) as a SymPy number."""
+    if isinstance(value, int):
+        return sympy.Integer(value)
+    raise TypeError(f"expected a SymPy expression, got {type(value).__name__}")
 
 
 _TRIG = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
@@ -30,6 +38,7 @@ def measure(expr: Any) -> tuple[int, int, str]:
     return (sympy.count_ops(expr) + 3 * compound, len(text), text)
 
 
+@functools.lru_cache(maxsize=4096)
 def tidy(expr: Any) -> Any:
     """A short, factored form of ``expr`` (deterministic: ties break on the printed text).
 
@@ -38,19 +47,24 @@ def tidy(expr: Any) -> Any:
     >>> tidy((g*x + g)/(x + 1) + x**2 - x*(x - 1))
     g + x
     """
-    expr = sympy.sympify(expr)
+    if not isinstance(expr, sympy.Basic):
+        return _number(expr)
     if expr.is_Number or expr.is_Symbol:
         return expr
     candidates: list[Any] = [expr]
-    steps: list[Callable[[Any], Any]] = [sympy.cancel, sympy.factor_terms, lambda e: sympy.factor(sympy.cancel(e))]
-    if expr.has(*_TRIG):
-        steps.append(lambda e: sympy.factor(sympy.trigsimp(sympy.cancel(e))))
-        steps.append(lambda e: sympy.factor(sympy.expand_trig(sympy.trigsimp(sympy.cancel(e)))))
+    steps: list[Callable[[Any], Any]] = [sympy.cancel, sympy.factor_terms, sympy.factor]
     for step in steps:
         try:
-            candidates.append(step(expr))
+            candidates.append(step(candidates[1] if step is sympy.factor and len(candidates) > 1 else expr))
         except (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):
             continue
+    if expr.has(*_TRIG):
+        reduced = sympy.trigsimp(candidates[1] if len(candidates) > 1 else expr)
+        for step in (sympy.factor, lambda e: sympy.factor(sympy.expand_trig(e))):
+            try:
+                candidates.append(step(reduced))
+            except (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):
+                continue
     best = min(candidates, key=measure)
     if sympy.count_ops(best) <= SIMPLIFY_LIMIT:
         try:
@@ -60,10 +74,12 @@ def tidy(expr: Any) -> Any:
     return min(candidates, key=measure)
 
 
+@functools.lru_cache(maxsize=4096)
 def tidy_sum(expr: Any) -> Any:
     """A sum of simple terms (for equations and energies): expanded, trig-reduced,
     single angles, with a common factor pulled out when there is one."""
-    expr = sympy.sympify(expr)
+    if not isinstance(expr, sympy.Basic):
+        return _number(expr)
     expanded = sympy.expand(expr)
     candidates = [expanded]
     if expanded.has(*_TRIG):
@@ -111,9 +127,24 @@ def norm(components: tuple[Any, ...] | list[Any]) -> Any:
     >>> norm([-2*m*v*sympy.sin(th), 2*m*v*sympy.cos(th)])
     2*m*Abs(v)
     """
-    square = tidy(sum((c**2 for c in components), sympy.Integer(0)))
+    return root_of_square(tidy(sum((c**2 for c in components), sympy.Integer(0))))
+
+
+def root_of_sum_of_squares(terms: list[Any]) -> Any:
+    """``sqrt(t1**2 + t2**2 + ...)`` keeping each term's factored form (for the length of a
+    sum of orthogonal vectors, whose lengths are the terms)."""
+    return root_of_square(sympy.factor_terms(sum((tidy(t) ** 2 for t in terms), sympy.Integer(0))))
+
+
+def root_of_square(square: Any) -> Any:
+    """``sqrt(square)`` with the square factored and ``sqrt(a**2)`` written ``Abs(a)``.
+
+    Derivatives and declared functions count as real, as they are in every problem.
+    """
     atoms = sorted(square.atoms(sympy.Derivative, sympy.core.function.AppliedUndef), key=sympy.default_sort_key)
     reals = {atom: sympy.Dummy(f"r{i}", real=True) for i, atom in enumerate(atoms)}
-    root = sympy.sqrt(sympy.factor(square.xreplace(reals)))
-    root = root.xreplace({v: k for k, v in reals.items()})
-    return min([root, tidy_abs(root), tidy(tidy_abs(root))], key=measure)
+    candidates = []
+    for form in (square, sympy.factor(square)):
+        root = sympy.sqrt(form.xreplace(reals)).xreplace({v: k for k, v in reals.items()})
+        candidates += [root, tidy_abs(root)]
+    return min(candidates, key=measure)

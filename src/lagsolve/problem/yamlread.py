@@ -142,7 +142,8 @@ class _Converter:
         tag = node.tag[len(_STANDARD):]
         text = node.value
         if tag == "str":
-            return text
+            # ruamel marks the folds of a '>' scalar with BEL characters for round-tripping
+            return text.replace("\a", "") if node.style == ">" else text
         if tag == "null":
             return None
         if tag == "bool":

@@ -14,6 +14,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+import unicodedata
+
 import sympy
 from sympy.printing.latex import LatexPrinter
 from sympy.printing.str import StrPrinter
@@ -137,8 +139,22 @@ def tex_escape(text: str) -> str:
     >>> tex_escape(r"\input{x} 50% & $1")
     '\\textbackslash{}input\\{x\\} 50\\% \\& \\$1'
     """
-    out = "".join(_TEX_ESCAPES.get(ch, ch) for ch in str(text))
-    return "".join(ch if ord(ch) < 128 or ch.isprintable() else "?" for ch in out)
+    return "".join(_tex_char(ch) for ch in str(text) if ch in "\n\t" or ch.isprintable())
+
+
+def _tex_char(ch: str) -> str:
+    if ch in _TEX_ESCAPES:
+        return _TEX_ESCAPES[ch]
+    if ord(ch) < 256:
+        return ch  # ASCII and Latin-1 letters work with inputenc/T1
+    name = unicodedata.name(ch, "")
+    if name.startswith("GREEK ") and " LETTER " in name:
+        letter = name.rsplit(" ", 1)[-1].lower()
+        if "CAPITAL" in name:
+            letter = letter.capitalize()
+        if letter in _GREEK and not (letter == "Alpha"):
+            return f"$\\{letter}$"
+    return "?"
 
 
 _MD_SPECIAL = set("\\`*_{}[]()<>#+-.!|$~&")

@@ -104,6 +104,15 @@ def context(derivation: Derivation) -> dict[str, Any]:
                           for p, vec, mag in result.particles] if len(result.particles) > 1 else [],
             "note": result.note,
         })
+    friction = [
+        {"name": f.term.name, "particle": f.term.particle, "coefficient": tex(f.term.coefficient),
+         "normal": tex(f.term.normal), "normal_text": text(f.term.normal), "constraints": list(f.term.constraints),
+         "force": [tex(v) for v in f.term.force],
+         "generalized": [{"coordinate": coords[i]["tex"], "value": tex(v)}
+                         for i, v in enumerate(f.term.generalized) if v != 0],
+         "valid_while": tex(f.term.valid_while), "normal_force": both(f.normal_force)}
+        for f in derivation.friction
+    ]
     return {
         "name": problem.name,
         "description": problem.description,
@@ -141,6 +150,7 @@ def context(derivation: Derivation) -> dict[str, Any]:
         "accelerations": accelerations,
         "multipliers": multipliers,
         "forces": forces,
+        "friction": friction,
     }
 
 
@@ -235,6 +245,15 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
         "accelerations": {k: to_json(v) for k, v in derivation.accelerations.items()},
         "multipliers": {k: to_json(v) for k, v in derivation.multipliers.items()},
         "constraint_forces": forces,
+        "friction": {
+            f.term.name: {
+                "normal_force": to_json(f.normal_force),
+                "force": [to_json(v) for v in f.term.force],
+                "generalized": {q.name: to_json(v) for q, v in zip(problem.coordinates, f.term.generalized, strict=True)},
+                "valid_while": to_json(f.term.valid_while),
+            }
+            for f in derivation.friction
+        },
         "reduced": derivation.reduced,
         "conserved": derivation.conserved,
         "effective_potential": derivation.effective_potential,
@@ -259,4 +278,6 @@ def summary(derivation: Derivation) -> str:
         for f in ctx["forces"]:
             value = f["magnitude"]["text"] if f["magnitude"] else "— " + f["note"]
             lines.append(f"    |F_{f['name']}| = {value}")
+    for f in ctx["friction"]:
+        lines.append(f"  friction {f['name']}: normal force {f['normal_text']} = {f['normal_force']['text']}")
     return "\n".join(lines) + "\n"
