@@ -309,8 +309,14 @@ class _Loader:
         if not entries and "coordinates" in self.data:
             self.issue(("coordinates",), "no coordinates given", "list at least one, e.g. [x, y]")
         for name, detail, path in entries:
-            if detail is not None and not isinstance(detail, str):
-                self.issue(path, f"expected a description, found {_kind(detail)}")
+            positive = False
+            if isinstance(detail, dict):
+                self.keys(path, detail, ("description", "positive"))
+                if "positive" in detail:
+                    positive = bool(self.flag((*path, "positive"), detail["positive"]))
+                detail = self.text((*path, "description"), detail.get("description", "")) or ""
+            elif detail is not None and not isinstance(detail, str):
+                self.issue(path, f"expected a description or a mapping, found {_kind(detail)}")
             if not self.declare(path, name, "a coordinate"):
                 continue
             velocity, acceleration = f"{name}_dot", f"{name}_ddot"
@@ -318,7 +324,7 @@ class _Loader:
                 if derived in self.kinds:
                     self.issue(path, f"{derived!r} (derived from coordinate {name!r}) is already declared as "
                                f"{self.kinds[derived]}", "rename one of them")
-            q = sympy.Symbol(name, real=True)
+            q = sympy.Symbol(name, positive=True) if positive else sympy.Symbol(name, real=True)
             qd = sympy.Symbol(velocity, real=True)
             qdd = sympy.Symbol(acceleration, real=True)
             self.symbols[name] = q

@@ -1,0 +1,124 @@
+"""The lagsolve command as a user runs it: outputs, formats, golden files, exit codes, start-up."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from lagsolve.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+BEAD = str(ROOT / "problems" / "bead.yaml")
+HOLE = str(ROOT / "problems" / "hole_table.yaml")
+
+
+@pytest.fixture()
+def runner() -> CliRunner:
+    return CliRunner()
+
+
+def test_derive_prints_summary_and_writes_reports(runner: CliRunner, tmp_path: Path) -> None:
+    """`derive FILE -o DIR` shows the key results and writes md, tex and json to DIR/<problem>/."""
+    result = runner.invoke(main, ["derive", BEAD, "-o", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    assert "Bead on a wire" in result.stdout and "\u03bb_wire = " in result.stdout
+    for ext in ("md", "tex", "json"):
+        assert (tmp_path / "bead" / f"bead.{ext}").stat().st_size > 100
+
+
+def test_default_output_folder_is_out(runner: CliRunner, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Without -o the reports go to out/<problem>/ under the current folder."""
+    monkeypatch.chdir(tmp_path)
+    result = runner.invoke(main, ["derive", BEAD])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "out" / "bead" / "bead.md").is_file()
+
+
+def test_json_on_stdout(runner: CliRunner) -> None:
+    """`--format json` without -o prints exactly the JSON result and nothing else."""
+    result = runner.invoke(main, ["derive", BEAD, "--format", "json"])
+    assert result.exit_code == 0
+    data = json.loads(result.stdout)
+    assert data["name"] == "Bead on a wire" and data["coordinates"] == ["x", "y"]
+
+
+def test_single_output_file(runner: CliRunner, tmp_path: Path) -> None:
+    """`--format tex -o bead.tex` writes that one file."""
+    target = tmp_path / "bead.tex"
+    result = runner.invoke(main, ["derive", BEAD, "--format", "tex", "-o", str(target)])
+    assert result.exit_code == 0, result.output
+    assert target.read_text().startswith("\\documentclass")
+
+
+def test_several_files_at_once(runner: CliRunner, tmp_path: Path) -> None:
+    """Several problems in one call each get their own folder."""
+    result = runner.invoke(main, ["derive", BEAD, HOLE, "-o", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    assert (tmp_path / "bead" / "bead.json").is_file() and (tmp_path / "hole_table" / "hole_table.json").is_file()
+
+
+def test_one_bad_file_does_not_stop_the_others(runner: CliRunner, tmp_path: Path) -> None:
+    """A bad file among good ones: the good ones are derived, the exit code is 2."""
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("name: x\ncoordinates: [q]\nkinetic: q_dot**2/2 + zz\n")
+    result = runner.invoke(main, ["derive", str(bad), BEAD, "-o", str(tmp_path / "o")])
+    assert result.exit_code == 2
+    assert "bad.yaml:3: kinetic: unknown name 'zz'" in result.stderr
+    assert (tmp_path / "o" / "bead" / "bead.md").is_file()
+
+
+def test_golden_check(runner: CliRunner, tmp_path: Path) -> None:
+    """--golden passes on unchanged output and fails with a unified diff after a change."""
+    golden = tmp_path / "golden"
+    assert runner.invoke(main, ["derive", BEAD, "--golden", str(golden), "--update-golden"]).exit_code == 0
+    ok = runner.invoke(main, ["derive", BEAD, "--golden", str(golden)])
+    assert ok.exit_code == 0 and "matches the golden files" in ok.stdout
+    md = golden / "bead.md"
+    md.write_text(md.read_text().replace("Bead on a wire", "Bead on a string"))
+    changed = runner.invoke(main, ["derive", BEAD, "--golden", str(golden)])
+    assert changed.exit_code == 1
+    assert "-# Bead on a string" in changed.stdout and "+# Bead on a wire" in changed.stdout
+
+
+def test_update_golden_needs_golden(runner: CliRunner) -> None:
+    """--update-golden alone is a usage error (exit 2)."""
+    result = runner.invoke(main, ["derive", BEAD, "--update-golden"])
+    assert result.exit_code == 2 and "--update-golden needs --golden" in result.stderr
+
+
+def test_timeout_stops_the_derivation(runner: CliRunner) -> None:
+    """A derivation past --timeout stops with exit 1 and says how to raise the budget."""
+    result = runner.invoke(main, ["derive", str(ROOT / "problems" / "rotating_tube.yaml"), "--timeout", "0.2",
+                                  "--format", "json"])
+    assert result.exit_code == 1
+    assert "did not finish within the 0.2 s budget; raise it with --timeout" in result.stderr
+
+
+def test_help_does_not_import_sympy() -> None:
+    """`lagsolve --help` stays fast: neither SymPy nor matplotlib is imported."""
+    code = ("import sys; from lagsolve.cli import main\n"
+            "try:\n    main(['--help'])\nexcept SystemExit:\n    pass\n"
+            "print('HEAVY', [m for m in ('sympy', 'matplotlib', 'numpy') if m in sys.modules])")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert "HEAVY []" in out
+
+
+@pytest.mark.slow
+def test_reports_do_not_depend_on_hash_seed(tmp_path: Path) -> None:
+    """Two runs with different PYTHONHASHSEED give byte-identical reports for every problem."""
+    problems = sorted(str(p) for p in (ROOT / "problems").glob("*.yaml"))
+    outputs = []
+    for seed in ("0", "4242"):
+        target = tmp_path / seed
+        env = {**os.environ, "PYTHONHASHSEED": seed}
+        subprocess.run([sys.executable, "-m", "lagsolve", "derive", *problems, "-o", str(target)],
+                       check=True, env=env, capture_output=True)
+        outputs.append({p.relative_to(target): p.read_bytes() for p in sorted(target.rglob("*.*"))})
+    assert outputs[0] == outputs[1]
+    assert len(outputs[0]) == 3 * len(problems)

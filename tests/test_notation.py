@@ -1,0 +1,60 @@
+"""How expressions and user text are printed: dots, primes, Greek, escaping."""
+
+from __future__ import annotations
+
+import sympy
+
+from lagsolve.render.notation import Notation, md_escape, md_prose, tex_escape, to_json
+
+x, theta = sympy.symbols("x theta", real=True)
+x_dot, x_ddot, theta_dot = sympy.symbols("x_dot x_ddot theta_dot", real=True)
+f = sympy.Function("f", real=True)
+note = Notation(["x", "theta"])
+
+
+def test_latex_uses_dots_for_rates() -> None:
+    """Velocities and accelerations of coordinates print as \\dot{x}, \\ddot{x}, \\dot{\\theta}."""
+    assert note.latex(x_dot) == r"\dot{x}"
+    assert note.latex(x_ddot) == r"\ddot{x}"
+    assert note.latex(theta_dot) == r"\dot{\theta}"
+
+
+def test_latex_leaves_other_dot_names_alone() -> None:
+    """A parameter that merely ends in _dot (not a coordinate's rate) keeps SymPy's subscript form."""
+    assert note.latex(sympy.Symbol("w_dot")) == r"w_{dot}"
+
+
+def test_latex_primes_for_declared_functions() -> None:
+    """Derivatives of a one-argument declared function print as f'(x), f''(x), f^{(4)}(x)."""
+    assert note.latex(sympy.diff(f(x), x)) == r"f'\left(x\right)"
+    assert note.latex(sympy.diff(f(x), x, 2)) == r"f''\left(x\right)"
+    assert note.latex(sympy.diff(f(x), x, 4)) == r"f^{(4)}\left(x\right)"
+
+
+def test_text_for_terminals() -> None:
+    """Terminal text uses combining dots, Greek letters, primes and superscript squares."""
+    expr = -x_dot**2 * sympy.diff(f(x), x, 2) + theta_dot
+    assert note.text(expr) == "\u03b8\u0307 - x\u0307\u00b2*f''(x)"
+    assert note.text(sympy.Symbol("lambda_wire")) == "λ_wire"
+
+
+def test_json_is_sympy_str_syntax() -> None:
+    """JSON expressions are SymPy str() syntax with the input's names, so parse_expr reads them back."""
+    assert to_json(sympy.diff(f(x), x, 2) * x_dot) == "x_dot*Derivative(f(x), (x, 2))"
+
+
+def test_tex_escape_makes_commands_inert() -> None:
+    """TeX commands in user text are printed, never executed."""
+    assert tex_escape(r"\input{/etc/passwd}") == r"\textbackslash{}input\{/etc/passwd\}"
+    assert tex_escape("100% & $5 #1 a_b ^ ~") == r"100\% \& \$5 \#1 a\_b \textasciicircum{} \textasciitilde{}"
+
+
+def test_tex_escape_handles_unicode_and_control_characters() -> None:
+    """Greek letters become math, characters pdflatex cannot set become '?', control characters vanish."""
+    assert tex_escape("θ\a漢") == r"$\theta$?"
+
+
+def test_markdown_escapes() -> None:
+    """Names are fully escaped for Markdown; descriptions keep Markdown but lose raw HTML and math."""
+    assert md_escape("<b>*x*</b>") == r"&lt;b&gt;\*x\*&lt;/b&gt;"
+    assert md_prose("**bold** <script>alert(1)</script> $x$") == "**bold** &lt;script&gt;alert(1)&lt;/script&gt; \\$x\\$"

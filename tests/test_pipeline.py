@@ -1,0 +1,50 @@
+"""Library entry points: output names are safe, golden comparison reports every difference."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from lagsolve.errors import SpecError
+from lagsolve.pipeline import Reports, derive_file, golden_differences, safe_slug
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.mark.parametrize(("path", "slug"), [
+    ("problems/bead.yaml", "bead"),
+    ("../../etc/passwd.yaml", "passwd"),
+    ("My Bead (v2).yaml", "My_Bead_v2"),
+    ("...yaml", "problem"),
+    ("/tmp/a/b/..", "problem"),
+])
+def test_safe_slug_cannot_leave_the_output_folder(path: str, slug: str) -> None:
+    """Output names come from the file name alone, with anything but letters, digits, _ and - replaced."""
+    assert safe_slug(path) == slug
+
+
+def test_golden_differences_names_missing_and_changed_files(tmp_path: Path) -> None:
+    """A missing golden file and a changed one are both reported; equal files are not."""
+    reports = Reports("p.yaml", "p", "P", "", {"md": "a\nb\n", "json": "{}\n", "tex": "x\n"})
+    (tmp_path / "p.md").write_text("a\nc\n")
+    (tmp_path / "p.json").write_text("{}\n")
+    diffs = golden_differences(reports, tmp_path)
+    assert len(diffs) == 2
+    assert "-c\n+b\n" in diffs[0]
+    assert "p.tex (missing; create it with --update-golden)" in diffs[1]
+
+
+def test_derive_file_validates_before_deriving(tmp_path: Path) -> None:
+    """An invalid file raises SpecError from the loader, before any derivation starts."""
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("name: x\n")
+    with pytest.raises(SpecError, match="missing required key 'coordinates'"):
+        derive_file(bad)
+
+
+def test_derive_file_returns_all_formats() -> None:
+    """derive_file gives the summary and each requested format as text."""
+    reports = derive_file(ROOT / "problems" / "bead.yaml", ("json",))
+    assert reports.slug == "bead" and set(reports.outputs) == {"json"}
+    assert reports.summary.startswith("Bead on a wire")

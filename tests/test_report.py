@@ -1,0 +1,147 @@
+"""Reports: the JSON contract reads back, templates are found, LaTeX compiles, user text is inert."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+import sympy
+from sympy.parsing.sympy_parser import parse_expr
+
+from lagsolve.errors import RenderError
+from lagsolve.mechanics.derivation import Derivation, derive
+from lagsolve.problem.load import load_problem, load_text
+from lagsolve.render.report import context, render, result_dict, summary, template_dirs
+
+ROOT = Path(__file__).resolve().parents[1]
+
+HOSTILE = r"""
+name: '<script>alert(1)</script> \input{/etc/passwd} 100%'
+description: 'See \input{/etc/passwd} and \write18{rm -rf /}; $x$ & # _ ^ ~ <b>bold</b>'
+parameters: {m: mass, k: stiffness}
+coordinates: {x: 'position \textbf{x}'}
+particles: {p: {mass: m, position: [x, 0]}}
+potential: k*x**2/2
+"""
+
+
+@pytest.fixture(scope="module")
+def bead() -> Derivation:
+    return derive(load_problem(ROOT / "problems" / "bead.yaml"))
+
+
+@pytest.fixture(scope="module")
+def hostile() -> Derivation:
+    return derive(load_text(HOSTILE, "hostile.yaml"))
+
+
+def test_json_reads_back_with_parse_expr(bead: Derivation) -> None:
+    """Every expression in the JSON parses back (with the input's names) to the derived expression."""
+    data = result_dict(bead)
+    x, xd = bead.problem.symbols["x"], bead.problem.symbols["x_dot"]
+    names = {"x": x, "x_dot": xd, "m": bead.problem.symbols["m"], "g": bead.problem.symbols["g"],
+             "f": bead.problem.functions[0].function}
+    # the test reads trusted output of lagsolve itself, so parse_expr is fine here
+    back = parse_expr(data["accelerations"]["x"], local_dict=names)
+    assert sympy.simplify(back - bead.accelerations["x"]) == 0
+    lam = parse_expr(data["multipliers"]["wire"], local_dict=names)
+    assert sympy.simplify(lam - bead.multipliers["wire"]) == 0
+    assert data["format_version"] == 1
+    assert json.loads(render(bead, "json")) == data
+
+
+def test_markdown_is_a_worked_solution(bead: Derivation) -> None:
+    """The Markdown report walks through T, V, L, the constraint, each equation and the results."""
+    md = render(bead, "md")
+    for heading in ("# Bead on a wire", "## Kinetic and potential energy", "## Constraints",
+                    "## Lagrange's equations", "### Coordinate $`x`$", "## Eliminating the multipliers",
+                    "## Results"):
+        assert heading in md
+    assert r"a_{x} = - f'\left(x\right)" in md
+    assert r"\ddot{x} &= - \frac{\left(g + \dot{x}^{2} f''\left(x\right)\right) f'\left(x\right)}" in md
+
+
+def test_summary_lists_key_results(bead: Derivation) -> None:
+    """The terminal summary shows each acceleration, multiplier and force magnitude."""
+    text = summary(bead)
+    assert "x\u0308 = " in text and "\u03bb_wire = " in text and "|F_wire| = " in text
+
+
+def test_user_text_is_escaped_in_latex(hostile: Derivation) -> None:
+    """Names and descriptions cannot inject TeX: \\input and \\write18 are printed as text."""
+    tex = render(hostile, "tex")
+    assert r"\input{/etc/passwd}" not in tex and r"\write18" not in tex
+    assert r"\textbackslash{}input\{/etc/passwd\}" in tex
+    assert r"100\%" in tex
+
+
+def test_user_text_is_escaped_in_markdown(hostile: Derivation) -> None:
+    """No raw HTML from the file reaches the Markdown report."""
+    md = render(hostile, "md")
+    assert "<script>" not in md and "<b>" not in md
+    assert "&lt;script&gt;" in md
+
+
+def test_context_is_plain_data(bead: Derivation) -> None:
+    """Templates receive only strings, numbers, lists, dicts and None."""
+
+    def check(value: object) -> None:
+        if isinstance(value, dict):
+            for v in value.values():
+                check(v)
+        elif isinstance(value, list):
+            for v in value:
+                check(v)
+        else:
+            assert value is None or isinstance(value, str | int | float | bool), type(value)
+
+    check(context(bead))
+
+
+def test_custom_templates_override(bead: Derivation, tmp_path: Path) -> None:
+    """A --templates folder is searched before the packaged templates."""
+    (tmp_path / "markdown").mkdir()
+    (tmp_path / "markdown" / "report.md.j2").write_text("custom {{ name }}\n")
+    assert render(bead, "md", tmp_path) == "custom Bead on a wire\n"
+
+
+def test_missing_template_lists_searched_paths(bead: Derivation, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """When no template is found the error names every folder searched."""
+    import lagsolve.render.report as report
+
+    monkeypatch.setattr(report, "template_dirs", lambda kind, extra=None: [tmp_path / "nowhere" / kind])
+    with pytest.raises(RenderError, match="searched: .*nowhere"):
+        render(bead, "md")
+
+
+def test_templates_are_packaged() -> None:
+    """The template folders exist where the installed package or the checkout provides them."""
+    assert any((d / "report.md.j2").is_file() for d in template_dirs("markdown"))
+    assert any((d / "report.tex.j2").is_file() for d in template_dirs("latex"))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "problems").glob("*.yaml")))
+def test_latex_compiles(name: str, tmp_path: Path) -> None:
+    """Each problem's LaTeX report compiles with pdflatex (skipped where pdflatex is not installed)."""
+    if shutil.which("pdflatex") is None:
+        pytest.skip("pdflatex is not installed (CI installs texlive-latex-base)")
+    tex = (ROOT / "tests" / "golden" / f"{name}.tex").read_text()
+    (tmp_path / "r.tex").write_text(tex)
+    run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "r.tex"],
+                         cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stdout[-2000:]
+    assert (tmp_path / "r.pdf").stat().st_size > 1000
+
+
+def test_hostile_latex_compiles(hostile: Derivation, tmp_path: Path) -> None:
+    """Even a report built from hostile names compiles, and shell escape stays off."""
+    if shutil.which("pdflatex") is None:
+        pytest.skip("pdflatex is not installed")
+    (tmp_path / "h.tex").write_text(render(hostile, "tex"))
+    run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "h.tex"],
+                         cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stdout[-2000:]
