@@ -92,7 +92,7 @@ def solve_augmented(terms: LagrangeTerms) -> tuple[tuple[Any, ...], tuple[Any, .
         rhs = sympy.Matrix.vstack(sympy.Matrix(F), sympy.Matrix(beta))
     try:
         solution = solve_linear(system, rhs)
-    except (ValueError, ZeroDivisionError, sympy.matrices.common.NonInvertibleMatrixError) as exc:
+    except (ValueError, ZeroDivisionError) as exc:
         raise DerivationError(
             "the augmented system [[M, -A^T], [A, 0]] is singular, so the accelerations and multipliers "
             "are not determined: a coordinate has no inertia and no constraint fixes it, or two "

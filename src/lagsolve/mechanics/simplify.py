@@ -15,10 +15,6 @@ from typing import Any
 
 import sympy
 
-#: above this many operations the expensive general ``simplify`` is skipped
-SIMPLIFY_LIMIT = 400
-
-
 def _number(value: Any) -> Any:
     """A plain Python number (from an empty sum, say) as a SymPy number."""
     if isinstance(value, int):
@@ -38,6 +34,53 @@ def measure(expr: Any) -> tuple[int, int, str]:
     return (sympy.count_ops(expr) + 3 * compound, len(text), text)
 
 
+#: above this many operations SymPy's general ``simplify`` and ``trigsimp`` are skipped
+#: (they dominate run time on large expressions; the Pythagorean reduction below is cheap)
+SIMPLIFY_LIMIT = 60
+TRIGSIMP_LIMIT = 0
+_ERRORS = (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError)
+
+
+def _reduce_squares(expr: Any, of: Any, to: Any) -> Any:
+    """Rewrite even powers of ``of`` (cos, say) with ``1 - to**2`` and expand: a cheap, canonical
+    reduction modulo sin² + cos² = 1."""
+
+    def rewrite(power: Any) -> Any:
+        k = int(power.exp)
+        angle = power.base.args[0]
+        return of(angle) ** (k % 2) * (1 - to(angle) ** 2) ** (k // 2)
+
+    return sympy.expand(expr.replace(
+        lambda e: e.is_Pow and isinstance(e.base, of) and e.exp.is_Integer and e.exp >= 2, rewrite))
+
+
+def pythagoras(expr: Any) -> list[Any]:
+    """Forms of ``expr`` with sin² + cos² = 1 applied both ways, numerator and denominator apart."""
+    numerator, denominator = sympy.fraction(sympy.cancel(expr))
+    out = []
+    for of, to in ((sympy.cos, sympy.sin), (sympy.sin, sympy.cos)):
+        n, d = _reduce_squares(numerator, of, to), _reduce_squares(denominator, of, to)
+        try:
+            out.append(sympy.factor(n) / sympy.factor(d))
+        except _ERRORS:
+            out.append(n / d)
+    try:
+        factored = sympy.factor(expr)
+    except _ERRORS:
+        return out
+    # factor first, then reduce each factor: keeps squares such as (x*cos + y*sin)**2 intact
+    out.append(sympy.Mul(*[_reduce_factor(f) for f in sympy.Mul.make_args(factored)]))
+    return out
+
+
+def _reduce_factor(factor: Any) -> Any:
+    base, exp = factor.as_base_exp()
+    if not base.has(sympy.sin, sympy.cos):
+        return factor
+    forms = [base, _reduce_squares(base, sympy.cos, sympy.sin), _reduce_squares(base, sympy.sin, sympy.cos)]
+    return min(forms, key=measure) ** exp
+
+
 @functools.lru_cache(maxsize=4096)
 def tidy(expr: Any) -> Any:
     """A short, factored form of ``expr`` (deterministic: ties break on the printed text).
@@ -52,24 +95,25 @@ def tidy(expr: Any) -> Any:
     if expr.is_Number or expr.is_Symbol:
         return expr
     candidates: list[Any] = [expr]
-    steps: list[Callable[[Any], Any]] = [sympy.cancel, sympy.factor_terms, sympy.factor]
-    for step in steps:
+    for step in (sympy.cancel, sympy.factor_terms, lambda e: sympy.factor(sympy.cancel(e))):
         try:
-            candidates.append(step(candidates[1] if step is sympy.factor and len(candidates) > 1 else expr))
-        except (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):
+            candidates.append(step(expr))
+        except _ERRORS:
             continue
     if expr.has(*_TRIG):
-        reduced = sympy.trigsimp(candidates[1] if len(candidates) > 1 else expr)
-        for step in (sympy.factor, lambda e: sympy.factor(sympy.expand_trig(e))):
-            try:
-                candidates.append(step(reduced))
-            except (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):
-                continue
+        candidates += pythagoras(expr)
+        if sympy.count_ops(expr) <= TRIGSIMP_LIMIT:
+            reduced = sympy.trigsimp(candidates[1])
+            for step in (sympy.factor, lambda e: sympy.factor(sympy.expand_trig(e))):
+                try:
+                    candidates.append(step(reduced))
+                except _ERRORS:
+                    continue
     best = min(candidates, key=measure)
-    if sympy.count_ops(best) <= SIMPLIFY_LIMIT:
+    if sympy.count_ops(best) <= SIMPLIFY_LIMIT and not best.has(*_TRIG):
         try:
             candidates.append(sympy.simplify(best))
-        except (ValueError, TypeError):
+        except _ERRORS:
             pass
     return min(candidates, key=measure)
 
@@ -83,8 +127,11 @@ def tidy_sum(expr: Any) -> Any:
     expanded = sympy.expand(expr)
     candidates = [expanded]
     if expanded.has(*_TRIG):
-        reduced = sympy.trigsimp(expanded)
-        candidates += [reduced, sympy.expand(sympy.expand_trig(reduced))]
+        candidates += [_reduce_squares(expanded, sympy.cos, sympy.sin),
+                       _reduce_squares(expanded, sympy.sin, sympy.cos)]
+        if sympy.count_ops(expanded) <= TRIGSIMP_LIMIT:
+            reduced = sympy.trigsimp(expanded)
+            candidates += [reduced, sympy.expand(sympy.expand_trig(reduced))]
     candidates += [sympy.factor_terms(c) for c in candidates]
     return min(candidates, key=measure)
 
