@@ -16,6 +16,7 @@ run: $(STAMP)
 	$(BIN)/lagsolve derive problems/bead.yaml -o out/
 
 test: $(STAMP)
+	$(BIN)/ruff check src tests bench
 	$(BIN)/python -m pytest -q
 
 golden: $(STAMP)

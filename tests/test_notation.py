@@ -57,4 +57,5 @@ def test_tex_escape_handles_unicode_and_control_characters() -> None:
 def test_markdown_escapes() -> None:
     """Names are fully escaped for Markdown; descriptions keep Markdown but lose raw HTML and math."""
     assert md_escape("<b>*x*</b>") == r"&lt;b&gt;\*x\*&lt;/b&gt;"
-    assert md_prose("**bold** <script>alert(1)</script> $x$") == "**bold** &lt;script&gt;alert(1)&lt;/script&gt; \\$x\\$"
+    expected = "**bold** &lt;script&gt;alert(1)&lt;/script&gt; \\$x\\$"
+    assert md_prose("**bold** <script>alert(1)</script> $x$") == expected

@@ -108,7 +108,8 @@ def test_custom_templates_override(bead: Derivation, tmp_path: Path) -> None:
     assert render(bead, "md", tmp_path) == "custom Bead on a wire\n"
 
 
-def test_missing_template_lists_searched_paths(bead: Derivation, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_missing_template_lists_searched_paths(bead: Derivation, tmp_path: Path,
+                                              monkeypatch: pytest.MonkeyPatch) -> None:
     """When no template is found the error names every folder searched."""
     import lagsolve.render.report as report
 

@@ -245,4 +245,6 @@ def _check_free_symbols(derivation: Derivation) -> None:
     for name, expr in {**derivation.accelerations, **derivation.multipliers}.items():
         stray = expr.free_symbols - allowed
         if stray:
-            raise DerivationError(f"internal error: result for {name} contains undeclared symbols {sorted(map(str, stray))}")
+            raise DerivationError(
+                f"internal error: result for {name} contains undeclared symbols {sorted(map(str, stray))}"
+            )

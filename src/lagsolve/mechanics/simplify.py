@@ -9,11 +9,12 @@ because SymPy's long loops cannot be interrupted from inside.
 
 from __future__ import annotations
 
+import contextlib
 import functools
-from collections.abc import Callable
 from typing import Any
 
 import sympy
+
 
 def _number(value: Any) -> Any:
     """A plain Python number (from an empty sum, say) as a SymPy number."""
@@ -111,10 +112,8 @@ def tidy(expr: Any) -> Any:
                     continue
     best = min(candidates, key=measure)
     if sympy.count_ops(best) <= SIMPLIFY_LIMIT and not best.has(*_TRIG):
-        try:
+        with contextlib.suppress(*_ERRORS):
             candidates.append(sympy.simplify(best))
-        except _ERRORS:
-            pass
     return min(candidates, key=measure)
 
 

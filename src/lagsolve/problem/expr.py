@@ -13,9 +13,12 @@ recursive-descent parser accept exactly the grammar of the problem format::
 
 Only names in the caller's :class:`Namespace`, the fixed functions below and the
 constants ``pi`` and ``E`` are accepted. Length, token count, nesting depth,
-literal size and exponents are bounded, and every constant sub-expression is
-evaluated in floating point *before* SymPy sees it, so that nothing astronomically
-large (``9**9**9**9``, ``exp(exp(exp(9)))``) ever reaches SymPy's evaluator.
+literal size, exponents and the size of exact numbers are bounded, and every
+constant sub-expression is evaluated in floating point *before* SymPy combines it
+further, so that nothing astronomically large (``9**9**9**9``, ``exp(exp(exp(9)))``)
+ever reaches SymPy's evaluator. A sub-expression that SymPy itself reduces to a
+number (``0*x``, ``x - x``, ``x**0``) counts as a constant too, so such tricks
+cannot smuggle a huge constant past the check.
 
 Example
 -------
@@ -50,17 +53,12 @@ MAX_DECIMAL_EXPONENT = 300
 MAX_POWER = 1000
 MAX_CONSTANT = 1e100
 MAX_DERIVATIVE_ORDER = 8
+#: Exact numbers (integers, numerators, denominators) are limited to this many bits
+#: (about 1200 digits), far above anything a problem needs, far below what makes
+#: SymPy slow or Python's ``str(int)`` refuse.
+MAX_EXACT_BITS = 4000
 
 _c = cmath
-
-
-def _real(fn: Callable[[float], float]) -> Callable[[complex], complex]:
-    def wrapped(z: complex) -> complex:
-        if abs(z.imag) > 1e-12 * max(1.0, abs(z.real)):
-            raise ValueError("complex argument")
-        return complex(fn(z.real))
-
-    return wrapped
 
 
 def _sign(z: complex) -> complex:
@@ -88,7 +86,10 @@ FUNCTIONS: dict[str, tuple[Any, Callable[..., complex], int]] = {
     "Abs": (sympy.Abs, lambda z: complex(abs(z)), 1),
     "sign": (sympy.sign, _sign, 1),
 }
-CONSTANTS: dict[str, tuple[Any, complex]] = {"pi": (sympy.pi, complex(math.pi)), "E": (sympy.E, complex(math.e))}
+CONSTANTS: dict[str, tuple[Any, complex]] = {
+    "pi": (sympy.pi, complex(math.pi)),
+    "E": (sympy.E, complex(math.e)),
+}
 DERIVATIVE = "Derivative"
 
 #: Names a problem may not declare: built-in functions and constants, SymPy's
@@ -97,6 +98,12 @@ RESERVED = frozenset(FUNCTIONS) | frozenset(CONSTANTS) | {
     DERIVATIVE, "I", "oo", "zoo", "nan", "S", "N", "O", "Q", "Function", "Symbol", "Integer",
     "Rational", "Float",
 }
+
+#: SymPy function class -> float evaluator, to size numbers SymPy made by itself.
+_EVALUATORS: dict[Any, Callable[..., complex]] = {
+    fn: evaluator for fn, evaluator, _ in FUNCTIONS.values() if isinstance(fn, type)
+}
+_UNDEFINED = (sympy.nan, sympy.zoo, sympy.oo, -sympy.oo)
 
 
 @dataclass(frozen=True)
@@ -128,13 +135,15 @@ def name_problem(name: str) -> str | None:
         return "a name must be a non-empty string"
     for ch in name:
         if not ch.isascii():
-            return f"non-ASCII character {describe_char(ch)} in name {name!r}; names use ASCII letters, digits and '_'"
+            return (f"non-ASCII character {describe_char(ch)} in name {name!r}; "
+                    "names use ASCII letters, digits and '_'")
     if not _NAME_RE.match(name):
         return f"{name!r} is not a valid name; start with a letter, then letters, digits or '_'"
     if "__" in name or name.endswith("_"):
         return f"{name!r} is not a valid name; no double underscores and no trailing '_'"
     if keyword.iskeyword(name) or keyword.issoftkeyword(name):
-        return f"{name!r} is a Python keyword, which would make the JSON output unreadable; choose another name"
+        return (f"{name!r} is a Python keyword, which would make the JSON output unreadable; "
+                "choose another name")
     if name in RESERVED:
         return f"{name!r} is the name of a built-in function or constant; choose another name"
     return None
@@ -150,7 +159,7 @@ _TOKEN_RE = re.compile(
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
   | (?P<op>\*\*|[-+*/^(),])
     """,
-    re.VERBOSE,
+    re.VERBOSE | re.ASCII,
 )
 
 
@@ -211,12 +220,13 @@ class _Parser:
 
     def take(self) -> _Token:
         tok = self.tokens[self.pos]
-        self.pos += 1
+        if tok.kind != "end":
+            self.pos += 1
         return tok
 
     def expect(self, text: str) -> _Token:
         tok = self.take()
-        if tok.text != text:
+        if tok.text != text or tok.kind == "end":
             found = "end of expression" if tok.kind == "end" else repr(tok.text)
             raise ExpressionError(f"expected {text!r} at column {tok.column}, found {found}")
         return tok
@@ -239,15 +249,15 @@ class _Parser:
     def expr(self) -> tuple:
         node = self.term()
         while self.peek().text in ("+", "-"):
-            op = self.take().text
-            node = ("bin", op, node, self.term())
+            op = self.take()
+            node = ("bin", op.text, node, self.term(), op.column)
         return node
 
     def term(self) -> tuple:
         node = self.unary()
         while self.peek().text in ("*", "/"):
-            op = self.take().text
-            node = ("bin", op, node, self.unary())
+            op = self.take()
+            node = ("bin", op.text, node, self.unary(), op.column)
         return node
 
     def unary(self) -> tuple:
@@ -268,7 +278,7 @@ class _Parser:
             self.enter(tok)
             exponent = self.unary()
             self.depth -= 1
-            return ("bin", "**", base, exponent)
+            return ("bin", "**", base, exponent, tok.column)
         return base
 
     def atom(self) -> tuple:
@@ -286,7 +296,9 @@ class _Parser:
             self.depth -= 1
             return node
         found = "end of expression" if tok.kind == "end" else repr(tok.text)
-        raise ExpressionError(f"expected a number, name or '(' at column {tok.column}, found {found}")
+        raise ExpressionError(
+            f"expected a number, name or '(' at column {tok.column}, found {found}"
+        )
 
     def call(self, name: _Token) -> tuple:
         open_tok = self.expect("(")
@@ -324,13 +336,16 @@ class _Parser:
                 order = int(order_tok.text[:4])
                 if not 1 <= order <= MAX_DERIVATIVE_ORDER:
                     raise ExpressionError(
-                        f"derivative order {order_tok.text} at column {order_tok.column} is out of range",
+                        f"derivative order {order_tok.text[:20]} at column {order_tok.column} "
+                        "is out of range",
                         f"use 1 to {MAX_DERIVATIVE_ORDER}",
                     )
                 self.expect(")")
                 variables.append((var.text, var.column, order))
             else:
-                raise ExpressionError(f"expected a variable after ',' at column {tok.column} of Derivative")
+                raise ExpressionError(
+                    f"expected a variable after ',' at column {tok.column} of Derivative"
+                )
         self.expect(")")
         if not variables:
             raise ExpressionError(
@@ -349,12 +364,16 @@ def _number(tok: _Token) -> Fraction:
             f"number at column {tok.column} has more than {MAX_LITERAL} digits",
             "use fewer digits or a parameter",
         )
-    if exponent and abs(int(exponent[:12])) > MAX_DECIMAL_EXPONENT:
+    # the exponent is read in full (``1e-0000000000009999`` has a huge exponent): the text is
+    # at most MAX_LENGTH characters, so int() is cheap, and 10**exponent is computed only
+    # once the exponent is known to be small
+    power = int(exponent) if exponent else 0
+    if abs(power) > MAX_DECIMAL_EXPONENT:
         raise ExpressionError(
             f"number {text[:30]!r} at column {tok.column} is out of range",
             f"decimal exponents are limited to ±{MAX_DECIMAL_EXPONENT}",
         )
-    value = Fraction(text)
+    value = Fraction(mantissa) * Fraction(10) ** power
     if value != 0 and not (1e-300 <= abs(value) <= MAX_CONSTANT):
         raise ExpressionError(
             f"number {text[:30]!r} at column {tok.column} is out of range",
@@ -368,10 +387,30 @@ def _number(tok: _Token) -> Fraction:
 
 
 class _Builder:
+    """Builds SymPy from the AST; each step returns ``(expr, value)``.
+
+    ``value`` is the complex floating-point value of ``expr`` when ``expr`` is a number,
+    else ``None``. It is known *before* the next operation hands ``expr`` to SymPy, so a
+    constant that would be too large, undefined or complex is refused first.
+    """
+
     def __init__(self, names: Namespace) -> None:
         self.names = names
 
     def build(self, node: tuple) -> tuple[Any, complex | None]:
+        expr, const = self.node(node)
+        if const is None and getattr(expr, "is_number", False):
+            # SymPy reduced something written with symbols to a number (0*x, x - x, x**0,
+            # atan2(m, m)); size it now so that the tree above cannot build on a giant
+            const = _value_of(expr)
+        if const is not None and expr in _UNDEFINED:
+            raise ExpressionError(
+                "the expression has an infinite or undefined part",
+                "check for a division by zero or a function at a singular point, like tan(pi/2)",
+            )
+        return expr, const
+
+    def node(self, node: tuple) -> tuple[Any, complex | None]:
         kind = node[0]
         if kind == "num":
             value: Fraction = node[1]
@@ -382,7 +421,7 @@ class _Builder:
             expr, const = self.build(node[1])
             return -expr, (None if const is None else -const)
         if kind == "bin":
-            return self.binary(node[1], node[2], node[3])
+            return self.binary(node[1], node[2], node[3], node[4])
         if kind == "call":
             return self.call(node[1], node[2], node[3])
         if kind == "deriv":
@@ -416,51 +455,65 @@ class _Builder:
             hint + "declare it under parameters, coordinates or functions",
         )
 
-    def binary(self, op: str, left: tuple, right: tuple) -> tuple[Any, complex | None]:
+    def binary(self, op: str, left: tuple, right: tuple, column: int) -> tuple[Any, complex | None]:
         a, ca = self.build(left)
         b, cb = self.build(right)
+        where = f"'{op}' at column {column}"
         const: complex | None = None
-        if op == "**" and cb is not None and abs(cb) > MAX_POWER:
-            raise ExpressionError(
-                f"exponent {_show(cb)} is too large",
-                f"powers are limited to exponents of size {MAX_POWER}",
-            )
+        if op == "**" and cb is not None:
+            if abs(cb) > MAX_POWER:
+                raise ExpressionError(
+                    f"exponent {_show(cb)} of {where} is too large",
+                    f"powers are limited to exponents of size {MAX_POWER}",
+                )
+            _check_exact(_exact_bits(a) * abs(cb), where)
         if op == "/" and cb is not None and cb == 0:
-            raise ExpressionError("division by zero")
+            raise ExpressionError(f"division by zero ({where})")
         if ca is not None and cb is not None:
-            const = _checked(lambda: _apply(op, ca, cb), f"{op!r}")
+            const = _checked(lambda: _apply(op, ca, cb), where)
         if op == "+":
-            return a + b, const
-        if op == "-":
-            return a - b, const
-        if op == "*":
-            return a * b, const
-        if op == "/":
-            return a / b, const
-        return a**b, const
+            result = a + b
+        elif op == "-":
+            result = a - b
+        elif op == "*":
+            result = a * b
+        elif op == "/":
+            result = a / b
+        else:
+            result = a**b
+        if op in ("*", "/"):
+            _check_exact(_exact_bits(result), where)
+        return result, const
 
     def call(self, name: str, column: int, args: tuple) -> tuple[Any, complex | None]:
-        built = [self.build(arg) for arg in args]
-        exprs = [e for e, _ in built]
+        where = f"{name}(...) at column {column}"
         if name in FUNCTIONS:
             fn, evaluator, arity = FUNCTIONS[name]
             if len(args) != arity:
                 raise ExpressionError(
-                    f"{name} at column {column} takes {arity} argument{'s' if arity > 1 else ''}, got {len(args)}"
+                    f"{name} at column {column} takes {arity} argument{'s' if arity > 1 else ''}, "
+                    f"got {len(args)}"
                 )
+            built = [self.build(arg) for arg in args]
             consts = [c for _, c in built]
             const = None
             if all(c is not None for c in consts):
-                const = _checked(lambda: evaluator(*consts), f"{name}(...)")
-            return fn(*exprs), const
+                const = _checked(lambda: evaluator(*consts), where)
+            return fn(*(e for e, _ in built)), const
         if name in self.names.functions:
             if len(args) > 4:
                 raise ExpressionError(f"{name} at column {column} has more than 4 arguments")
+            exprs = [self.build(arg)[0] for arg in args]
             return self.names.functions[name](*exprs), None
         if name in self.names.symbols or name in CONSTANTS:
             raise ExpressionError(
                 f"{name!r} at column {column} is not a function",
                 f"write {name}*(...) for a product",
+            )
+        if name.startswith("_") or "__" in name:
+            raise ExpressionError(
+                f"name {name!r} at column {column} is not allowed",
+                "names may not start with '_' or contain '__'",
             )
         known = sorted(FUNCTIONS) + sorted(self.names.functions)
         close = difflib.get_close_matches(name, known, n=1)
@@ -470,15 +523,42 @@ class _Builder:
             hint + "declare it under functions, or use one of: " + ", ".join(known),
         )
 
-    def derivative(self, column: int, target: tuple, variables: tuple) -> tuple[Any, complex | None]:
+    def derivative(self, column: int, target: tuple, variables: tuple) -> tuple[Any, None]:
+        usage = "write Derivative(f(x), x) or Derivative(f(x), (x, 2)) for a declared function f"
+        if target[0] != "call" or target[1] not in self.names.functions:
+            raise ExpressionError(
+                f"Derivative at column {column} must be of a declared function applied to "
+                "variables",
+                usage,
+            )
         expr, _ = self.build(target)
+        arguments = set(expr.args)
+        if not all(getattr(arg, "is_Symbol", False) for arg in expr.args):
+            raise ExpressionError(
+                f"Derivative at column {column}: the arguments of {target[1]} must be plain "
+                "variables",
+                usage,
+            )
+        total = sum(order for _, _, order in variables)
+        if total > MAX_DERIVATIVE_ORDER:
+            raise ExpressionError(
+                f"Derivative at column {column} has total order {total}",
+                f"orders are limited to {MAX_DERIVATIVE_ORDER}",
+            )
         spec = []
         for var_name, var_column, order in variables:
             var = self.names.symbols.get(var_name)
             if var is None or not getattr(var, "is_Symbol", False):
                 raise ExpressionError(
-                    f"Derivative at column {column}: {var_name!r} (column {var_column}) is not a coordinate or the time",
+                    f"Derivative at column {column}: {var_name!r} (column {var_column}) is not a "
+                    "coordinate or the time",
                     "differentiate with respect to a coordinate, e.g. Derivative(f(x), x)",
+                )
+            if var not in arguments:
+                raise ExpressionError(
+                    f"Derivative at column {column}: {target[1]}(...) does not depend on "
+                    f"{var_name!r} (column {var_column}), so the derivative would be 0",
+                    f"differentiate with respect to an argument of {target[1]}",
                 )
             spec.append((var, order))
         return sympy.diff(expr, *spec), None
@@ -512,13 +592,72 @@ def _checked(compute: Callable[[], complex], what: str) -> complex:
             f"constants are limited to {MAX_CONSTANT:g} in size",
         ) from None
     except ValueError:
-        raise ExpressionError(f"a constant in {what} is undefined (outside the function's domain)") from None
+        raise ExpressionError(
+            f"a constant in {what} is undefined (outside the function's domain)"
+        ) from None
     if not (math.isfinite(value.real) and math.isfinite(value.imag)) or abs(value) > MAX_CONSTANT:
         raise ExpressionError(
             f"a constant in {what} is too large",
             f"constants are limited to {MAX_CONSTANT:g} in size",
         )
+    if abs(value.imag) > 1e-12 * max(1.0, abs(value.real)):
+        raise ExpressionError(
+            f"a constant in {what} is a complex number; expressions must be real",
+            "check square roots and logarithms of negative numbers",
+        )
     return value
+
+
+def _value_of(expr: Any) -> complex:
+    """The floating-point value of a SymPy number built from bounded pieces."""
+    if expr in _UNDEFINED:
+        raise ExpressionError(
+            "the expression has an infinite or undefined part",
+            "check for a division by zero or a function at a singular point",
+        )
+    if expr.is_Rational:
+        _check_exact(_exact_bits(expr), "a constant")
+        return _checked(lambda: complex(Fraction(int(expr.p), int(expr.q))), "a constant")
+    if expr is sympy.pi:
+        return CONSTANTS["pi"][1]
+    if expr is sympy.E:
+        return CONSTANTS["E"][1]
+    if expr is sympy.I:
+        raise ExpressionError("the expression is a complex number; expressions must be real")
+    args = [_value_of(arg) for arg in expr.args]
+    if expr.is_Add:
+        return _checked(lambda: sum(args, complex(0)), "a sum")
+    if expr.is_Mul:
+        return _checked(lambda: math.prod(args, start=complex(1)), "a product")
+    if expr.is_Pow:
+        return _checked(lambda: _apply("**", args[0], args[1]), "a power")
+    if expr.func in _EVALUATORS:
+        return _checked(lambda: _EVALUATORS[expr.func](*args), f"{expr.func.__name__}(...)")
+    raise ExpressionError(  # pragma: no cover - SymPy makes no other numbers from our pieces
+        f"cannot check the size of the constant {str(expr)[:40]}", "write it more simply"
+    )
+
+
+def _exact_bits(expr: Any) -> float:
+    """Bits of the largest exact number SymPy holds in ``expr``'s numeric factors."""
+    if expr.is_Rational:
+        return float(max(int(expr.p).bit_length(), int(expr.q).bit_length()))
+    if expr.is_Pow and expr.base.is_Rational and expr.exp.is_Rational:
+        return _exact_bits(expr.base) * abs(float(expr.exp))
+    if expr.is_Mul:
+        return sum(_exact_bits(arg) for arg in expr.args if arg.is_Rational or arg.is_Pow)
+    if expr.is_Add:
+        return max((_exact_bits(arg) for arg in expr.args), default=0.0)
+    return 0.0
+
+
+def _check_exact(bits: float, where: str) -> None:
+    if bits > MAX_EXACT_BITS:
+        raise ExpressionError(
+            f"{where} would make an exact number of about {int(bits * 0.30103)} digits",
+            f"exact numbers are limited to about {int(MAX_EXACT_BITS * 0.30103)} digits; "
+            "use smaller powers or a parameter",
+        )
 
 
 def parse(text: object, names: Namespace) -> Any:
@@ -545,11 +684,13 @@ def parse(text: object, names: Namespace) -> Any:
             f"expected an expression (text or number), found {type(text).__name__}",
             'write it as a string, e.g. "m*g*y"',
         )
-    if isinstance(text, int | float) and not (
-        math.isfinite(text) and (text == 0 or 1e-300 <= abs(text) <= MAX_CONSTANT)
-    ):
+    if isinstance(text, float) and not math.isfinite(text):
+        raise ExpressionError("number is not finite", "give a finite number")
+    # ints are compared exactly (a huge int cannot be converted to float)
+    if isinstance(text, int | float) and text != 0 and not 1e-300 <= abs(text) <= MAX_CONSTANT:
         raise ExpressionError(
-            "number is out of range", f"numbers must lie between 1e-300 and {MAX_CONSTANT:g} in size"
+            "number is out of range",
+            f"numbers must lie between 1e-300 and {MAX_CONSTANT:g} in size",
         )
     if isinstance(text, float):
         text = repr(text)
@@ -565,4 +706,9 @@ def parse(text: object, names: Namespace) -> Any:
     expr, const = _Builder(names).build(node)
     if const is not None and abs(const.imag) > 1e-12 * max(1.0, abs(const.real)):
         raise ExpressionError("the expression is a complex number; expressions must be real")
+    if expr.has(*_UNDEFINED):
+        raise ExpressionError(
+            "the expression has an infinite or undefined part",
+            "check for a division by zero or a function at a singular point, like tan(pi/2)",
+        )
     return expr

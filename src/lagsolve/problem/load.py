@@ -31,7 +31,7 @@ from lagsolve.problem.schema import (
     Problem,
     Simulation,
 )
-from lagsolve.problem.yamlread import Document, dotted, read_document
+from lagsolve.problem.yamlread import MAX_BYTES, Document, dotted, read_document
 
 TOP_LEVEL = (
     "name", "description", "time", "parameters", "functions", "coordinates", "particles", "bodies",
@@ -54,7 +54,9 @@ def load_problem(path: str | Path) -> Problem:
     """
     source = str(path)
     try:
-        raw = Path(path).read_bytes()
+        # read at most one byte over the limit: a device or pipe never makes this hang
+        with Path(path).open("rb") as handle:
+            raw = handle.read(MAX_BYTES + 1)
     except FileNotFoundError:
         raise SpecError([Issue(source, 0, "", "file not found", "check the path")]) from None
     except IsADirectoryError:
@@ -84,6 +86,8 @@ class _Loader:
         self.kinds: dict[str, str] = {}  # name -> what declared it
         self.functions: dict[str, Any] = {}
         self.velocity_names: dict[str, Any] = {}
+        self.declared_particles: list[str] = []
+        self.particles_readable = True  # False: references to particles cannot be checked
         self.acceleration_names: dict[str, Any] = {}
 
     # -- reporting ---------------------------------------------------------------------------
@@ -233,9 +237,17 @@ class _Loader:
             {time_name: time, **{p.name: p.symbol for p in parameters}}, {},
             {**{c.name: "a coordinate cannot appear here (only parameters and the time)" for c in coordinates}},
         )
-        if not isinstance(data.get("particles", {}), dict):
+        raw_particles = data.get("particles") or {}
+        if not isinstance(raw_particles, dict):
             self.mapping(("particles",), data["particles"])
-        particles = self.particles(data.get("particles") or {}, positions)
+            raw_particles = {}
+            self.particles_readable = False
+        elif "particles" in data and data["particles"] is None:
+            self.mapping(("particles",), None)
+        # every particle the file names, valid or not: a reference to one that failed to load
+        # is not reported a second time as "unknown particle"
+        self.declared_particles = [n for n in raw_particles if isinstance(n, str)]
+        particles = self.particles(raw_particles, positions)
         bodies = self.bodies(data.get("bodies") or {}, positions, base)
         gravity = self.vector(("gravity",), data["gravity"], constants) if "gravity" in data else None
         self.check_dimensions(particles, bodies, gravity)
@@ -244,11 +256,11 @@ class _Loader:
         potential = self.expression(("potential",), data["potential"], base) if "potential" in data else None
         dissipation = (self.expression(("dissipation",), data["dissipation"], base)
                        if "dissipation" in data else None)
-        if "name" in data and not (particles or bodies or "kinetic" in data) and coordinates:
+        if not (data.get("particles") or data.get("bodies") or "kinetic" in data) and coordinates:
             self.issue((), "the problem has no kinetic energy",
                        "add particles, bodies, or a 'kinetic:' expression")
 
-        particle_names = [p.name for p in particles]
+        particle_names = self.declared_particles
         forces = self.forces(data.get("forces", []), base, particles, coordinates)
         constraints = self.constraints(data.get("constraints", {}), base, particle_names)
         friction = self.friction(data.get("friction", {}), base, particle_names, constraints, coordinates)
@@ -256,7 +268,7 @@ class _Loader:
         simulation = self.simulation(data["simulation"], parameters, coordinates) if "simulation" in data else None
 
         if self.issues:
-            raise SpecError(self.issues)
+            raise SpecError(sorted(self.issues, key=lambda issue: issue.line))
         return Problem(
             source=self.source, name=name or "", description=description.strip(), time=time,
             parameters=tuple(parameters), functions=tuple(functions), coordinates=tuple(coordinates),
@@ -427,15 +439,22 @@ class _Loader:
             elif "on" in spec:
                 if not self.keys(path, spec, ("on", "force"), ("on", "force")):
                     continue
-                if spec["on"] not in dims:
-                    self.issue((*path, "on"), f"unknown particle {spec['on']!r}", _known("particles", dims))
+                on = spec["on"]
+                if not isinstance(on, str) or on not in self.declared_particles:
+                    if isinstance(on, str) and not self.particles_readable:
+                        continue
+                    self.issue((*path, "on"), f"unknown particle {_short(on)}",
+                               _known("particles", self.declared_particles))
                     continue
                 vec = self.vector((*path, "force"), spec["force"], names)
-                if vec is not None and len(vec) != dims[spec["on"]]:
-                    self.issue((*path, "force"), f"the force has {len(vec)} components but particle "
-                               f"{spec['on']!r} has {dims[spec['on']]}", "give it as many components as the position")
-                elif vec is not None:
-                    out.append(Force(None, spec["on"], vec))
+                if vec is None or on not in dims:  # a particle that failed has its own issue
+                    continue
+                if len(vec) != dims[on]:
+                    self.issue((*path, "force"),
+                               f"the force has {len(vec)} components but particle {on!r} has "
+                               f"{dims[on]}", "give it as many components as the position")
+                else:
+                    out.append(Force(None, on, vec))
             else:
                 self.issue(path, "a force needs 'coordinate' (a generalized force) or 'on' (a force on a particle)")
         return out
@@ -493,8 +512,11 @@ class _Loader:
         raw = spec["on"]
         items = raw if isinstance(raw, list) else [raw]
         for item in items:
-            if item not in particles:
-                self.issue((*path, "on"), f"unknown particle {item!r}", _known("particles", particles))
+            if not isinstance(item, str) or item not in particles:
+                if isinstance(item, str) and not self.particles_readable:
+                    return None  # the particles section itself is reported
+                self.issue((*path, "on"), f"unknown particle {_short(item)}",
+                           _known("particles", particles))
                 return None
         return tuple(items)
 
@@ -515,8 +537,11 @@ class _Loader:
             coefficient = self.expression((*path, "coefficient"), spec["coefficient"], names)
             static = self.expression((*path, "static"), spec["static"], names) if "static" in spec else None
             on = spec.get("on", particles[0] if len(particles) == 1 else None)
-            if on not in particles:
-                self.issue((*path, "on"), f"unknown particle {on!r}" if on else "say which particle slides",
+            if not isinstance(on, str) or on not in particles:
+                if isinstance(on, str) and not self.particles_readable:
+                    continue
+                self.issue((*path, "on"),
+                           f"unknown particle {_short(on)}" if on else "say which particle slides",
                            _known("particles", particles))
                 continue
             normal = self.name_refs((*path, "normal"), spec["normal"], constraint_names, "constraint")
@@ -530,9 +555,9 @@ class _Loader:
     def name_refs(self, path: tuple, value: Any, known: list[str], what: str) -> tuple[str, ...] | None:
         items = value if isinstance(value, list) else [value]
         for i, item in enumerate(items):
-            if item not in known:
-                self.issue((*path, i) if isinstance(value, list) else path, f"unknown {what} {item!r}",
-                           _known(what + "s", known))
+            if not isinstance(item, str) or item not in known:
+                self.issue((*path, i) if isinstance(value, list) else path,
+                           f"unknown {what} {_short(item)}", _known(what + "s", known))
                 return None
         if not items:
             self.issue(path, f"name at least one {what}")
@@ -618,13 +643,19 @@ class _Loader:
         if spec is None or not self.keys(path, spec, ("coordinate", "expression", "equilibria"), ("coordinate",)):
             return None
         if spec["coordinate"] not in coordinates:
-            self.issue((*path, "coordinate"), f"unknown coordinate {spec['coordinate']!r}")
+            self.issue((*path, "coordinate"), f"unknown coordinate {_short(spec['coordinate'])}",
+                       _known("coordinates", coordinates))
             return None
         result: dict[str, Any] = {"coordinate": spec["coordinate"]}
         if "expression" in spec:
             result["expression"] = self.expression((*path, "expression"), spec["expression"], names)
         equilibria = []
-        for i, item in enumerate(spec.get("equilibria", []) or []):
+        raw = spec.get("equilibria") or []
+        if not isinstance(raw, list):
+            self.issue((*path, "equilibria"), f"expected a list, found {_kind(raw)}",
+                       "write '- {value: ..., stable: true}' items")
+            raw = []
+        for i, item in enumerate(raw):
             ipath = (*path, "equilibria", i)
             item = self.mapping(ipath, item)
             if item is None or not self.keys(ipath, item, ("value", "stable", "frequency"), ("value",)):
@@ -692,7 +723,8 @@ class _Loader:
                 self.issue(kpath, f"{head!r} is not a declared function",
                            _known("functions", sorted(self.functions)))
                 continue
-            if not args or not rest.rstrip().endswith(")") or any(gateway.name_problem(a) for a in args):
+            if (not args or not rest.rstrip().endswith(")") or len(set(args)) != len(args)
+                    or any(gateway.name_problem(a) for a in args)):
                 self.issue(kpath, f"write the function with placeholder arguments, like \"{head}(u)\"")
                 continue
             placeholders = {a: sympy.Symbol(a, real=True) for a in args}
@@ -715,6 +747,11 @@ def _kind(value: Any) -> str:
     if isinstance(value, str):
         return f"text {value[:40]!r}"
     return f"a number ({value})"
+
+
+def _short(value: Any) -> str:
+    """A value for a message: names quoted, anything else described."""
+    return repr(value) if isinstance(value, str) else f"({_kind(value)})"
 
 
 def _known(what: str, names: Iterable[str]) -> str:

@@ -11,10 +11,9 @@ environment in :mod:`lagsolve.render.report`.
 
 from __future__ import annotations
 
+import unicodedata
 from collections.abc import Callable
 from typing import Any
-
-import unicodedata
 
 import sympy
 from sympy.printing.latex import LatexPrinter
@@ -152,7 +151,7 @@ def _tex_char(ch: str) -> str:
         letter = name.rsplit(" ", 1)[-1].lower()
         if "CAPITAL" in name:
             letter = letter.capitalize()
-        if letter in _GREEK and not (letter == "Alpha"):
+        if letter in _GREEK:
             return f"$\\{letter}$"
     return "?"
 

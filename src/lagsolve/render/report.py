@@ -59,8 +59,7 @@ def context(derivation: Derivation) -> dict[str, Any]:
             "on": list(c.on),
         })
     equations = []
-    for i, c in enumerate(problem.coordinates):
-        lhs, rhs = derivation.equation_sides[i]
+    for i, (lhs, rhs) in enumerate(derivation.equation_sides):
         equations.append({
             "coordinate": coords[i]["tex"],
             "velocity": coords[i]["velocity"],
@@ -249,7 +248,8 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
             f.term.name: {
                 "normal_force": to_json(f.normal_force),
                 "force": [to_json(v) for v in f.term.force],
-                "generalized": {q.name: to_json(v) for q, v in zip(problem.coordinates, f.term.generalized, strict=True)},
+                "generalized": {q.name: to_json(v)
+                                for q, v in zip(problem.coordinates, f.term.generalized, strict=True)},
                 "valid_while": to_json(f.term.valid_while),
             }
             for f in derivation.friction
