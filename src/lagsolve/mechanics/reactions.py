@@ -49,7 +49,7 @@ class Reaction:
 def reaction(problem: Problem, model: Model, terms: ConstraintTerms) -> Reaction:
     """Direction and size of the force of one constraint, per unit multiplier."""
     a = sympy.Matrix(terms.coefficients)
-    if not problem.particles and not problem.bodies:
+    if not problem.particles:
         return Reaction(terms.name, (), True,
                         "no particles: magnitude taken as |λ|·|a| (exact for Cartesian coordinates)")
     if not terms.on:

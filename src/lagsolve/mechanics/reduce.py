@@ -38,8 +38,10 @@ class Elimination:
 
 
 def _constant(expr: Any, model: Model) -> bool:
+    """Free of coordinates, velocities, time and declared functions (``cos(alpha)`` counts as constant)."""
     variables = set(model.coordinates) | set(model.velocities) | {model.time}
-    return expr != 0 and not (expr.free_symbols & variables) and not expr.has(sympy.Function)
+    undeclared = expr.atoms(sympy.core.function.AppliedUndef)
+    return expr != 0 and not (expr.free_symbols & variables) and not undeclared
 
 
 def eliminate(constraints: tuple[ConstraintTerms, ...], model: Model) -> Elimination:
