@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import pytest
 import sympy
 
 from lagsolve.mechanics.constraints import constraint_terms
