@@ -14,6 +14,7 @@ $(STAMP): pyproject.toml
 
 run: $(STAMP)
 	$(BIN)/lagsolve derive problems/bead.yaml -o out/
+	$(BIN)/lagsolve simulate problems/bead.yaml --plot -o out/
 
 test: $(STAMP)
 	$(BIN)/ruff check src tests bench

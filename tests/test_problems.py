@@ -47,38 +47,57 @@ def test_json_has_the_contract_keys(reports: Reports) -> None:
 
 
 def _numeric_points(derivation: Derivation, count: int, seed: int) -> list[tuple[dict, dict]]:
-    """Random states on the constraint surface: velocity constraints are solved for one velocity."""
+    """Random states on the constraint surface: position constraints solved numerically for one
+    coordinate, velocity-level constraints for one velocity (states with no real solution are redrawn)."""
     rng = random.Random(seed)
-    problem = derivation.problem
-    points = []
-    for k in range(count):
-        values: dict = {problem.time: sympy.Rational(rng.randint(0, 30), 10)}
-        for p in problem.parameters:
-            values[p.symbol] = sympy.Rational(rng.randint(5, 40), 10)
-        for c in problem.coordinates:
-            low = 1 if c.symbol.is_positive else -25
-            values[c.symbol] = sympy.Rational(rng.randint(low, 25), 10)
-            values[c.velocity] = sympy.Rational(rng.randint(-25, 25), 10)
-        concrete = {f.function: CONCRETE[(k + i) % len(CONCRETE)] for i, f in enumerate(problem.functions)}
-        for c in derivation.constraints:
-            if c.kind != "nonholonomic":
-                continue
-            form = sum((a * v for a, v in zip(c.coefficients, derivation.model.velocities, strict=True)), c.offset)
-            free = [v for v, a in zip(derivation.model.velocities, c.coefficients, strict=True)
-                    if a.xreplace(values) != 0]
-            target = free[-1]
-            others = {s: v for s, v in values.items() if s != target}
-            values[target] = sympy.solve(form.xreplace(others), target)[0]
-        points.append((values, concrete))
+    points: list[tuple[dict, dict]] = []
+    while len(points) < count:
+        point = _try_point(derivation, rng, len(points))
+        if point is not None:
+            points.append(point)
     return points
 
 
-def _evaluate(expr: sympy.Expr, point: tuple[dict, dict]) -> complex:
+def _try_point(derivation: Derivation, rng: random.Random, k: int) -> tuple[dict, dict] | None:
+    problem, model = derivation.problem, derivation.model
+    values: dict = {problem.time: sympy.Rational(rng.randint(0, 30), 10)}
+    for p in problem.parameters:
+        values[p.symbol] = sympy.Rational(rng.randint(5, 40), 10)
+    for c in problem.coordinates:
+        low = 1 if c.symbol.is_positive else -25
+        values[c.symbol] = sympy.Rational(rng.randint(low, 25), 10)
+        values[c.velocity] = sympy.Rational(rng.randint(-25, 25), 10)
+    concrete = {f.function: CONCRETE[(k + i) % len(CONCRETE)] for i, f in enumerate(problem.functions)}
+    explicit = set(derivation.elimination.sources.values())
+    for c in derivation.constraints:
+        if c.kind != "holonomic" or c.name in explicit:
+            continue
+        target = [q for q in model.coordinates if q in c.expression.free_symbols][-1]
+        others = {s: v for s, v in values.items() if s != target}
+        try:
+            root = sympy.nsolve(_evaluate(c.expression, (others, concrete), numeric=False), target, values[target])
+        except (ValueError, ZeroDivisionError):
+            return None
+        values[target] = root
+    for c in derivation.constraints:
+        form = sum((a * v for a, v in zip(c.coefficients, model.velocities, strict=True)), c.offset)
+        form = _evaluate(form, ({s: v for s, v in values.items() if s not in model.velocities}, concrete),
+                         numeric=False)
+        free = [v for v in model.velocities if form.coeff(v) != 0]
+        if not free:
+            continue
+        target = free[-1]
+        values[target] = sympy.solve(form.xreplace({s: v for s, v in values.items() if s != target}), target)[0]
+    return values, concrete
+
+
+def _evaluate(expr: sympy.Expr, point: tuple[dict, dict], numeric: bool = True) -> complex | sympy.Expr:
     values, concrete = point
     for fn, body in concrete.items():
         u = sympy.Dummy("u")
         expr = expr.replace(fn, sympy.Lambda(u, body(u)))
-    return complex(sympy.N(expr.doit().xreplace(values), 30))
+    expr = expr.doit().xreplace(values)
+    return complex(sympy.N(expr, 30)) if numeric else expr
 
 
 def _agree(derivation: Derivation, got: sympy.Expr, want: sympy.Expr) -> None:

@@ -118,5 +118,118 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     sys.exit(status)
 
 
+def _assignments(pairs: tuple[str, ...], option: str) -> dict[str, float]:
+    """``("g=1.62", "m=2")`` → ``{"g": 1.62, "m": 2.0}``; a bad pair is a usage error (exit 2)."""
+    import math
+
+    out: dict[str, float] = {}
+    for pair in pairs:
+        name, sep, text = pair.partition("=")
+        name = name.strip()
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not sep or not name.isidentifier() or not math.isfinite(value):
+            raise click.BadParameter(f"{pair!r}: expected NAME=NUMBER with a finite number, e.g. g=9.81",
+                                     param_hint=option)
+        out[name] = value
+    return out
+
+
+def _progress_bar(t_end: float) -> object:
+    """A progress bar on stderr for runs longer than about a second; silent when stderr is not a terminal."""
+    from tqdm import tqdm
+
+    bar = tqdm(total=t_end, unit="t", delay=1.0, disable=not sys.stderr.isatty(), leave=False,
+               bar_format="{l_bar}{bar}| t = {n:.3g}/{total:.3g} [{elapsed}<{remaining}]")
+
+    def update(t: float) -> None:
+        bar.update(t - bar.n)
+        if t >= t_end:
+            bar.close()
+
+    return update
+
+
+@main.command()
+@click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
+@click.option("--t-end", type=click.FloatRange(min=0, min_open=True), help="End time (default: simulation.t_end).")
+@click.option("--set", "values", multiple=True, metavar="NAME=VALUE", help="Parameter value (repeatable).")
+@click.option("--initial", multiple=True, metavar="NAME=VALUE",
+              help="Initial coordinate or velocity, e.g. x=0.5 or x_dot=0 (repeatable).")
+@click.option("--samples", type=click.IntRange(min=2, max=1_000_000), help="Number of output times (default 1001).")
+@click.option("--method", type=click.Choice(["DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA"]),
+              help="Integrator (default DOP853; Radau/BDF/LSODA for stiff problems).")
+@click.option("--rtol", type=click.FloatRange(min=0, min_open=True), help="Relative tolerance (default 1e-10).")
+@click.option("--atol", type=click.FloatRange(min=0, min_open=True), help="Absolute tolerance (default 1e-12).")
+@click.option("--max-step", type=click.FloatRange(min=0, min_open=True), help="Largest step size.")
+@click.option("--after-release", type=click.Choice(["stop", "continue"]), default="stop", show_default=True,
+              help="When a unilateral constraint's force reaches zero: stop there, or go on without it.")
+@click.option("--format", "fmt", type=click.Choice(["summary", "csv", "npz"]), default="summary",
+              show_default=True, help="csv: the trajectory table (stdout unless -o); npz: NumPy archive.")
+@click.option("-o", "--output", type=click.Path(path_type=Path),
+              help="Output folder (default out/), or a file name for one file with --format csv/npz.")
+@click.option("--plot", is_flag=True, help="Write PNG figures to the output folder.")
+@click.option("--show", is_flag=True, help="Also open the figures in the system's viewer.")
+@click.option("--animate", is_flag=True, help="Write an animated GIF of the particles.")
+@click.option("--timeout", type=click.FloatRange(min=0.1), default=600.0, show_default=True,
+              help="Seconds allowed for derivation and integration of each file.")
+def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ...], initial: tuple[str, ...],
+             samples: int | None, method: str | None, rtol: float | None, atol: float | None,
+             max_step: float | None, after_release: str, fmt: str, output: Path | None, plot: bool, show: bool,
+             animate: bool, timeout: float) -> None:
+    """Integrate the equations of motion of each problem FILE.
+
+    \b
+    lagsolve simulate problems/bead.yaml                  # summary of the run
+    lagsolve simulate problems/bead.yaml --plot           # PNG figures in out/bead/
+    lagsolve simulate problems/bead.yaml --t-end 20 --set g=1.62 --initial x=0.5 --plot --show
+    lagsolve simulate problems/bead.yaml --format csv -o bead.csv
+    """
+    from lagsolve.pipeline import SimulationOptions, safe_slug, simulate_file
+
+    options = SimulationOptions(
+        values=_assignments(values, "--set"), initial=_assignments(initial, "--initial"), t_end=t_end,
+        samples=samples, method=method, rtol=rtol, atol=atol, max_step=max_step, after_release=after_release,
+        tables=(fmt,) if fmt != "summary" else (), plots=plot or show, animate=animate)
+    single = output is not None and len(files) == 1 and output.suffix == f".{fmt}"
+    status = 0
+    for path in files:
+        try:
+            result = simulate_file(path, options, timeout=timeout, progress=_progress_bar)
+        except LagsolveError as error:
+            status = max(status, _fail(error))
+            continue
+        folder = (output if output is not None and not single else Path("out")) / safe_slug(path)
+        to_stdout = fmt == "csv" and output is None
+        click.echo(result.summary, nl=False, err=to_stdout)
+        written = []
+        for kind, data in result.tables.items():
+            if to_stdout:
+                click.echo(data, nl=False)
+                continue
+            target = output if single and output is not None else folder / f"{result.slug}.{kind}"
+            written.append(_write(target, data))
+        for key, data in result.figures.items():
+            written.append(_write(folder / f"{result.slug}_{key}.{'gif' if key == 'animation' else 'png'}", data))
+        for target in written:
+            click.echo(f"  wrote {target}", err=to_stdout)
+        if show:
+            for target in written:
+                if target.suffix in (".png", ".gif"):
+                    click.launch(str(target))
+    sys.exit(status)
+
+
+def _write(target: Path, data: str | bytes) -> Path:
+    target.parent.mkdir(parents=True, exist_ok=True)
+    if isinstance(data, bytes):
+        target.write_bytes(data)
+    else:
+        target.write_text(data, encoding="utf-8")
+    return target
+
+
 if __name__ == "__main__":  # pragma: no cover
     main()

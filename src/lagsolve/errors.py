@@ -55,5 +55,9 @@ class DerivationError(LagsolveError, ArithmeticError):
     """A valid problem whose derivation failed (singular system, budget exceeded, ...)."""
 
 
+class SimulationError(LagsolveError, RuntimeError):
+    """A valid problem whose simulation failed (integrator failure, singular system at a state)."""
+
+
 class RenderError(LagsolveError, RuntimeError):
     """A report could not be rendered (missing or broken template)."""

@@ -82,3 +82,120 @@ def golden_differences(reports: Reports, folder: Path) -> list[str]:
                 expected.splitlines(keepends=True), text.splitlines(keepends=True),
                 fromfile=str(path), tofile=f"{reports.source} ({fmt}, now)")))
     return diffs
+
+
+@dataclass(frozen=True)
+class SimulationOptions:
+    """What ``lagsolve simulate`` may change; ``None`` means "from the file, else the default"."""
+
+    values: dict[str, float]
+    initial: dict[str, float]
+    t_end: float | None = None
+    samples: int | None = None
+    method: str | None = None
+    rtol: float | None = None
+    atol: float | None = None
+    max_step: float | None = None
+    after_release: str = "stop"
+    tables: tuple[str, ...] = ()  # "csv", "npz"
+    plots: bool = False
+    animate: bool = False
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """A finished run: the text summary, the requested tables and figures (PNG/GIF bytes)."""
+
+    source: str
+    slug: str
+    name: str
+    summary: str
+    tables: dict[str, str | bytes]
+    figures: dict[str, bytes]
+    trajectory: object
+
+
+def _simulate(problem: object, options: SimulationOptions, progress: object) -> SimulationResult:
+    import numpy as np
+
+    from lagsolve.errors import Issue, SpecError
+    from lagsolve.mechanics.derivation import derive
+    from lagsolve.numeric.initial import complete_initial
+    from lagsolve.numeric.integrate import integrate_motion
+    from lagsolve.numeric.system import bind
+    from lagsolve.render import trajectory as table
+
+    derivation = derive(problem)  # type: ignore[arg-type]
+    spec = derivation.problem.simulation
+    source = derivation.problem.source
+    system = bind(derivation, options.values)
+    t_end = options.t_end if options.t_end is not None else (spec.t_end if spec else None)
+    if t_end is None:
+        raise SpecError([Issue(source, 0, "simulation.t_end", "no end time",
+                               "give simulation.t_end in the file or --t-end")])
+    given = {**(spec.initial if spec else {}), **options.initial}
+    q0, qd0 = complete_initial(system, given, source)
+    trajectory = integrate_motion(
+        system, q0, qd0, t_end,
+        samples=options.samples or (spec.samples if spec and spec.samples else 1001),
+        method=options.method or (spec.method if spec and spec.method else "DOP853"),
+        rtol=options.rtol or (spec.rtol if spec and spec.rtol else 1e-10),
+        atol=options.atol or (spec.atol if spec and spec.atol else 1e-12),
+        max_step=options.max_step or np.inf,
+        after_release=options.after_release,
+        progress=progress(t_end) if callable(progress) else None,
+    )
+    name = derivation.problem.name
+    tables: dict[str, str | bytes] = {}
+    if "csv" in options.tables:
+        tables["csv"] = table.to_csv(trajectory)
+    if "npz" in options.tables:
+        tables["npz"] = table.to_npz(trajectory)
+    figures: dict[str, bytes] = {}
+    if options.plots or options.animate:
+        from lagsolve.render import plots
+        from lagsolve.render.notation import Notation
+
+        note = Notation([c.name for c in derivation.problem.coordinates])
+        labels = {c.name: note.latex(c.symbol) for c in derivation.problem.coordinates}
+        curve = None
+        if system.curve is not None and system.curve_coordinate is not None:
+            k, fn = system.curve_coordinate, system.curve
+
+            def shape(values: np.ndarray) -> np.ndarray:
+                q = np.array(q0, dtype=float)
+                rows = []
+                for u in values:
+                    q[k] = u
+                    rows.append(fn(0.0, q, qd0, system.parameters))
+                return np.array(rows)
+
+            curve = (k, shape)
+        if options.plots:
+            for key, figure in plots.figures(trajectory, name, labels, curve).items():
+                figures[key] = plots.png_bytes(figure)
+        if options.animate and trajectory.particles:
+            figures["animation"] = plots.animation_gif(trajectory, name)
+    return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name), tables, figures,
+                            trajectory)
+
+
+def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: float = 600.0,
+                  progress: object = None) -> SimulationResult:
+    """Load, derive and simulate one problem file (derivation and run in a budgeted child process).
+
+    ``progress``, when given, is called with ``t_end`` in the child and returns a callable
+    taking the current time (the command line shows a progress bar with it).
+
+    Raises
+    ------
+    SpecError
+        The file or an option is invalid (unknown parameter, missing value, bad initial state).
+    DerivationError, SimulationError
+        The derivation or the integration failed, or ran out of time.
+    """
+    from lagsolve.budget import run_with_budget
+    from lagsolve.problem.load import load_problem
+
+    problem = load_problem(path)
+    return run_with_budget(_simulate, (problem, options, progress), timeout, f"the simulation of {path}")

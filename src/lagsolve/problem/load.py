@@ -36,7 +36,7 @@ from lagsolve.problem.yamlread import MAX_BYTES, Document, dotted, read_document
 TOP_LEVEL = (
     "name", "description", "time", "parameters", "functions", "coordinates", "particles", "bodies",
     "gravity", "kinetic", "potential", "dissipation", "forces", "constraints", "friction",
-    "expected", "simulation",
+    "expected", "simulation", "independent",
 )
 _SIMULATION_KEYS = ("values", "functions", "initial", "t_end", "samples", "method", "rtol", "atol")
 _EXPECTED_KEYS = ("accelerations", "multipliers", "constraint_forces", "reduced", "conserved",
@@ -266,6 +266,7 @@ class _Loader:
         friction = self.friction(data.get("friction", {}), base, particle_names, constraints, coordinates)
         expected = self.expected(data.get("expected", {}), constraints)
         simulation = self.simulation(data["simulation"], parameters, coordinates) if "simulation" in data else None
+        independent = self.independent(data["independent"], coordinates) if "independent" in data else ()
 
         if self.issues:
             raise SpecError(sorted(self.issues, key=lambda issue: issue.line))
@@ -276,7 +277,7 @@ class _Loader:
             potential=potential, dissipation=dissipation, forces=tuple(forces),
             constraints=tuple(constraints), friction=tuple(friction), expected=expected,
             simulation=simulation, symbols=dict(self.symbols),
-            lines={dotted(k): v for k, v in self.lines.items()},
+            lines={dotted(k): v for k, v in self.lines.items()}, independent=independent,
         )
 
     def parameters(self, value: Any) -> list[Parameter]:
@@ -465,6 +466,7 @@ class _Loader:
         if value is None:
             return out
         velocities = set(self.velocity_symbols())
+        positions = {self.symbols[n] for n, k in self.kinds.items() if k == "a coordinate"}
         for cname, spec in value.items():
             path = ("constraints", cname)
             problem = gateway.name_problem(cname)
@@ -472,8 +474,11 @@ class _Loader:
                 self.issue(path, problem)
                 continue
             spec = self.mapping(path, spec)
-            if spec is None or not self.keys(path, spec, ("holonomic", "nonholonomic", "on")):
+            if spec is None or not self.keys(path, spec, ("holonomic", "nonholonomic", "on", "unilateral")):
                 continue
+            unilateral = False
+            if "unilateral" in spec:
+                unilateral = bool(self.flag((*path, "unilateral"), spec["unilateral"]))
             kinds = [k for k in ("holonomic", "nonholonomic") if k in spec]
             if len(kinds) != 1:
                 self.issue(path, "give exactly one of 'holonomic: psi(q, t)' or 'nonholonomic: a.q_dot + b'")
@@ -491,6 +496,10 @@ class _Loader:
                            + ", ".join(sorted(str(s) for s in used)) + ")",
                            "write it under 'nonholonomic:' instead")
                 continue
+            if kind == "holonomic" and not body.free_symbols & positions:
+                self.issue((*path, kind), "this constraint contains no coordinate, so it cannot "
+                           "restrict the motion", "write psi(q, t) in terms of the coordinates")
+                continue
             if kind == "nonholonomic":
                 if not used:
                     self.issue((*path, kind), "this velocity constraint contains no velocity",
@@ -503,7 +512,7 @@ class _Loader:
                                + ", ".join(bad) + ")",
                                "write it as a_1*q1_dot + a_2*q2_dot + ... + b with a and b free of velocities")
                     continue
-            out.append(Constraint(cname, kind, body, on, self.line((*path, kind))))
+            out.append(Constraint(cname, kind, body, on, self.line((*path, kind)), unilateral))
         return out
 
     def constraint_on(self, path: tuple, spec: dict, particles: list[str]) -> tuple[str, ...] | None:
@@ -668,6 +677,23 @@ class _Loader:
             equilibria.append(entry)
         result["equilibria"] = equilibria
         return result
+
+    def independent(self, value: Any, coordinates: list[Coordinate]) -> tuple[str, ...]:
+        """``independent: [x]``: the coordinates to keep as minimal coordinates (each once)."""
+        known = [c.name for c in coordinates]
+        if not isinstance(value, list) or not value:
+            self.issue(("independent",), f"expected a list of coordinate names, found {_kind(value)}",
+                       "write e.g. 'independent: [x]'")
+            return ()
+        out: list[str] = []
+        for i, item in enumerate(value):
+            if not isinstance(item, str) or item not in known:
+                self.issue(("independent", i), f"unknown coordinate {_short(item)}", _known("coordinates", known))
+            elif item in out:
+                self.issue(("independent", i), f"coordinate {item!r} is listed twice", "give each name once")
+            else:
+                out.append(item)
+        return tuple(out)
 
     def simulation(self, value: Any, parameters: list[Parameter], coordinates: list[Coordinate]) -> Simulation | None:
         path = ("simulation",)

@@ -77,6 +77,7 @@ class Constraint:
     expression: Expr
     on: tuple[str, ...]  # particles it acts on; empty when unknown
     line: int
+    unilateral: bool = False  # holds only while its force pushes (lambda >= 0); see docs/format.md
 
 
 @dataclass(frozen=True)
@@ -143,7 +144,8 @@ class Problem:
 
     ``symbols`` maps each name an expression may use (time, parameters,
     coordinates, velocities) to its SymPy object; ``lines`` maps a dotted field
-    path to its line in the file, for later messages.
+    path to its line in the file, for later messages. ``independent`` names the
+    coordinates to keep as minimal coordinates (empty: chosen automatically).
     """
 
     source: str
@@ -166,6 +168,7 @@ class Problem:
     simulation: Simulation | None
     symbols: Mapping[str, Expr]
     lines: Mapping[str, int]
+    independent: tuple[str, ...] = ()  # optional choice of minimal coordinates (names, input order)
 
     @property
     def slug(self) -> str:

@@ -1,0 +1,94 @@
+"""Initial conditions consistent with the constraints.
+
+Values the user gives are kept; the other coordinates start at 0 and are solved
+from the position constraints by a least-norm Newton iteration, and the other
+velocities from the velocity-level constraints by a least-norm linear solve.
+Values that cannot satisfy the constraints are rejected with the residual shown.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from lagsolve.errors import Issue, SpecError
+from lagsolve.numeric.system import NumericSystem
+
+TOLERANCE = 1e-9
+
+
+def complete_initial(system: NumericSystem, given: Mapping[str, float], source: str = "",
+                     t0: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """Positions and velocities at ``t0`` from the ``given`` values (``x``, ``x_dot``, ...).
+
+    Raises
+    ------
+    SpecError
+        When a name is unknown, or the constraints cannot be met (the residual is shown).
+    """
+    names = system.coordinates
+    issues = [Issue(source, 0, "initial", f"unknown coordinate or velocity {k!r}",
+                    "known: " + ", ".join([*names, *(f"{n}_dot" for n in names)]))
+              for k in given if k not in names and not (k.endswith("_dot") and k[:-4] in names)]
+    if issues:
+        raise SpecError(issues)
+    p = system.parameters
+    q = np.array([float(given.get(n, 0.0)) for n in names])
+    qd = np.array([float(given.get(f"{n}_dot", 0.0)) for n in names])
+    free_q = np.array([n not in given for n in names])
+    free_qd = np.array([f"{n}_dot" not in given for n in names])
+    n = len(names)
+
+    if system.holonomic and free_q.any():
+        q = _solve_positions(system, q, qd, free_q, t0)
+    if system.holonomic:
+        psi = system.position_residual(t0, q, qd, p)
+        if not np.all(np.isfinite(psi)) or np.max(np.abs(psi), initial=0.0) > TOLERANCE:
+            rows = ", ".join(f"{system.constraints[j]} = {v:.3g}" for j, v in zip(system.holonomic, psi, strict=True))
+            raise SpecError([Issue(source, 0, "initial", f"the initial positions violate the constraints ({rows})",
+                                   "give fewer coordinates (the others are solved from the constraints) or "
+                                   "values that satisfy them")])
+    if system.m:
+        a = system.velocity_jacobian(t0, q, qd, p).reshape(system.m, n)
+        b = system.velocity_offset(t0, q, qd, p)
+        if free_qd.any():
+            rhs = -(a[:, ~free_qd] @ qd[~free_qd] + b)
+            qd[free_qd] = np.linalg.lstsq(a[:, free_qd], rhs, rcond=None)[0]
+        residual = a @ qd + b
+        if not np.all(np.isfinite(residual)) or np.max(np.abs(residual)) > TOLERANCE:
+            rows = ", ".join(f"{c} = {v:.3g}" for c, v in zip(system.constraints, residual, strict=True))
+            raise SpecError([Issue(source, 0, "initial", f"the initial velocities violate the constraints ({rows})",
+                                   "give fewer velocities (the others are solved from the constraints) or "
+                                   "values that satisfy them")])
+    if not (np.all(np.isfinite(q)) and np.all(np.isfinite(qd))):
+        raise SpecError([Issue(source, 0, "initial", "the initial state is not finite")])
+    return q, qd
+
+
+#: starting values tried, in order, for the coordinates the user left free (0 first; below before above)
+GUESSES = (0.0, -1.0, 1.0, -0.5, 0.5, -2.0, 2.0)
+
+
+def _solve_positions(system: NumericSystem, q: np.ndarray, qd: np.ndarray, free: np.ndarray,
+                     t0: float) -> np.ndarray:
+    """Least-norm Newton iteration on the free coordinates; tries several starting values,
+    since a start such as y = 0 for x² + y² = l² has a singular Jacobian."""
+    p, n = system.parameters, system.n
+    best, best_residual = q, np.inf
+    for guess in GUESSES:
+        trial = q.copy()
+        trial[free] = guess
+        with np.errstate(all="ignore"):
+            for _ in range(60):
+                psi = system.position_residual(t0, trial, qd, p)
+                if not np.all(np.isfinite(psi)) or np.max(np.abs(psi)) < 1e-14:
+                    break
+                jac = system.position_jacobian(t0, trial, qd, p).reshape(len(psi), n)[:, free]
+                trial[free] += np.linalg.lstsq(jac, -psi, rcond=None)[0]
+            residual = np.max(np.abs(system.position_residual(t0, trial, qd, p)))
+        if np.isfinite(residual) and residual < best_residual:
+            best, best_residual = trial, residual
+        if best_residual < 1e-13:
+            break
+    return best

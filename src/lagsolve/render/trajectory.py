@@ -1,0 +1,77 @@
+"""A trajectory as a table (CSV, NPZ) and as a short text summary.
+
+CSV columns (format section 3): ``t``, each coordinate, each ``<q>_dot``, then
+``lambda_<c>`` and ``F_<c>`` per constraint, ``energy`` (the Jacobi integral,
+conserved or not), then ``residual`` and any conserved quantities.
+"""
+
+from __future__ import annotations
+
+import io
+from typing import Any
+
+import numpy as np
+
+from lagsolve.numeric.integrate import Trajectory
+
+
+def columns(trajectory: Trajectory) -> dict[str, np.ndarray]:
+    """Every column, in the documented order."""
+    out: dict[str, np.ndarray] = {"t": trajectory.t}
+    for k, name in enumerate(trajectory.coordinates):
+        out[name] = trajectory.q[:, k]
+    for k, name in enumerate(trajectory.coordinates):
+        out[f"{name}_dot"] = trajectory.qd[:, k]
+    for j, name in enumerate(trajectory.constraints):
+        out[f"lambda_{name}"] = trajectory.multipliers[:, j]
+    for j, name in enumerate(trajectory.constraints):
+        out[f"F_{name}"] = trajectory.magnitudes[:, j]
+    out["energy"] = trajectory.energy
+    out["residual"] = trajectory.residual
+    for name, values in trajectory.conserved.items():
+        if name != "energy":
+            out[name] = values
+    return out
+
+
+def to_csv(trajectory: Trajectory) -> str:
+    """The trajectory as CSV text with a header row (17 significant digits: no information lost)."""
+    data = columns(trajectory)
+    lines = [",".join(data)]
+    table = np.column_stack(list(data.values()))
+    lines += [",".join(f"{v:.17g}" for v in row) for row in table]
+    return "\n".join(lines) + "\n"
+
+
+def to_npz(trajectory: Trajectory) -> bytes:
+    """The same columns as a NumPy ``.npz`` archive."""
+    buffer = io.BytesIO()
+    np.savez(buffer, **columns(trajectory))
+    return buffer.getvalue()
+
+
+def summary(trajectory: Trajectory, name: str) -> str:
+    """What a person wants to know after a run: final state, events, diagnostics."""
+    stats: dict[str, Any] = dict(trajectory.stats)
+    lines = [f"{name}: simulated to t = {trajectory.t[-1]:.6g} with {stats['method']} "
+             f"(rtol {stats['rtol']:g}, atol {stats['atol']:g})"]
+    state = ", ".join(f"{c} = {v:.6g}" for c, v in zip(trajectory.coordinates, trajectory.q[-1], strict=True))
+    rates = ", ".join(f"{c}_dot = {v:.6g}" for c, v in zip(trajectory.coordinates, trajectory.qd[-1], strict=True))
+    lines.append(f"  final state: {state}")
+    lines.append(f"               {rates}")
+    for event in trajectory.events:
+        verb = "stopped there" if event.action == "stopped" else "continued without it"
+        where = ", ".join(f"{k} = {v:.6g}" for k, v in event.state.items() if not k.endswith("_dot"))
+        lines.append(f"  event: constraint {event.constraint!r} released at t = {event.time:.10g} ({where}); {verb}")
+    lines.append(f"  steps: {stats['steps']}, right-hand-side evaluations: {stats['evaluations']}, "
+                 f"wall time: {stats['wall_time']:.3g} s")
+    if trajectory.constraints:
+        lines.append(f"  largest constraint residual (before projection): {stats['max_residual']:.3g}")
+    if stats.get("energy_conserved"):
+        lines.append(f"  energy (Jacobi integral) conserved: relative drift {stats['energy_drift']:.3g}")
+    else:
+        lines.append(f"  energy not conserved: {stats.get('energy_note', '')}")
+    for quantity, drift in stats.get("conserved_drift", {}).items():
+        if quantity != "energy" or not stats.get("energy_conserved"):
+            lines.append(f"  {quantity} conserved: relative drift {drift:.3g}")
+    return "\n".join(lines) + "\n"

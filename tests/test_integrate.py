@@ -1,0 +1,146 @@
+"""Integration: conservation, projection, events and textbook motions."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from lagsolve.errors import SimulationError
+from lagsolve.numeric.integrate import integrate_motion
+from simulation_support import CARTESIAN_PENDULUM, FREE_FALL, SPHERE, run, system_of
+
+BEAD_SMOOTH = """
+name: Bead on a parabola
+parameters: {m: mass, g: gravity}
+functions: {f: wire}
+coordinates: [x, y]
+particles: {bead: {mass: m, position: [x, y]}}
+gravity: [0, -g]
+constraints: {wire: {holonomic: y - f(x)}}
+simulation:
+  values: {m: 1.0, g: 9.81}
+  functions: {"f(u)": "u**2/2"}
+  initial: {x: -1.5, x_dot: 0.0}
+  t_end: 10.0
+"""
+
+
+def _period(t: np.ndarray, x: np.ndarray) -> float:
+    """Mean time between upward zero crossings of x (linear interpolation)."""
+    up = np.where((x[:-1] < 0) & (x[1:] >= 0))[0]
+    crossings = t[up] - x[up] * (t[up + 1] - t[up]) / (x[up + 1] - x[up])
+    return float(np.mean(np.diff(crossings)))
+
+
+def test_frictionless_bead_conserves_energy_for_100_periods() -> None:
+    """A frictionless bead on a wire keeps its energy to 1e-8 over 100 oscillations at default tolerances."""
+    first = run(BEAD_SMOOTH, 10.0)
+    period = _period(first.t, first.q[:, 0])
+    trajectory = run(BEAD_SMOOTH, 100 * period, samples=20001)
+    assert trajectory.stats["energy_conserved"] is True
+    assert trajectory.stats["energy_drift"] < 1e-8
+    assert len(np.where((trajectory.q[:-1, 0] < 0) & (trajectory.q[1:, 0] >= 0))[0]) >= 99
+
+
+def test_cartesian_pendulum_stays_on_its_rod_for_1000_periods() -> None:
+    """With projection after every step, a pendulum in x, y keeps x² + y² = l² to 1e-10 for 1000 periods."""
+    period = 2 * math.pi * math.sqrt(1.0 / 9.81) * 1.02  # amplitude 30 degrees lengthens it a little
+    trajectory = run(CARTESIAN_PENDULUM, 1000 * period, samples=5001)
+    r = np.hypot(trajectory.q[:, 0], trajectory.q[:, 1])
+    assert trajectory.stats["max_residual"] < 1e-10
+    assert np.max(np.abs(r - 1.0)) < 1e-12
+    assert trajectory.stats["energy_drift"] < 1e-8
+
+
+def test_without_projection_the_rod_drifts() -> None:
+    """Projection is what keeps the constraint: an implicit method without per-step projection drifts more."""
+    projected = run(CARTESIAN_PENDULUM, 200.0, rtol=1e-6, atol=1e-8)
+    loose = run(CARTESIAN_PENDULUM, 200.0, rtol=1e-6, atol=1e-8, method="Radau")
+    assert loose.stats["max_residual"] > 50 * projected.stats["max_residual"]
+    assert np.max(np.abs(np.hypot(projected.q[:, 0], projected.q[:, 1]) - 1)) < 1e-12
+
+
+def test_small_pendulum_period() -> None:
+    """A pendulum released at 0.01 rad swings with period 2π√(l/g) to 1e-6."""
+    angle = 0.01
+    trajectory = run(CARTESIAN_PENDULUM, 20.0, initial={"x": math.sin(angle)}, samples=40001)
+    expected = 2 * math.pi * math.sqrt(1.0 / 9.81) * (1 + angle**2 / 16)
+    assert _period(trajectory.t, trajectory.q[:, 0]) == pytest.approx(expected, rel=1e-6)
+
+
+def test_free_fall_matches_closed_form() -> None:
+    """Without constraints, z(t) = z0 + v0 t − g t²/2 and x(t) = x0 + u0 t."""
+    trajectory = run(FREE_FALL, 2.0, samples=21)
+    t = trajectory.t
+    assert np.allclose(trajectory.q[:, 1], 10.0 + 3.0 * t - 9.81 * t**2 / 2, rtol=0, atol=1e-10)
+    assert np.allclose(trajectory.q[:, 0], 1.5 * t, rtol=0, atol=1e-10)
+    assert trajectory.multipliers.shape == (21, 0)
+
+
+def test_particle_leaves_the_sphere_at_cos_two_thirds() -> None:
+    """Sliding from rest at the top of a smooth sphere, contact is lost where cos θ = 2/3."""
+    trajectory = run(SPHERE, 5.0)
+    assert len(trajectory.events) == 1
+    event = trajectory.events[0]
+    assert event.constraint == "sphere" and event.action == "stopped"
+    assert event.state["y"] / 1.0 == pytest.approx(2 / 3, abs=1e-6)
+    assert trajectory.t[-1] == pytest.approx(event.time)
+    assert trajectory.multipliers[-1, 0] == pytest.approx(0.0, abs=1e-8)
+
+
+def test_after_release_the_particle_flies_freely() -> None:
+    """With after_release='continue' the released particle follows a parabola off the sphere."""
+    trajectory = run(SPHERE, 6.0, after_release="continue")
+    event = trajectory.events[0]
+    after = trajectory.t > event.time + 1e-9
+    r = np.hypot(trajectory.q[after, 0], trajectory.q[after, 1])
+    assert np.all(r > 1.0 - 1e-9) and r[-1] > 1.01
+    assert np.all(trajectory.multipliers[after, 0] == 0.0)
+    # in free flight the horizontal velocity is constant
+    assert np.ptp(trajectory.qd[after, 0]) < 1e-8
+
+
+def test_energy_drift_reported_only_when_conserved() -> None:
+    """A time-dependent problem says why its energy is not conserved."""
+    driven = """
+name: Driven oscillator
+parameters: {m: mass, k: stiffness, F0: amplitude, w: frequency}
+coordinates: [x]
+kinetic: m*x_dot**2/2
+potential: k*x**2/2
+forces: [{coordinate: x, value: F0*cos(w*t)}]
+simulation: {values: {m: 1, k: 4, F0: 1, w: 1}, initial: {x: 0, x_dot: 0}, t_end: 1}
+"""
+    trajectory = run(driven, 3.0)
+    assert trajectory.stats["energy_conserved"] is False
+    assert "forces" in trajectory.stats["energy_note"]
+    # x(t) = F0/(k - m w²) (cos w t − cos ω0 t), ω0 = 2
+    t = trajectory.t
+    assert np.allclose(trajectory.q[:, 0], (np.cos(t) - np.cos(2 * t)) / 3, atol=1e-9)
+
+
+def test_bad_arguments_are_rejected() -> None:
+    """Unknown methods and non-positive end times are errors, not silent defaults."""
+    system, _ = system_of(FREE_FALL)
+    q0, qd0 = np.zeros(2), np.zeros(2)
+    with pytest.raises(ValueError, match="unknown method"):
+        integrate_motion(system, q0, qd0, 1.0, method="Euler")
+    with pytest.raises(ValueError, match="t_end must be a positive number"):
+        integrate_motion(system, q0, qd0, -1.0)
+
+
+def test_singular_state_is_a_simulation_error() -> None:
+    """A state where the augmented system is singular stops the run with a clear error."""
+    text = """
+name: Inertia that vanishes at x = 0
+parameters: {k: spring}
+coordinates: [x]
+kinetic: x**2*x_dot**2/2
+potential: k*x
+simulation: {values: {k: 1}, initial: {x: 0}, t_end: 1}
+"""
+    system, _ = system_of(text)
+    with pytest.raises(SimulationError, match="singular at t = 0"):
+        integrate_motion(system, np.array([0.0]), np.zeros(1), 1.0)
