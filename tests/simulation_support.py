@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from lagsolve.mechanics.derivation import derive
+from lagsolve.mechanics.matrix_form import matrix_form
 from lagsolve.numeric.initial import complete_initial
 from lagsolve.numeric.integrate import Trajectory, integrate_motion
 from lagsolve.numeric.system import NumericSystem, bind
@@ -51,7 +51,7 @@ simulation:
 
 def system_of(text: str, values: dict[str, float] | None = None) -> tuple[NumericSystem, dict]:
     problem = load_text(text, "inline.yaml")
-    system = bind(derive(problem), values or {})
+    system = bind(matrix_form(problem), values or {})
     assert problem.simulation is not None
     return system, dict(problem.simulation.initial)
 

@@ -55,7 +55,8 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
     method = "fork" if sys.platform.startswith("linux") else "spawn"
     ctx = multiprocessing.get_context(method)
     receiver, sender = ctx.Pipe(duplex=False)
-    process = ctx.Process(target=_child, args=(sender, fn, args), daemon=True)
+    # not a daemon: a simulation runs its analysis in a child of its own
+    process = ctx.Process(target=_child, args=(sender, fn, args), daemon=False)
     process.start()
     sender.close()
     try:

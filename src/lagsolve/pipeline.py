@@ -62,6 +62,50 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json
     return Reports(str(path), safe_slug(path), problem.name, text, outputs)
 
 
+@dataclass(frozen=True)
+class Checked:
+    """The check of one problem file: the verdict table and how many answers got each verdict."""
+
+    source: str
+    name: str
+    table: str
+    counts: dict[str, int]
+
+    @property
+    def passed(self) -> bool:
+        """True when no expected answer is a mismatch (warnings and unchecked answers pass)."""
+        return self.counts.get("mismatch", 0) == 0
+
+
+def _derive_and_check(problem: object) -> tuple[str, dict[str, int]]:
+    from lagsolve.check import MISMATCH, OK, UNCHECKED, WARNING, check
+    from lagsolve.mechanics.derivation import derive
+    from lagsolve.render.checks import check_table
+
+    report = check(derive(problem))  # type: ignore[arg-type]
+    return check_table(report), {s: report.count(s) for s in (OK, WARNING, MISMATCH, UNCHECKED)}
+
+
+def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked:
+    """Load and derive one problem file and compare its ``expected:`` answers (:func:`lagsolve.check.check`).
+
+    Loading runs here; derivation and check run in a child process under ``timeout`` seconds.
+
+    Raises
+    ------
+    SpecError
+        The file is invalid (every problem listed).
+    DerivationError
+        The derivation failed or ran out of time.
+    """
+    from lagsolve.budget import run_with_budget
+    from lagsolve.problem.load import load_problem
+
+    problem = load_problem(path)
+    table, counts = run_with_budget(_derive_and_check, (problem,), timeout, f"the check of {path}")
+    return Checked(str(path), problem.name, table, counts)
+
+
 def golden_differences(reports: Reports, folder: Path) -> list[str]:
     """Unified diffs between ``reports`` and the golden files ``folder/<slug>.<ext>``.
 
@@ -100,6 +144,7 @@ class SimulationOptions:
     tables: tuple[str, ...] = ()  # "csv", "npz"
     plots: bool = False
     animate: bool = False
+    analysis_timeout: float = 60.0  # budget of the derivation that finds the conserved quantities
 
 
 @dataclass(frozen=True)
@@ -118,17 +163,26 @@ class SimulationResult:
 def _simulate(problem: object, options: SimulationOptions, progress: object) -> SimulationResult:
     import numpy as np
 
-    from lagsolve.errors import Issue, SpecError
-    from lagsolve.mechanics.derivation import derive
+    from lagsolve.budget import run_with_budget
+    from lagsolve.errors import Issue, LagsolveError, SpecError
+    from lagsolve.mechanics.matrix_form import matrix_form
     from lagsolve.numeric.initial import complete_initial
     from lagsolve.numeric.integrate import integrate_motion
     from lagsolve.numeric.system import bind
     from lagsolve.render import trajectory as table
 
-    derivation = derive(problem)  # type: ignore[arg-type]
-    spec = derivation.problem.simulation
-    source = derivation.problem.source
-    system = bind(derivation, options.values)
+    form = matrix_form(problem)  # type: ignore[arg-type]
+    problem = form.problem
+    spec = problem.simulation
+    source = problem.source
+    # conserved quantities come from the full derivation (analysis); it gets a budget of its own,
+    # so that a system too large to solve symbolically can still be simulated from its matrix form
+    conserved, note = None, ""
+    try:
+        conserved = run_with_budget(_conserved, (problem,), options.analysis_timeout, "the analysis")
+    except LagsolveError as error:
+        note = f"  conserved quantities not checked: {error}\n"
+    system = bind(form, options.values, conserved)
     t_end = options.t_end if options.t_end is not None else (spec.t_end if spec else None)
     if t_end is None:
         raise SpecError([Issue(source, 0, "simulation.t_end", "no end time",
@@ -145,7 +199,7 @@ def _simulate(problem: object, options: SimulationOptions, progress: object) -> 
         after_release=options.after_release,
         progress=progress(t_end) if callable(progress) else None,
     )
-    name = derivation.problem.name
+    name = problem.name
     tables: dict[str, str | bytes] = {}
     if "csv" in options.tables:
         tables["csv"] = table.to_csv(trajectory)
@@ -156,8 +210,8 @@ def _simulate(problem: object, options: SimulationOptions, progress: object) -> 
         from lagsolve.render import plots
         from lagsolve.render.notation import Notation
 
-        note = Notation([c.name for c in derivation.problem.coordinates])
-        labels = {c.name: note.latex(c.symbol) for c in derivation.problem.coordinates}
+        notation = Notation([c.name for c in problem.coordinates])
+        labels = {c.name: notation.latex(c.symbol) for c in problem.coordinates}
         curve = None
         if system.curve is not None and system.curve_coordinate is not None:
             k, fn = system.curve_coordinate, system.curve
@@ -176,8 +230,14 @@ def _simulate(problem: object, options: SimulationOptions, progress: object) -> 
                 figures[key] = plots.png_bytes(figure)
         if options.animate and trajectory.particles:
             figures["animation"] = plots.animation_gif(trajectory, name)
-    return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name), tables, figures,
-                            trajectory)
+    return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name) + note, tables,
+                            figures, trajectory)
+
+
+def _conserved(problem: object) -> dict | None:
+    from lagsolve.mechanics.derivation import derive
+
+    return derive(problem).conserved  # type: ignore[arg-type]
 
 
 def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: float = 600.0,

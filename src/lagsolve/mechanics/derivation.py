@@ -15,11 +15,12 @@ from typing import Any
 import sympy
 
 from lagsolve.errors import DerivationError
-from lagsolve.mechanics.constraints import ConstraintTerms, constraint_terms
-from lagsolve.mechanics.forces import ForceTerm, FrictionTerm, force_terms, friction_term
-from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms, solve_augmented
-from lagsolve.mechanics.model import Model, build_model
-from lagsolve.mechanics.reactions import Reaction, reaction
+from lagsolve.mechanics.constraints import ConstraintTerms
+from lagsolve.mechanics.forces import ForceTerm, FrictionTerm
+from lagsolve.mechanics.lagrange import LagrangeTerms, solve_augmented
+from lagsolve.mechanics.matrix_form import MatrixForm, matrix_form
+from lagsolve.mechanics.model import Model
+from lagsolve.mechanics.reactions import Reaction
 from lagsolve.mechanics.reduce import Elimination, eliminate
 from lagsolve.mechanics.simplify import norm, root_of_sum_of_squares, tidy, tidy_sum
 from lagsolve.problem.schema import Problem
@@ -83,6 +84,7 @@ class Derivation:
     reduced: dict[str, Any] | None = None
     conserved: dict[str, Any] | None = None
     effective_potential: dict[str, Any] | None = None
+    form: MatrixForm | None = None  # the unsolved matrix form the numeric stage compiles
 
     @property
     def multiplier_symbols(self) -> tuple[Any, ...]:
@@ -97,13 +99,9 @@ def derive(problem: Problem) -> Derivation:
     DerivationError
         When the accelerations and multipliers are not determined (singular system).
     """
-    model = build_model(problem)
-    constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
-    loads = force_terms(problem, model)
-    n = len(model.coordinates)
-    frictions = tuple(friction_term(f, problem, model) for f in problem.friction)
-    q_forces = tuple(sum((t.generalized[i] for t in (*loads, *frictions)), sympy.Integer(0)) for i in range(n))
-    lagrange = lagrange_terms(model, constraints, q_forces)
+    form = matrix_form(problem)
+    model, constraints, loads, frictions = form.model, form.constraints, form.loads, form.frictions
+    q_forces, lagrange, reactions = form.generalized_forces, form.lagrange, form.reactions
     raw_acc, raw_lam = solve_augmented(lagrange)
 
     elimination = eliminate(constraints, model)
@@ -113,7 +111,6 @@ def derive(problem: Problem) -> Derivation:
         return tidy(elimination.apply(expr))
 
     multipliers = {c.name: result(lam) for c, lam in zip(constraints, raw_lam, strict=True)}
-    reactions = {c.name: reaction(problem, model, c) for c in constraints}
     forces = {c.name: _constraint_force(reactions[c.name], multipliers[c.name], c, elimination)
               for c in constraints}
     normals = _normal_forces(frictions, raw_lam, constraints, reactions, elimination)
@@ -156,6 +153,7 @@ def derive(problem: Problem) -> Derivation:
         multipliers=multipliers,
         constraint_forces=forces,
         friction=tuple(FrictionResult(f, tidy(elimination.apply(normals[f.normal]))) for f in frictions),
+        form=form,
     )
     _check_free_symbols(derivation)
     return derivation

@@ -47,6 +47,7 @@ class Trajectory:
 
     ``q``, ``qd`` shape (samples, n); ``multipliers`` and ``magnitudes`` shape
     (samples, m) in constraint order (λ = 0 and magnitude 0 after release);
+    ``normal_forces`` shape (samples, contacts) for friction contacts;
     ``energy`` the Jacobi integral h = Σ q̇ ∂L/∂q̇ − L; ``residual`` the largest
     constraint violation of the integrated state before projection; ``positions``
     shape (samples, total particle components).
@@ -59,6 +60,8 @@ class Trajectory:
     qd: np.ndarray
     multipliers: np.ndarray
     magnitudes: np.ndarray
+    contacts: tuple[str, ...]
+    normal_forces: np.ndarray
     energy: np.ndarray
     conserved: Mapping[str, np.ndarray]
     residual: np.ndarray
@@ -258,13 +261,14 @@ def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: d
     residual = np.array([r[3] for r in rows])
     lam = np.zeros((len(rows), system.m))
     mags = np.zeros((len(rows), system.m))
+    normals = np.zeros((len(rows), len(system.contacts)))
     energy = np.zeros(len(rows))
     conserved = np.zeros((len(rows), len(system.conserved_names)))
     positions = np.zeros((len(rows), sum(d for _, d in system.particles)))
     for i, (ti, qi, qdi, _, active) in enumerate(rows):
         if system.m:
-            lam[i] = system.solve(ti, qi, qdi, active)[1]
-            mags[i] = np.where(active, system.magnitudes(ti, qi, qdi, p), 0.0)
+            _, lam[i], normals[i] = system.solve_all(ti, qi, qdi, active)
+            mags[i] = np.where(active, system.magnitudes(ti, qi, qdi, lam[i]), 0.0)
         energy[i] = system.energy(ti, qi, qdi, p)[0]
         if system.conserved_names:
             conserved[i] = system.conserved(ti, qi, qdi, p)
@@ -274,7 +278,8 @@ def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: d
     stats = {**stats, "energy_drift": drift,
              "conserved_drift": {name: _relative_drift(conserved[:, k])
                                  for k, name in enumerate(system.conserved_names)}}
-    return Trajectory(t, system.coordinates, system.constraints, q, qd, lam, mags, energy,
+    return Trajectory(t, system.coordinates, system.constraints, q, qd, lam, mags, system.contact_names, normals,
+                      energy,
                       {name: conserved[:, k] for k, name in enumerate(system.conserved_names)},
                       residual, positions, system.particles, tuple(events), stats)
 

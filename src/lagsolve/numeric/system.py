@@ -1,12 +1,22 @@
-"""A derivation bound to numbers: the callables the integrator needs.
+"""A problem's matrix form bound to numbers: the callables the integrator needs.
 
-The equations come from the derivation's *matrix form* (``M q̈ = F + Aᵀλ``,
-``A q̈ = β``), not from the display-simplified results; the augmented linear
-system is solved numerically at each evaluation. Parameters are passed as an
-array, so ``--set g=1.62`` needs no recompilation.
+The equations come from the *matrix form* (``M q̈ = F + Aᵀλ``, ``A q̈ = β``), not
+from display-simplified results; the augmented linear system is solved
+numerically at each evaluation. Parameters are an array, so ``--set g=1.62``
+needs no recompilation.
 
-State order: ``q`` and ``qd`` follow the problem's coordinates; multipliers
-follow its constraints.
+Friction: the generalized forces are affine in the normal forces,
+``F = F₀ + S N`` (``S`` holds −μ times the sliding direction), so one solve with
+several right-hand sides gives ``q̈ = q̈₀ + Q N`` and ``λ = λ₀ + Λ N``. The normal
+force of a contact is the length of the combined force of its constraints,
+``N = |a + B N|`` with ``a = Σ λ₀ⱼ uⱼ`` and ``B = Σ Λⱼ uⱼ``: for one contact a
+quadratic with a unique non-negative root when ``|B| < 1``, for several a
+fixed-point iteration. This solves the coupling between friction and normal
+force consistently at every step (and reports the Painlevé-type case where it
+has no unique solution).
+
+State order: ``q`` and ``qd`` follow the problem's coordinates; multipliers its
+constraints; normal forces its friction contacts.
 """
 
 from __future__ import annotations
@@ -19,7 +29,8 @@ import numpy as np
 import sympy
 
 from lagsolve.errors import Issue, SimulationError, SpecError
-from lagsolve.mechanics.derivation import Derivation
+from lagsolve.mechanics.matrix_form import MatrixForm
+from lagsolve.mechanics.simplify import norm
 from lagsolve.numeric.compile import StateFunction, compile_state_function, substitute_functions
 
 
@@ -27,8 +38,10 @@ from lagsolve.numeric.compile import StateFunction, compile_state_function, subs
 class NumericSystem:
     """Numeric callables of one problem, each ``f(t, q, qd, p) -> ndarray``.
 
-    ``parameters`` holds the parameter values in the order of ``parameter_names``;
-    ``holonomic`` indexes the constraints given at position level (projected onto).
+    ``holonomic`` indexes the constraints given at position level (projected onto);
+    ``unilateral`` those that hold only while they push; ``contacts`` lists, per
+    friction contact, the rows of ``directions`` holding each normal constraint's
+    force direction on the sliding particle.
     """
 
     coordinates: tuple[str, ...]
@@ -38,12 +51,15 @@ class NumericSystem:
     parameter_names: tuple[str, ...]
     parameters: np.ndarray
     matrices: StateFunction
+    contacts: tuple[tuple[tuple[int, int, int], ...], ...]  # per contact: (constraint j, offset, dims)
+    contact_names: tuple[str, ...]
+    directions: StateFunction
+    scales: StateFunction
     position_residual: StateFunction
     position_jacobian: StateFunction
     velocity_jacobian: StateFunction
     velocity_offset: StateFunction
     energy: StateFunction
-    magnitudes: StateFunction
     positions: StateFunction
     particles: tuple[tuple[str, int], ...]
     conserved_names: tuple[str, ...]
@@ -64,52 +80,98 @@ class NumericSystem:
 
     def solve(self, t: float, q: np.ndarray, qd: np.ndarray,
               active: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-        """Accelerations and multipliers at a state (inactive constraints get λ = 0).
+        """Accelerations and multipliers at a state (inactive constraints get λ = 0)."""
+        qdd, lam, _ = self.solve_all(t, q, qd, active)
+        return qdd, lam
+
+    def solve_all(self, t: float, q: np.ndarray, qd: np.ndarray,
+                  active: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Accelerations, multipliers and friction normal forces at a state.
 
         Solves :math:`\\begin{pmatrix}M & -A^T\\\\ A & 0\\end{pmatrix}
         \\begin{pmatrix}\\ddot q\\\\ \\lambda\\end{pmatrix} = \\begin{pmatrix}F\\\\ \\beta\\end{pmatrix}`
-        with the rows of inactive constraints removed.
+        with the rows of inactive constraints removed, and the normal forces consistently.
         """
         self.evaluations[0] += 1
-        n, m = self.n, self.m
-        flat = self.matrices(t, q, qd, self.parameters)
+        n, m, k = self.n, self.m, len(self.contacts)
+        p = self.parameters
+        flat = self.matrices(t, q, qd, p)
         M = flat[: n * n].reshape(n, n)
-        F = flat[n * n: n * n + n]
-        A = flat[n * n + n: n * n + n + m * n].reshape(m, n)
-        beta = flat[n * n + n + m * n:]
-        lam = np.zeros(m)
-        if active is not None and not active.all():
-            A, beta = A[active], beta[active]
-        k = A.shape[0]
-        if k == 0:
-            return np.linalg.solve(M, F), lam
-        system = np.zeros((n + k, n + k))
-        system[:n, :n] = M
-        system[:n, n:] = -A.T
-        system[n:, :n] = A
-        solution = np.linalg.solve(system, np.concatenate([F, beta]))
-        if active is not None and not active.all():
-            lam[active] = solution[n:]
+        at = n * n
+        F = flat[at: at + n * (k + 1)].reshape(n, k + 1)
+        at += n * (k + 1)
+        A = flat[at: at + m * n].reshape(m, n)
+        beta = flat[at + m * n:]
+        mask = np.ones(m, dtype=bool) if active is None else active
+        A, beta = A[mask], beta[mask]
+        rows = A.shape[0]
+        if rows == 0:
+            solution = np.linalg.solve(M, F)
         else:
-            lam = solution[n:]
-        return solution[:n], lam
+            system = np.zeros((n + rows, n + rows))
+            system[:n, :n] = M
+            system[:n, n:] = -A.T
+            system[n:, :n] = A
+            rhs = np.zeros((n + rows, k + 1))
+            rhs[:n] = F
+            rhs[n:, 0] = beta
+            solution = np.linalg.solve(system, rhs)
+        lam_all = np.zeros((m, k + 1))
+        lam_all[mask] = solution[n:]
+        normal = self._normal_forces(t, q, qd, lam_all) if k else np.zeros(0)
+        qdd = solution[:n, 0] + solution[:n, 1:] @ normal
+        lam = lam_all[:, 0] + lam_all[:, 1:] @ normal
+        return qdd, lam, normal
+
+    def _normal_forces(self, t: float, q: np.ndarray, qd: np.ndarray, lam: np.ndarray) -> np.ndarray:
+        u = self.directions(t, q, qd, self.parameters)
+        k = len(self.contacts)
+        a_parts, b_parts = [], []
+        for contact in self.contacts:
+            dims = contact[0][2]
+            a = np.zeros(dims)
+            b = np.zeros((dims, k))
+            for j, offset, _ in contact:
+                direction = u[offset: offset + dims]
+                a += lam[j, 0] * direction
+                b += np.outer(direction, lam[j, 1:])
+            a_parts.append(a)
+            b_parts.append(b)
+        if k == 1:
+            a, b = a_parts[0], b_parts[0][:, 0]
+            bb, ab, aa = float(b @ b), float(a @ b), float(a @ a)
+            if bb >= 1.0:
+                raise SimulationError(
+                    f"at t = {t:.6g} the friction feeds back into its own normal force so strongly "
+                    "(|dN/dN| >= 1) that no unique normal force exists (a Painlevé-type inconsistency)")
+            return np.array([(ab + np.sqrt(ab * ab + (1.0 - bb) * aa)) / (1.0 - bb)])
+        normal = np.array([np.linalg.norm(a) for a in a_parts])
+        for _ in range(100):
+            new = np.array([np.linalg.norm(a + b @ normal) for a, b in zip(a_parts, b_parts, strict=True)])
+            if np.max(np.abs(new - normal)) <= 1e-13 * max(1.0, float(np.max(new))):
+                return new
+            normal = new
+        raise SimulationError(f"at t = {t:.6g} the normal forces of the friction contacts did not converge")
+
+    def magnitudes(self, t: float, q: np.ndarray, qd: np.ndarray, lam: np.ndarray) -> np.ndarray:
+        """|force of constraint j| = |λ_j| · |direction_j| (NaN where no force can be claimed)."""
+        return np.abs(lam) * self.scales(t, q, qd, self.parameters)
 
 
-def _values(derivation: Derivation, overrides: Mapping[str, float]) -> dict[str, float]:
-    problem = derivation.problem
-    values: dict[str, float] = {}
-    for p in problem.parameters:
-        if p.value is not None:
-            values[p.name] = p.value
+def _values(form: MatrixForm, overrides: Mapping[str, float]) -> dict[str, float]:
+    problem = form.problem
+    values: dict[str, float] = {p.name: p.value for p in problem.parameters if p.value is not None}
     if problem.simulation is not None:
         values.update(problem.simulation.values)
     values.update(overrides)
     return values
 
 
-def bind(derivation: Derivation, overrides: Mapping[str, float] | None = None) -> NumericSystem:
-    """Bind ``derivation`` to the parameter values of its file (and ``overrides``) and
-    its concrete functions, and compile everything the integrator needs.
+def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
+         conserved: Mapping[str, Any] | None = None) -> NumericSystem:
+    """Bind a problem's matrix form to parameter values (the file's, then ``overrides``) and its
+    concrete functions, and compile everything the integrator needs. ``conserved`` maps names to
+    expressions whose drift should be reported (those with unknown symbols are skipped).
 
     Raises
     ------
@@ -117,8 +179,7 @@ def bind(derivation: Derivation, overrides: Mapping[str, float] | None = None) -
         A parameter used by the equations has no value, a declared function has no
         concrete form, or an override names an unknown parameter.
     """
-    problem = derivation.problem
-    model = derivation.model
+    problem, model, lagrange = form.problem, form.model, form.lagrange
     source = problem.source
     overrides = dict(overrides or {})
     issues: list[Issue] = []
@@ -127,11 +188,7 @@ def bind(derivation: Derivation, overrides: Mapping[str, float] | None = None) -
         if name not in known:
             issues.append(Issue(source, 0, "--set", f"unknown parameter {name!r}",
                                 "known: " + ", ".join(sorted(known)) if known else "the problem has no parameters"))
-    values = _values(derivation, overrides)
-    for name, value in values.items():
-        if not np.isfinite(value):
-            issues.append(Issue(source, 0, f"parameter {name}", f"value {value} is not a finite number"))
-
+    values = _values(form, overrides)
     concrete = {}
     simulation = problem.simulation
     for fn in problem.functions:
@@ -143,44 +200,65 @@ def bind(derivation: Derivation, overrides: Mapping[str, float] | None = None) -
         else:
             concrete[fn.function] = (given.arguments, given.expression)
 
-    normals = {f.term.normal: f.normal_force for f in derivation.friction}
-    lagrange = derivation.lagrange
-
     def prepare(expr: Any) -> Any:
-        expr = sympy.Integer(expr) if isinstance(expr, int) else expr
-        return substitute_functions(expr.xreplace(normals), concrete)
+        return substitute_functions(sympy.Integer(expr) if isinstance(expr, int) else expr, concrete)
 
-    matrices = [*lagrange.mass_matrix, *lagrange.forcing, *lagrange.constraint_jacobian, *lagrange.constraint_rhs]
-    holonomic = tuple(j for j, c in enumerate(derivation.constraints) if c.kind == "holonomic")
-    psi = [derivation.constraints[j].expression for j in holonomic]
-    psi_jacobian = [sympy.diff(e, q) for e in psi for q in model.coordinates]
-    velocity_jacobian = list(lagrange.constraint_jacobian)
-    offsets = [c.offset for c in derivation.constraints]
+    normals = [f.normal for f in form.frictions]
+    forcing = lagrange.forcing
+    zero = {N: 0 for N in normals}
+    columns = [forcing.xreplace(zero)] + [forcing.diff(N) for N in normals]
+    forcing_columns = [columns[c][i] for i in range(len(model.coordinates)) for c in range(len(columns))]
+    matrices = [*lagrange.mass_matrix, *forcing_columns, *lagrange.constraint_jacobian, *lagrange.constraint_rhs]
+    contacts, directions, offset = [], [], 0
+    index = {c.name: j for j, c in enumerate(form.constraints)}
+    for f in form.frictions:
+        rows = []
+        for name in f.constraints:
+            pushes = [p for p in form.reactions[name].particles if p.particle == f.particle]
+            if not pushes:
+                raise SpecError([Issue(source, problem.lines.get(f"friction.{f.name}.normal", 0),
+                                       f"friction.{f.name}.normal",
+                                       f"constraint {name!r} has no known force on {f.particle!r}, so the "
+                                       "normal force cannot be computed", "name constraints that act on it")])
+            rows.append((index[name], offset, len(pushes[0].direction)))
+            directions += list(pushes[0].direction)
+            offset += len(pushes[0].direction)
+        contacts.append(tuple(rows))
+    scales = []
+    for c in form.constraints:
+        react = form.reactions[c.name]
+        if react.particles:
+            scales.append(norm(list(react.particles[0].direction)))
+        elif react.generalized:
+            scales.append(norm(list(c.coefficients)))
+        else:
+            scales.append(sympy.nan)
+    holonomic = tuple(j for j, c in enumerate(form.constraints) if c.kind == "holonomic")
+    psi = [form.constraints[j].expression for j in holonomic]
     energy = sum((v * sympy.diff(model.lagrangian, v) for v in model.velocities), sympy.Integer(0)) - model.lagrangian
-    magnitudes = [f.magnitude if f.magnitude is not None else sympy.nan for f in derivation.constraint_forces.values()]
-    positions = [r for p in problem.particles for r in p.position]
-    conserved_names, conserved = [], []
-    for name, expr in (derivation.conserved or {}).items():
-        conserved_names.append(name)
-        conserved.append(expr)
-
-    prepared = {key: [prepare(e) for e in group] for key, group in {
-        "matrices": matrices, "psi": psi, "psi_jacobian": psi_jacobian, "velocity_jacobian": velocity_jacobian,
-        "offsets": offsets, "energy": [energy], "magnitudes": magnitudes, "positions": positions,
-        "conserved": conserved}.items()}
-    needed = set().union(*(e.free_symbols for group in ("matrices", "psi", "offsets")
-                           for e in prepared[group] if hasattr(e, "free_symbols")))
+    groups = {
+        "matrices": matrices, "directions": directions, "scales": scales, "psi": psi,
+        "psi_jacobian": [sympy.diff(e, q) for e in psi for q in model.coordinates],
+        "velocity_jacobian": list(lagrange.constraint_jacobian),
+        "offsets": [c.offset for c in form.constraints], "energy": [energy],
+        "positions": [r for p in problem.particles for r in p.position],
+        "conserved": list((conserved or {}).values()),
+    }
+    prepared = {key: [prepare(e) for e in group] for key, group in groups.items()}
+    parameter_symbols = [p.symbol for p in problem.parameters]
+    needed = set().union(*(getattr(e, "free_symbols", set()) for group in ("matrices", "psi", "offsets", "directions")
+                           for e in prepared[group]))
     missing = sorted(p.name for p in problem.parameters if p.symbol in needed and p.name not in values)
     if missing:
         issues.append(Issue(source, problem.lines.get("simulation", 0), "simulation.values",
                             "no value for parameter" + ("s " if len(missing) > 1 else " ") + ", ".join(missing),
                             "give it under simulation.values or with --set NAME=VALUE"))
+    for name, value in values.items():
+        if not np.isfinite(value):
+            issues.append(Issue(source, 0, f"parameter {name}", f"value {value} is not a finite number"))
     if issues:
         raise SpecError(issues)
 
-    # symbols the optional diagnostics need but that have no value (integration constants, say)
-    parameter_symbols = [p.symbol for p in problem.parameters]
-    parameter_values = np.array([values.get(p.name, np.nan) for p in problem.parameters], dtype=float)
     arguments = {"time": model.time, "coordinates": model.coordinates, "velocities": model.velocities,
                  "parameters": parameter_symbols}
     allowed = {model.time, *model.coordinates, *model.velocities, *parameter_symbols}
@@ -190,29 +268,32 @@ def bind(derivation: Derivation, overrides: Mapping[str, float] | None = None) -
                  for e in prepared[group]]
         return compile_state_function(exprs, **arguments)
 
-    usable_conserved = [i for i, e in enumerate(prepared["conserved"]) if e.free_symbols <= allowed]
-    curve_coordinate, curve = _constraint_curve(derivation, prepare, arguments)
-    energy_conserved, note = _energy_conserved(derivation)
-    names = [c.name for c in derivation.constraints]
+    conserved_names = list(conserved or {})
+    usable = [i for i, e in enumerate(prepared["conserved"]) if e.free_symbols <= allowed]
+    curve_coordinate, curve = _constraint_curve(form, prepare, arguments)
+    energy_conserved, note = _energy_conserved(form)
     try:
         return NumericSystem(
             coordinates=tuple(c.name for c in problem.coordinates),
-            constraints=tuple(names),
+            constraints=tuple(c.name for c in form.constraints),
             holonomic=holonomic,
             unilateral=tuple(j for j, c in enumerate(problem.constraints) if c.unilateral),
             parameter_names=tuple(p.name for p in problem.parameters),
-            parameters=parameter_values,
+            parameters=np.array([values.get(p.name, np.nan) for p in problem.parameters], dtype=float),
             matrices=compile_group("matrices"),
+            contacts=tuple(contacts),
+            contact_names=tuple(f.name for f in form.frictions),
+            directions=compile_group("directions"),
+            scales=compile_group("scales"),
             position_residual=compile_group("psi"),
             position_jacobian=compile_group("psi_jacobian"),
             velocity_jacobian=compile_group("velocity_jacobian"),
             velocity_offset=compile_group("offsets"),
             energy=compile_group("energy"),
-            magnitudes=compile_group("magnitudes"),
             positions=compile_group("positions"),
             particles=tuple((p.name, len(p.position)) for p in problem.particles),
-            conserved_names=tuple(conserved_names[i] for i in usable_conserved),
-            conserved=compile_state_function([prepared["conserved"][i] for i in usable_conserved], **arguments),
+            conserved_names=tuple(conserved_names[i] for i in usable),
+            conserved=compile_state_function([prepared["conserved"][i] for i in usable], **arguments),
             curve_coordinate=curve_coordinate,
             curve=curve,
             energy_conserved=energy_conserved,
@@ -222,31 +303,33 @@ def bind(derivation: Derivation, overrides: Mapping[str, float] | None = None) -
         raise SimulationError(f"could not compile the equations of {source}: {exc}") from None
 
 
-def _constraint_curve(derivation: Derivation, prepare: Any,
+def _constraint_curve(form: MatrixForm, prepare: Any,
                       arguments: dict[str, Any]) -> tuple[int | None, StateFunction | None]:
     """For one degree of freedom left by explicit position constraints (a bead on a wire), the first
     particle's position as a function of the independent coordinate: the curve the constraint draws."""
-    problem, model = derivation.problem, derivation.model
-    positions = derivation.elimination.positions
-    if not problem.particles or not positions or any(c.kind != "holonomic" for c in derivation.constraints):
+    from lagsolve.mechanics.reduce import eliminate
+
+    problem, model = form.problem, form.model
+    if not problem.particles or not form.constraints or any(c.kind != "holonomic" for c in form.constraints):
         return None, None
-    free = [i for i, q in enumerate(model.coordinates) if q not in positions]
+    elimination = eliminate(form.constraints, model)
+    free = [i for i, q in enumerate(model.coordinates) if q not in elimination.positions]
     if len(free) != 1:
         return None, None
-    shape = [prepare(derivation.elimination.apply(r)) for r in problem.particles[0].position]
+    shape = [prepare(elimination.apply(r)) for r in problem.particles[0].position]
     if any(model.time in e.free_symbols for e in shape):
         return None, None
     return free[0], compile_state_function(shape, **arguments)
 
 
-def _energy_conserved(derivation: Derivation) -> tuple[bool, str]:
+def _energy_conserved(form: MatrixForm) -> tuple[bool, str]:
     """Whether the Jacobi integral h = Σ q̇ ∂L/∂q̇ − L of the full system is conserved, and why (not)."""
-    model = derivation.model
+    model = form.model
     if sympy.diff(model.lagrangian, model.time) != 0:
         return False, "L depends explicitly on time"
-    if any(g != 0 for g in derivation.lagrange.generalized_forces):
+    if any(g != 0 for g in form.generalized_forces):
         return False, "non-conservative forces (or dissipation, or friction) do work"
-    for c in derivation.constraints:
+    for c in form.constraints:
         if c.offset != 0 or any(sympy.diff(a, model.time) != 0 for a in c.coefficients):
             return False, f"constraint {c.name!r} depends on time, so its force can do work"
     return True, "L has no explicit time, the constraints are workless and no other force does work"

@@ -2,7 +2,8 @@
 
 CSV columns (format section 3): ``t``, each coordinate, each ``<q>_dot``, then
 ``lambda_<c>`` and ``F_<c>`` per constraint, ``energy`` (the Jacobi integral,
-conserved or not), then ``residual`` and any conserved quantities.
+conserved or not), then ``N_<contact>`` per friction contact, ``residual`` and any
+conserved quantities.
 """
 
 from __future__ import annotations
@@ -27,6 +28,8 @@ def columns(trajectory: Trajectory) -> dict[str, np.ndarray]:
     for j, name in enumerate(trajectory.constraints):
         out[f"F_{name}"] = trajectory.magnitudes[:, j]
     out["energy"] = trajectory.energy
+    for c, name in enumerate(trajectory.contacts):
+        out[f"N_{name}"] = trajectory.normal_forces[:, c]
     out["residual"] = trajectory.residual
     for name, values in trajectory.conserved.items():
         if name != "energy":

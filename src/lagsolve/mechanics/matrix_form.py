@@ -1,0 +1,54 @@
+"""The equations of motion in matrix form, without solving or simplifying them.
+
+``matrix_form(problem)`` is the cheap first half of a derivation: energies,
+constraint coefficients, generalized forces (friction with its normal force left
+as the symbol ``N_<contact>``), Lagrange's equations as ``M q̈ = F + Aᵀλ`` with
+``A q̈ = β``, and the direction of each force of constraint per unit multiplier.
+It is all the numeric stage needs, so ``simulate`` never waits for the symbolic
+solve and the display simplification, which grow quickly with the size of a system.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import sympy
+
+from lagsolve.mechanics.constraints import ConstraintTerms, constraint_terms
+from lagsolve.mechanics.forces import ForceTerm, FrictionTerm, force_terms, friction_term
+from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms
+from lagsolve.mechanics.model import Model, build_model
+from lagsolve.mechanics.reactions import Reaction, reaction
+from lagsolve.problem.schema import Problem
+
+
+@dataclass(frozen=True)
+class MatrixForm:
+    """Everything up to (not including) solving for the accelerations.
+
+    ``generalized_forces`` are the total :math:`Q_i` (loads and friction, N symbolic);
+    ``reactions`` map each constraint to the direction of its force per unit λ.
+    """
+
+    problem: Problem
+    model: Model
+    constraints: tuple[ConstraintTerms, ...]
+    loads: tuple[ForceTerm, ...]
+    frictions: tuple[FrictionTerm, ...]
+    generalized_forces: tuple[Any, ...]
+    lagrange: LagrangeTerms
+    reactions: dict[str, Reaction]
+
+
+def matrix_form(problem: Problem) -> MatrixForm:
+    """Build the matrix form of ``problem``'s equations of motion (no solve, no display simplification)."""
+    model = build_model(problem)
+    constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
+    loads = force_terms(problem, model)
+    frictions = tuple(friction_term(f, problem, model) for f in problem.friction)
+    n = len(model.coordinates)
+    q_forces = tuple(sum((t.generalized[i] for t in (*loads, *frictions)), sympy.Integer(0)) for i in range(n))
+    lagrange = lagrange_terms(model, constraints, q_forces)
+    reactions = {c.name: reaction(problem, model, c) for c in constraints}
+    return MatrixForm(problem, model, constraints, loads, frictions, q_forces, lagrange, reactions)
