@@ -18,7 +18,7 @@ from typing import Any
 from lagsolve.errors import Issue, SpecError
 
 MAX_BYTES = 256 * 1024
-MAX_NODES = 20_000
+MAX_NODES = 5_000
 MAX_DEPTH = 24
 MAX_INT_DIGITS = 40
 
@@ -109,10 +109,14 @@ def _check_events(events: Any, fail: Any) -> None:
         CollectionEndEvent,
         CollectionStartEvent,
         DocumentStartEvent,
+        MappingStartEvent,
         ScalarEvent,
     )
 
-    depth = count = documents = 0
+    # one entry per open collection: nodes seen so far in a mapping (even: the next is a key),
+    # or -1 for a list; values are counted as the converter counts them, keys are not
+    open_collections: list[int] = []
+    count = documents = 0
     for event in events:
         line = event.start_mark.line + 1
         if isinstance(event, DocumentStartEvent):
@@ -125,18 +129,23 @@ def _check_events(events: Any, fail: Any) -> None:
                 shown = ".".join(str(v) for v in version)
                 raise fail(line, f"YAML {shown} documents are not supported",
                            "remove the '%YAML' line; problem files are read as YAML 1.2")
-        elif isinstance(event, CollectionStartEvent):
-            depth += 1
-            if depth > MAX_DEPTH + 1:
+        if isinstance(event, CollectionStartEvent | ScalarEvent | AliasEvent):
+            in_mapping = bool(open_collections) and open_collections[-1] >= 0
+            is_key = in_mapping and open_collections[-1] % 2 == 0
+            if in_mapping:
+                open_collections[-1] += 1
+            if not is_key:
+                count += 1
+                if count > MAX_NODES:
+                    raise fail(line, f"the file has more than {MAX_NODES} values",
+                               "problem files are small")
+        if isinstance(event, CollectionStartEvent):
+            open_collections.append(0 if isinstance(event, MappingStartEvent) else -1)
+            if len(open_collections) > MAX_DEPTH + 1:
                 raise fail(line, f"values are nested more than {MAX_DEPTH} levels deep",
                            "problem files need only a few levels")
         elif isinstance(event, CollectionEndEvent):
-            depth -= 1
-        if isinstance(event, CollectionStartEvent | ScalarEvent | AliasEvent):
-            count += 1
-            if count > MAX_NODES:
-                raise fail(line, f"the file has more than {MAX_NODES} values",
-                           "problem files are small")
+            open_collections.pop()
 
 
 def _is_empty(node: Any) -> bool:
