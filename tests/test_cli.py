@@ -122,3 +122,19 @@ def test_reports_do_not_depend_on_hash_seed(tmp_path: Path) -> None:
         outputs.append({p.relative_to(target): p.read_bytes() for p in sorted(target.rglob("*.*"))})
     assert outputs[0] == outputs[1]
     assert len(outputs[0]) == 3 * len(problems)
+
+
+def test_unwritable_output_is_a_clean_error(runner: CliRunner, tmp_path: Path) -> None:
+    """An output folder that is really a file gives exit 2 and a message, not a traceback."""
+    blocker = tmp_path / "afile.txt"
+    blocker.write_text("x")
+    result = runner.invoke(main, ["derive", BEAD, "-o", str(blocker)])
+    assert result.exit_code == 2 and "cannot write" in result.stderr
+    assert "Traceback" not in result.output
+
+
+def test_one_output_file_for_several_problems_is_refused(runner: CliRunner, tmp_path: Path) -> None:
+    """-o out.json with two problems is a usage error instead of a folder named out.json."""
+    result = runner.invoke(main, ["derive", BEAD, HOLE, "--format", "json", "-o", str(tmp_path / "out.json")])
+    assert result.exit_code == 2 and "names one file" in result.stderr
+    assert not (tmp_path / "out.json").exists()

@@ -89,7 +89,9 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     slugs = [safe_slug(f) for f in files]
     if len(set(slugs)) != len(slugs):
         raise click.UsageError("two problem files have the same name; their reports would overwrite each other")
-    single_file = fmt is not None and output is not None and len(files) == 1 and output.suffix == EXTENSIONS[fmt]
+    single_file = fmt is not None and output is not None and output.suffix == EXTENSIONS[fmt]
+    if single_file and len(files) > 1:
+        raise click.UsageError(f"-o {output} names one file, but {len(files)} problems were given; give a folder")
     status = 0
     for path in files:
         try:
@@ -112,9 +114,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
             targets = {f: folder / f"{reports.slug}{EXTENSIONS[f]}" for f in formats}
             click.echo(reports.summary, nl=False)
         for f, target in targets.items():
-            target.parent.mkdir(parents=True, exist_ok=True)
-            target.write_text(reports.outputs[f], encoding="utf-8")
-            click.echo(f"  wrote {target}")
+            click.echo(f"  wrote {_write(target, reports.outputs[f])}")
     sys.exit(status)
 
 
@@ -193,7 +193,9 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
         values=_assignments(values, "--set"), initial=_assignments(initial, "--initial"), t_end=t_end,
         samples=samples, method=method, rtol=rtol, atol=atol, max_step=max_step, after_release=after_release,
         tables=(fmt,) if fmt != "summary" else (), plots=plot or show, animate=animate)
-    single = output is not None and len(files) == 1 and output.suffix == f".{fmt}"
+    single = output is not None and output.suffix == f".{fmt}"
+    if single and len(files) > 1:
+        raise click.UsageError(f"-o {output} names one file, but {len(files)} problems were given; give a folder")
     status = 0
     for path in files:
         try:
@@ -223,11 +225,15 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
 
 
 def _write(target: Path, data: str | bytes) -> Path:
-    target.parent.mkdir(parents=True, exist_ok=True)
-    if isinstance(data, bytes):
-        target.write_bytes(data)
-    else:
-        target.write_text(data, encoding="utf-8")
+    """Write one output file; a path that cannot be written is a command-line error (exit 2)."""
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        if isinstance(data, bytes):
+            target.write_bytes(data)
+        else:
+            target.write_text(data, encoding="utf-8")
+    except OSError as exc:
+        raise click.BadParameter(f"cannot write {target}: {exc.strerror or exc}", param_hint="-o/--output") from None
     return target
 
 
