@@ -38,3 +38,23 @@ def test_empty_list_compiles_to_empty_array() -> None:
     """No expressions give an empty array (a problem without constraints)."""
     fn = compile_state_function([], time=t, coordinates=[x], velocities=[xd], parameters=[])
     assert fn(0.0, np.zeros(1), np.zeros(1), np.zeros(0)).shape == (0,)
+
+
+def test_llvm_and_python_backends_agree() -> None:
+    """The compiled (LLVM) and pure-Python backends give the same numbers at many states."""
+    pytest.importorskip("symengine")
+    exprs = [a * sympy.sin(x) * yd**2 + b * sympy.sqrt(x**2 + 1), sympy.atan2(y, x) * sympy.sign(xd),
+             sympy.Abs(y - t) / (1 + b**2), sympy.exp(-x * y) * sympy.cos(t)]
+    kwargs = {"time": t, "coordinates": [x, y], "velocities": [xd, yd], "parameters": [a, b]}
+    fast = compile_state_function(exprs, backend="llvm", **kwargs)
+    slow = compile_state_function(exprs, backend="python", **kwargs)
+    rng = np.random.default_rng(0)
+    for _ in range(50):
+        args = (rng.uniform(-2, 2), rng.uniform(-2, 2, 2), rng.uniform(-2, 2, 2), rng.uniform(0.5, 2, 2))
+        assert fast(*args) == pytest.approx(slow(*args), rel=1e-12, abs=1e-14)
+
+
+def test_unknown_backend_is_refused() -> None:
+    """A backend name other than auto, llvm and python is an error."""
+    with pytest.raises(ValueError, match="unknown backend"):
+        compile_state_function([x], time=t, coordinates=[x], velocities=[xd], parameters=[], backend="gpu")
