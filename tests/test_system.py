@@ -86,7 +86,7 @@ def test_friction_normal_force_matches_the_closed_form() -> None:
     g, omega, mu, m = 9.81, 2.0, 0.3, 1.0
     for _ in range(20):
         r, theta, rd = rng.uniform(0.2, 3), rng.uniform(0.1, 3.0), rng.uniform(-2, 2)
-        qdd, lam, normal = system.solve_all(0.0, np.array([r, theta, 0.4]), np.array([rd, 0.0, omega]))
+        qdd, lam, normal, _ = system.solve_all(0.0, np.array([r, theta, 0.4]), np.array([rd, 0.0, omega]))
         n_closed = m * abs(np.sin(theta)) * np.sqrt(4 * omega**2 * rd**2 + (r * omega**2 * np.cos(theta) + g) ** 2)
         assert normal[0] == pytest.approx(n_closed, rel=1e-12)
         assert qdd[0] == pytest.approx(r * omega**2 * np.sin(theta) ** 2 - g * np.cos(theta)
@@ -128,7 +128,7 @@ def test_coupled_friction_is_solved_consistently() -> None:
         angle, rate = rng.uniform(0.2, 1.3), rng.uniform(-3, 3)
         q = np.array([np.cos(angle), 0.0, 0.0, np.sin(angle)])
         qd = np.array([-np.sin(angle) * rate, 0.0, 0.0, np.cos(angle) * rate])
-        qdd, lam, normal = system.solve_all(0.0, q, qd)
+        qdd, lam, normal, _ = system.solve_all(0.0, q, qd)
         values = {s: v for s, v in zip(form.model.coordinates, q, strict=True)}
         values |= {s: v for s, v in zip(form.model.velocities, qd, strict=True)}
         values |= {p.symbol: params[p.name] for p in form.problem.parameters}
@@ -141,6 +141,6 @@ def test_coupled_friction_is_solved_consistently() -> None:
         assert np.allclose(A @ qdd, beta, atol=1e-10)
         assert normal[0] == pytest.approx(abs(lam[0]), rel=1e-12)  # the floor pushes along (0, 1)
         if abs(rate) > 0.1:
-            _, lam0, _ = frictionless.solve_all(0.0, q, qd)
+            _, lam0, _, _ = frictionless.solve_all(0.0, q, qd)
             assert abs(lam[0] - lam0[0]) > 1e-6  # the coupling is real
     assert sympy.Symbol("N_rough", nonnegative=True) in lagrange.forcing.free_symbols

@@ -7,9 +7,19 @@ step at a time (the same solvers ``solve_ivp`` uses), which allows
 * **projection** after each accepted step of an explicit Runge–Kutta method:
   positions onto ψ(q, t) = 0 (least-norm Newton), velocities onto A q̇ + b = 0,
   so holonomic constraints integrated at acceleration level do not drift;
-* **events**: a unilateral constraint holds while its multiplier is ≥ 0 (its
-  force pushes); the time it reaches zero is located on the step's dense output
-  (Brent's method), and the run stops or continues with the constraint released.
+* **events**, each located on the step's dense output with Brent's method and
+  followed by a restart of the integrator exactly there (no chattering, no tiny
+  steps at a discontinuity):
+
+  - *release*: a unilateral constraint holds while its multiplier is ≥ 0; where it
+    reaches zero the run stops or continues without it;
+  - *stick*: a friction contact's sliding rate reaches zero and the force needed to
+    hold it, |λ_s|/|∂r/∂q|, is within μ_s N: the contact sticks (an extra row
+    q̇_slide = 0 replaces kinetic friction);
+  - *slip*: a sticking contact needs more than μ_s N: it slides again, in the
+    direction the other forces push it;
+  - a sliding rate that reaches zero without sticking reverses, and the kinetic
+    friction force flips with it at that exact time.
 
 Samples are taken from the dense output at evenly spaced times.
 """
@@ -29,16 +39,27 @@ from lagsolve.numeric.system import NumericSystem
 
 EXPLICIT = ("DOP853", "RK45", "RK23")
 METHODS = (*EXPLICIT, "Radau", "BDF", "LSODA")
+HOLD_TOLERANCE = 1e-12  # relative slack in |needed force| <= mu_s N when deciding to stick
 
 
 @dataclass(frozen=True)
 class Event:
-    """A unilateral constraint's force reached zero at ``time``: contact was lost."""
+    """Something that changed the equations at ``time``.
+
+    ``kind`` is "release" (a unilateral constraint lost contact), "stick" or "slip"
+    (a friction contact); ``name`` the constraint or contact; ``action`` "stopped",
+    "released", "stuck" or "slipped".
+    """
 
     time: float
-    constraint: str
+    kind: str
+    name: str
     state: Mapping[str, float]
-    action: str  # "stopped" | "released"
+    action: str
+
+    @property
+    def constraint(self) -> str:
+        return self.name
 
 
 @dataclass(frozen=True)
@@ -47,7 +68,7 @@ class Trajectory:
 
     ``q``, ``qd`` shape (samples, n); ``multipliers`` and ``magnitudes`` shape
     (samples, m) in constraint order (λ = 0 and magnitude 0 after release);
-    ``normal_forces`` shape (samples, contacts) for friction contacts;
+    ``normal_forces`` and ``stuck`` shape (samples, contacts) for friction contacts;
     ``energy`` the Jacobi integral h = Σ q̇ ∂L/∂q̇ − L; ``residual`` the largest
     constraint violation of the integrated state before projection; ``positions``
     shape (samples, total particle components).
@@ -62,6 +83,7 @@ class Trajectory:
     magnitudes: np.ndarray
     contacts: tuple[str, ...]
     normal_forces: np.ndarray
+    stuck: np.ndarray
     energy: np.ndarray
     conserved: Mapping[str, np.ndarray]
     residual: np.ndarray
@@ -73,18 +95,34 @@ class Trajectory:
 
 @dataclass
 class _Run:
+    """The integrator's view of the equations: which constraints hold and which contacts stick."""
+
     system: NumericSystem
     active: np.ndarray
+    stuck: np.ndarray
+    direction: np.ndarray
     project: bool
-    residuals: list[float] = field(default_factory=list)
 
-    def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
+    def solve(self, t: float, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         n = self.system.n
         try:
-            qdd, _ = self.system.solve(t, y[:n], y[n:], self.active)
+            return self.system.solve_all(t, y[:n], y[n:], self.active, self.stuck, self.direction)
         except np.linalg.LinAlgError:
             raise SimulationError(f"the augmented system is singular at t = {t:.6g}") from None
-        return np.concatenate([y[n:], qdd])
+
+    def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
+        return np.concatenate([y[self.system.n:], self.solve(t, y)[0]])
+
+    def _velocity_rows(self, t: float, q: np.ndarray, qd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        system, p, n = self.system, self.system.parameters, self.system.n
+        a = system.velocity_jacobian(t, q, qd, p).reshape(system.m, n)[self.active] if system.m else np.zeros((0, n))
+        b = system.velocity_offset(t, q, qd, p)[self.active] if system.m else np.zeros(0)
+        held = [s for c, s in enumerate(system.slides) if s is not None and self.stuck[c]]
+        if held:
+            extra = np.zeros((len(held), n))
+            extra[np.arange(len(held)), held] = 1.0
+            a, b = np.vstack([a, extra]), np.concatenate([b, np.zeros(len(held))])
+        return a, b
 
     def residual(self, t: float, q: np.ndarray, qd: np.ndarray) -> float:
         system, p = self.system, self.system.parameters
@@ -92,9 +130,8 @@ class _Run:
         rows = [i for i, j in enumerate(system.holonomic) if self.active[j]]
         if rows:
             worst = float(np.max(np.abs(system.position_residual(t, q, qd, p)[rows])))
-        if system.m and self.active.any():
-            a = system.velocity_jacobian(t, q, qd, p).reshape(system.m, system.n)[self.active]
-            b = system.velocity_offset(t, q, qd, p)[self.active]
+        a, b = self._velocity_rows(t, q, qd)
+        if a.shape[0]:
             worst = max(worst, float(np.max(np.abs(a @ qd + b))))
         return worst
 
@@ -111,11 +148,17 @@ class _Run:
                     break
                 jac = system.position_jacobian(t, q, qd, p).reshape(len(system.holonomic), n)[rows]
                 q -= jac.T @ np.linalg.solve(jac @ jac.T, psi)
-        if system.m and self.active.any():
-            a = system.velocity_jacobian(t, q, qd, p).reshape(system.m, n)[self.active]
-            b = system.velocity_offset(t, q, qd, p)[self.active]
+        a, b = self._velocity_rows(t, q, qd)
+        if a.shape[0]:
             qd -= a.T @ np.linalg.solve(a @ a.T, a @ qd + b)
         return q, qd
+
+    def holding_margin(self, t: float, y: np.ndarray, c: int) -> tuple[float, float]:
+        """For a stuck contact: (μ_s N − |force needed to hold it|, the needed generalized force)."""
+        _, _, normal, sticking = self.solve(t, y)
+        mu_s, length = self.system.contact_values(t, y[: self.system.n], y[self.system.n:], self.system.parameters)[
+            2 * c: 2 * c + 2]
+        return float(mu_s * normal[c] - abs(sticking[c]) / length), float(sticking[c])
 
 
 def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_end: float, *,
@@ -141,29 +184,29 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         raise ValueError(f"unknown method {method!r}")
     if not (t_end > 0 and np.isfinite(t_end)):
         raise ValueError("t_end must be a positive number")
-    n, m = system.n, system.m
-    run = _Run(system, np.ones(m, dtype=bool), project)
+    n, m, k = system.n, system.m, len(system.contacts)
+    run = _Run(system, np.ones(m, dtype=bool), np.zeros(k, dtype=bool), np.zeros(k), project)
     explicit = method in EXPLICIT
     times = np.linspace(0.0, t_end, samples)
-    rows: list[tuple[float, np.ndarray, np.ndarray, float, np.ndarray]] = []
+    rows: list[tuple] = []
     events: list[Event] = []
     start = clock.perf_counter()
-    steps = 0
-    nfev = 0
+    steps = nfev = 0
     max_residual = run.residual(0.0, q0, qd0)
     t0, y0 = 0.0, np.concatenate([q0, qd0])
+    _start_contacts(run, t0, y0, events)
     next_sample = 0
-    stop = stopped_by_event = False
-    while not stop:
-        solver = getattr(integrate, method)(run.rhs, t0, y0, t_end, rtol=rtol, atol=atol, max_step=max_step)
-        lam_old = _multipliers(run, t0, y0)
-        pulling = [j for j in system.unilateral if run.active[j] and lam_old[j] < 0]
-        if pulling:
-            # a unilateral constraint that would have to pull: contact is lost at once
-            j = pulling[0]
-            events.append(Event(float(t0), system.constraints[j], _state(system, y0), "released"))
-            run.active[j] = False
+    finished = stopped = False
+    while not finished:
+        pulling = [j for j in system.unilateral if run.active[j] and run.solve(t0, y0)[1][j] < 0]
+        if pulling:  # a unilateral constraint that would have to pull: contact is lost at once
+            run.active[pulling[0]] = False
+            events.append(Event(float(t0), "release", system.constraints[pulling[0]], _state(system, y0),
+                                "released"))
             continue
+        solver = getattr(integrate, method)(run.rhs, t0, y0, t_end, rtol=rtol, atol=atol, max_step=max_step)
+        watch_old = _watch(run, t0, y0)
+        restarted = False
         while solver.status == "running":
             message = solver.step()
             if solver.status == "failed":
@@ -171,48 +214,132 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
             steps += 1
             t_old, t_new = solver.t_old, solver.t
             dense = solver.dense_output()
-            lam_new = _multipliers(run, t_new, solver.y)
-            crossing = _release(run, dense, t_old, t_new, lam_old, lam_new)
-            t_stop = crossing[0] if crossing is not None else t_new
+            watch_new = _watch(run, t_new, solver.y)
+            event = _first_event(run, dense, t_old, t_new, watch_old, watch_new)
+            t_stop = event[0] if event is not None else t_new
             while next_sample < samples and times[next_sample] <= t_stop + 1e-12 * max(1.0, t_end):
-                ts = times[next_sample]
-                rows.append(_sample(run, ts, dense(ts)))
+                rows.append(_sample(run, times[next_sample], dense(times[next_sample])))
                 next_sample += 1
-            if crossing is not None:
-                t_event, j = crossing
-                y_event = dense(t_event)
-                q_e, qd_e = run.projected(t_event, y_event[:n], y_event[n:])
-                state = _state(system, np.concatenate([q_e, qd_e]))
-                action = "stopped" if after_release == "stop" else "released"
-                events.append(Event(float(t_event), system.constraints[j], state, action))
-                if after_release == "stop":
-                    rows.append(_sample(run, t_event, np.concatenate([q_e, qd_e])))
-                    stop = stopped_by_event = True
-                else:
-                    run.active[j] = False
-                    t0, y0 = t_event, np.concatenate([q_e, qd_e])
+            if event is not None:
+                t0, y0, stopped = _handle(run, event, dense, events, after_release)
+                if stopped:
+                    rows.append(_sample(run, t0, y0))
+                    finished = True
+                restarted = True
                 break
-            residual = run.residual(t_new, solver.y[:n], solver.y[n:])
-            max_residual = max(max_residual, residual)
-            if explicit and project and m and run.active.any():
+            max_residual = max(max_residual, run.residual(t_new, solver.y[:n], solver.y[n:]))
+            if explicit and project and (m or run.stuck.any()):
                 q, qd = run.projected(t_new, solver.y[:n], solver.y[n:])
                 solver.y = np.concatenate([q, qd])
                 solver.f = run.rhs(t_new, solver.y)
-                lam_new = _multipliers(run, t_new, solver.y)
-            lam_old = lam_new
+                watch_new = _watch(run, t_new, solver.y)
+            watch_old = watch_new
             if progress is not None:
                 progress(t_new)
-        else:
-            stop = True
         nfev += solver.nfev
-    if next_sample < samples and not stopped_by_event:
+        if not restarted:
+            finished = True
+    if next_sample < samples and not stopped:
         rows.append(_sample(run, t_end, solver.y))
-    wall = clock.perf_counter() - start
+    if progress is not None:
+        progress(t_end)
     return _trajectory(system, rows, events, {
         "method": method, "rtol": rtol, "atol": atol, "steps": steps, "evaluations": system.evaluations[0],
-        "solver_evaluations": nfev, "wall_time": wall, "max_residual": max_residual,
+        "solver_evaluations": nfev, "wall_time": clock.perf_counter() - start, "max_residual": max_residual,
         "energy_conserved": system.energy_conserved, "energy_note": system.energy_note,
     })
+
+
+def _start_contacts(run: _Run, t: float, y: np.ndarray, events: list[Event]) -> None:
+    """At the start, a contact at rest sticks if it can; otherwise it slides the way it is pushed."""
+    system, n = run.system, run.system.n
+    for c, slide in enumerate(system.slides):
+        if slide is None:
+            continue
+        if y[n + slide] != 0.0:
+            run.direction[c] = np.sign(y[n + slide])
+            continue
+        run.stuck[c] = True
+        margin, needed = run.holding_margin(t, y, c)
+        if margin < -HOLD_TOLERANCE * max(1.0, abs(needed)):
+            run.stuck[c] = False
+            run.direction[c] = -np.sign(needed)
+        else:
+            events.append(Event(float(t), "stick", system.contact_names[c], _state(system, y), "stuck"))
+
+
+def _watch(run: _Run, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
+    """The event functions at a state: each changes sign where its event happens."""
+    system, n = run.system, run.system.n
+    values: dict[tuple[str, int], float] = {}
+    if system.unilateral:
+        lam = run.solve(t, y)[1]
+        for j in system.unilateral:
+            if run.active[j]:
+                values[("release", j)] = float(lam[j])
+    for c, slide in enumerate(system.slides):
+        if slide is None:
+            continue
+        if run.stuck[c]:
+            values[("slip", c)] = run.holding_margin(t, y, c)[0]
+        else:
+            values[("stick", c)] = float(run.direction[c] * y[n + slide])
+    return values
+
+
+def _first_event(run: _Run, dense: Any, t_old: float, t_new: float, old: dict, new: dict) -> tuple | None:
+    """The earliest (time, kind, index) at which a watched function goes from ≥ 0 to < 0 (≤ 0 for a rate)."""
+    first = None
+    for key, before in old.items():
+        after = new.get(key)
+        if after is None:
+            continue
+        kind, index = key
+        crossed = before >= 0 > after if kind != "stick" else before > 0 >= after
+        if not crossed:
+            continue
+
+        def g(tau: float, key: tuple = key) -> float:
+            return _watch(run, tau, dense(tau))[key]
+
+        exact = g(t_new) == 0.0
+        root = t_new if exact else optimize.brentq(g, t_old, t_new, xtol=1e-14, rtol=4 * np.finfo(float).eps)
+        if first is None or root < first[0]:
+            first = (root, kind, index)
+    return first
+
+
+def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_release: str
+            ) -> tuple[float, np.ndarray, bool]:
+    """Apply an event; returns the restart time and state, and whether the run stops there."""
+    system, n = run.system, run.system.n
+    t, kind, index = event
+    y = dense(t)
+    if kind == "stick":
+        y[n + system.slides[index]] = 0.0
+    q, qd = run.projected(t, y[:n], y[n:])
+    y = np.concatenate([q, qd])
+    if kind == "release":
+        stop = after_release == "stop"
+        events.append(Event(float(t), "release", system.constraints[index], _state(system, y),
+                            "stopped" if stop else "released"))
+        if not stop:
+            run.active[index] = False
+        return t, y, stop
+    if kind == "stick":
+        run.stuck[index] = True
+        margin, needed = run.holding_margin(t, y, index)
+        if margin >= -HOLD_TOLERANCE * max(1.0, abs(needed)):
+            events.append(Event(float(t), "stick", system.contact_names[index], _state(system, y), "stuck"))
+        else:  # the rate only passes through zero: it reverses, and so does kinetic friction
+            run.stuck[index] = False
+            run.direction[index] = -np.sign(needed)
+        return t, y, False
+    _, needed = run.holding_margin(t, y, index)
+    run.stuck[index] = False
+    run.direction[index] = -np.sign(needed)
+    events.append(Event(float(t), "slip", system.contact_names[index], _state(system, y), "slipped"))
+    return t, y, False
 
 
 def _state(system: NumericSystem, y: np.ndarray) -> dict[str, float]:
@@ -221,66 +348,41 @@ def _state(system: NumericSystem, y: np.ndarray) -> dict[str, float]:
             **{f"{c}_dot": float(v) for c, v in zip(system.coordinates, y[n:], strict=True)}}
 
 
-def _multipliers(run: _Run, t: float, y: np.ndarray) -> np.ndarray:
-    if not run.system.unilateral:
-        return np.zeros(0)
-    n = run.system.n
-    return run.system.solve(t, y[:n], y[n:], run.active)[1]
-
-
-def _release(run: _Run, dense: Any, t_old: float, t_new: float, lam_old: np.ndarray,
-             lam_new: np.ndarray) -> tuple[float, int] | None:
-    """The first unilateral constraint whose multiplier crosses from ≥ 0 to < 0 in the step."""
-    first: tuple[float, int] | None = None
-    for j in run.system.unilateral:
-        if not run.active[j] or not (lam_old[j] >= 0 > lam_new[j]):
-            continue
-
-        def g(tau: float, j: int = j) -> float:
-            y = dense(tau)
-            return float(_multipliers(run, tau, y)[j])
-
-        t_event = optimize.brentq(g, t_old, t_new, xtol=1e-14, rtol=4 * np.finfo(float).eps)
-        if first is None or t_event < first[0]:
-            first = (t_event, j)
-    return first
-
-
-def _sample(run: _Run, t: float, y: np.ndarray) -> tuple[float, np.ndarray, np.ndarray, float, np.ndarray]:
+def _sample(run: _Run, t: float, y: np.ndarray) -> tuple:
     n = run.system.n
     residual = run.residual(t, y[:n], y[n:])
     q, qd = run.projected(t, y[:n], y[n:]) if run.project else (y[:n].copy(), y[n:].copy())
-    return (float(t), q, qd, residual, run.active.copy())
+    return (float(t), q, qd, residual, run.active.copy(), run.stuck.copy(), run.direction.copy())
 
 
 def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: dict) -> Trajectory:
     p = system.parameters
+    count, k = len(rows), len(system.contacts)
     t = np.array([r[0] for r in rows])
-    q = np.array([r[1] for r in rows]).reshape(len(rows), system.n)
-    qd = np.array([r[2] for r in rows]).reshape(len(rows), system.n)
+    q = np.array([r[1] for r in rows]).reshape(count, system.n)
+    qd = np.array([r[2] for r in rows]).reshape(count, system.n)
     residual = np.array([r[3] for r in rows])
-    lam = np.zeros((len(rows), system.m))
-    mags = np.zeros((len(rows), system.m))
-    normals = np.zeros((len(rows), len(system.contacts)))
-    energy = np.zeros(len(rows))
-    conserved = np.zeros((len(rows), len(system.conserved_names)))
-    positions = np.zeros((len(rows), sum(d for _, d in system.particles)))
-    for i, (ti, qi, qdi, _, active) in enumerate(rows):
+    stuck = np.array([r[5] for r in rows], dtype=bool).reshape(count, k)
+    lam = np.zeros((count, system.m))
+    mags = np.zeros((count, system.m))
+    normals = np.zeros((count, k))
+    energy = np.zeros(count)
+    conserved = np.zeros((count, len(system.conserved_names)))
+    positions = np.zeros((count, sum(d for _, d in system.particles)))
+    for i, (ti, qi, qdi, _, active, stuck_i, direction) in enumerate(rows):
         if system.m:
-            _, lam[i], normals[i] = system.solve_all(ti, qi, qdi, active)
+            _, lam[i], normals[i], _ = system.solve_all(ti, qi, qdi, active, stuck_i, direction)
             mags[i] = np.where(active, system.magnitudes(ti, qi, qdi, lam[i]), 0.0)
         energy[i] = system.energy(ti, qi, qdi, p)[0]
         if system.conserved_names:
             conserved[i] = system.conserved(ti, qi, qdi, p)
         if positions.shape[1]:
             positions[i] = system.positions(ti, qi, qdi, p)
-    drift = _relative_drift(energy)
-    stats = {**stats, "energy_drift": drift,
-             "conserved_drift": {name: _relative_drift(conserved[:, k])
-                                 for k, name in enumerate(system.conserved_names)}}
+    stats = {**stats, "energy_drift": _relative_drift(energy),
+             "conserved_drift": {name: _relative_drift(conserved[:, c])
+                                 for c, name in enumerate(system.conserved_names)}}
     return Trajectory(t, system.coordinates, system.constraints, q, qd, lam, mags, system.contact_names, normals,
-                      energy,
-                      {name: conserved[:, k] for k, name in enumerate(system.conserved_names)},
+                      stuck, energy, {name: conserved[:, c] for c, name in enumerate(system.conserved_names)},
                       residual, positions, system.particles, tuple(events), stats)
 
 

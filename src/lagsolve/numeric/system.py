@@ -54,6 +54,8 @@ class NumericSystem:
     matrices: StateFunction
     contacts: tuple[tuple[tuple[int, int, int], ...], ...]  # per contact: (constraint j, offset, dims)
     contact_names: tuple[str, ...]
+    slides: tuple[int | None, ...]  # per contact: the one sliding coordinate (stick–slip), else None
+    contact_values: StateFunction  # per contact: static coefficient, |dr/dq| of the sliding coordinate
     directions: StateFunction
     scales: StateFunction
     position_residual: StateFunction
@@ -82,16 +84,21 @@ class NumericSystem:
     def solve(self, t: float, q: np.ndarray, qd: np.ndarray,
               active: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Accelerations and multipliers at a state (inactive constraints get λ = 0)."""
-        qdd, lam, _ = self.solve_all(t, q, qd, active)
+        qdd, lam, _, _ = self.solve_all(t, q, qd, active)
         return qdd, lam
 
-    def solve_all(self, t: float, q: np.ndarray, qd: np.ndarray,
-                  active: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Accelerations, multipliers and friction normal forces at a state.
+    def solve_all(self, t: float, q: np.ndarray, qd: np.ndarray, active: np.ndarray | None = None,
+                  stuck: np.ndarray | None = None,
+                  direction: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Accelerations, multipliers, friction normal forces and sticking forces at a state.
 
         Solves :math:`\\begin{pmatrix}M & -A^T\\\\ A & 0\\end{pmatrix}
         \\begin{pmatrix}\\ddot q\\\\ \\lambda\\end{pmatrix} = \\begin{pmatrix}F\\\\ \\beta\\end{pmatrix}`
         with the rows of inactive constraints removed, and the normal forces consistently.
+        A ``stuck`` contact holds its sliding rate at zero with an extra row instead of
+        kinetic friction; its multiplier (the generalized force needed to hold it) is
+        returned in the last array. ``direction`` gives the sliding direction (±1) where
+        the sliding rate is exactly zero (the start of a slip).
         """
         self.evaluations[0] += 1
         n, m, k = self.n, self.m, len(self.contacts)
@@ -99,14 +106,32 @@ class NumericSystem:
         flat = self.matrices(t, q, qd, p)
         M = flat[: n * n].reshape(n, n)
         if m == 0 and k == 0:  # the common unconstrained case, kept lean: it runs at every step
-            return _solve(M, flat[n * n: n * n + n]), _EMPTY, _EMPTY
+            return _solve(M, flat[n * n: n * n + n]), _EMPTY, _EMPTY, _EMPTY
         at = n * n
-        F = flat[at: at + n * (k + 1)].reshape(n, k + 1)
+        F = flat[at: at + n * (k + 1)].reshape(n, k + 1).copy()
         at += n * (k + 1)
         A = flat[at: at + m * n].reshape(m, n)
         beta = flat[at + m * n:]
         mask = np.ones(m, dtype=bool) if active is None else active
         A, beta = A[mask], beta[mask]
+        held = []
+        for c, slide in enumerate(self.slides):
+            if slide is None:
+                continue
+            if stuck is not None and stuck[c]:
+                F[:, c + 1] = 0.0
+                held.append((c, slide))
+                continue
+            sign = np.sign(qd[slide])
+            if sign == 0:
+                sign = direction[c] if direction is not None else 0.0
+            F[:, c + 1] *= sign
+        if held:
+            extra = np.zeros((len(held), n))
+            for r, (_, slide) in enumerate(held):
+                extra[r, slide] = 1.0
+            A = np.vstack([A, extra])
+            beta = np.concatenate([beta, np.zeros(len(held))])
         rows = A.shape[0]
         if rows == 0:
             solution = _solve(M, F)
@@ -120,11 +145,15 @@ class NumericSystem:
             rhs[n:, 0] = beta
             solution = _solve(system, rhs)
         lam_all = np.zeros((m, k + 1))
-        lam_all[mask] = solution[n:]
-        normal = self._normal_forces(t, q, qd, lam_all) if k else np.zeros(0)
+        kept = int(mask.sum())
+        lam_all[mask] = solution[n: n + kept]
+        normal = self._normal_forces(t, q, qd, lam_all) if k else _EMPTY
         qdd = solution[:n, 0] + solution[:n, 1:] @ normal
         lam = lam_all[:, 0] + lam_all[:, 1:] @ normal
-        return qdd, lam, normal
+        sticking = np.zeros(k)
+        for r, (c, _) in enumerate(held):
+            sticking[c] = solution[n + kept + r, 0] + solution[n + kept + r, 1:] @ normal
+        return qdd, lam, normal, sticking
 
     def _normal_forces(self, t: float, q: np.ndarray, qd: np.ndarray, lam: np.ndarray) -> np.ndarray:
         u = self.directions(t, q, qd, self.parameters)
@@ -220,7 +249,19 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
     normals = [f.normal for f in form.frictions]
     forcing = lagrange.forcing
     zero = {N: 0 for N in normals}
-    columns = [forcing.xreplace(zero)] + [forcing.diff(N) for N in normals]
+    slides = [_sliding_coordinate(form, f) for f in form.frictions]
+    columns = [forcing.xreplace(zero)]
+    for f, slide in zip(form.frictions, slides, strict=True):
+        column = forcing.diff(f.normal)
+        if slide is not None:  # written as sign(q_dot) times a fixed direction: keep the direction only
+            column = column.xreplace({sympy.sign(model.velocities[slide]): 1})
+        columns.append(column)
+    contact_values = []
+    for f, slide in zip(form.frictions, slides, strict=True):
+        static = next((g.static for g in problem.friction if g.name == f.name), None)
+        position = problem.particle(f.particle).position
+        length = norm([sympy.diff(r, model.coordinates[slide]) for r in position]) if slide is not None else 1
+        contact_values += [static if static is not None else f.coefficient, length]
     forcing_columns = [columns[c][i] for i in range(len(model.coordinates)) for c in range(len(columns))]
     matrices = [*lagrange.mass_matrix, *forcing_columns, *lagrange.constraint_jacobian, *lagrange.constraint_rhs]
     contacts, directions, offset = [], [], 0
@@ -257,6 +298,7 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
         "offsets": [c.offset for c in form.constraints], "energy": [energy],
         "positions": [r for p in problem.particles for r in p.position],
         "conserved": list((conserved or {}).values()),
+        "contact_values": contact_values,
     }
     prepared = {key: [prepare(e) for e in group] for key, group in groups.items()}
     parameter_symbols = [p.symbol for p in problem.parameters]
@@ -297,6 +339,8 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
             matrices=compile_group("matrices"),
             contacts=tuple(contacts),
             contact_names=tuple(f.name for f in form.frictions),
+            slides=tuple(slides),
+            contact_values=compile_group("contact_values"),
             directions=compile_group("directions"),
             scales=compile_group("scales"),
             position_residual=compile_group("psi"),
@@ -315,6 +359,16 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
         )
     except (ValueError, TypeError, NameError) as exc:  # pragma: no cover - lambdify of a derived expression
         raise SimulationError(f"could not compile the equations of {source}: {exc}") from None
+
+
+def _sliding_coordinate(form: MatrixForm, friction: Any) -> int | None:
+    """The one coordinate whose rate is the contact's sliding rate, if there is exactly one."""
+    problem, model = form.problem, form.model
+    position = problem.particle(friction.particle).position
+    index = {c.name: i for i, c in enumerate(problem.coordinates)}
+    moving = [index[name] for name in next(f.sliding for f in problem.friction if f.name == friction.name)
+              if any(sympy.diff(r, model.coordinates[index[name]]) != 0 for r in position)]
+    return moving[0] if len(moving) == 1 else None
 
 
 def _constraint_curve(form: MatrixForm, prepare: Any,

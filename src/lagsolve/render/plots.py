@@ -36,8 +36,17 @@ def _figure(title: str, rows: int = 1, cols: int = 1, **kwargs: Any) -> tuple[An
 
 
 def _events(ax: Any, trajectory: Trajectory) -> None:
+    """Release events as dotted lines; sticking phases of friction contacts shaded."""
     for event in trajectory.events:
-        ax.axvline(event.time, color="0.4", linestyle=":", linewidth=1)
+        if event.kind == "release":
+            ax.axvline(event.time, color="0.4", linestyle=":", linewidth=1)
+    if trajectory.stuck.size and trajectory.stuck.any():
+        stuck = trajectory.stuck.any(axis=1)
+        t = trajectory.t
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], stuck.astype(int), [0]])))
+        for first, last in zip(edges[::2], edges[1::2], strict=True):
+            ax.axvspan(t[first], t[min(last, len(t) - 1)], color="0.85", zorder=0,
+                       label="sticking" if first == edges[0] else None)
 
 
 def path_figure(trajectory: Trajectory, title: str,

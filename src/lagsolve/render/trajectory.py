@@ -30,6 +30,8 @@ def columns(trajectory: Trajectory) -> dict[str, np.ndarray]:
     out["energy"] = trajectory.energy
     for c, name in enumerate(trajectory.contacts):
         out[f"N_{name}"] = trajectory.normal_forces[:, c]
+    for c, name in enumerate(trajectory.contacts):
+        out[f"stuck_{name}"] = trajectory.stuck[:, c].astype(float)
     out["residual"] = trajectory.residual
     for name, values in trajectory.conserved.items():
         if name != "energy":
@@ -53,8 +55,10 @@ def to_npz(trajectory: Trajectory) -> bytes:
     return buffer.getvalue()
 
 
-def summary(trajectory: Trajectory, name: str) -> str:
-    """What a person wants to know after a run: final state, events, diagnostics."""
+def summary(trajectory: Trajectory, name: str, timing: bool = True) -> str:
+    """What a person wants to know after a run: final state, events, diagnostics.
+
+    ``timing=False`` leaves out the wall time, for reports that must be byte-identical run to run."""
     stats: dict[str, Any] = dict(trajectory.stats)
     lines = [f"{name}: simulated to t = {trajectory.t[-1]:.6g} with {stats['method']} "
              f"(rtol {stats['rtol']:g}, atol {stats['atol']:g})"]
@@ -63,11 +67,15 @@ def summary(trajectory: Trajectory, name: str) -> str:
     lines.append(f"  final state: {state}")
     lines.append(f"               {rates}")
     for event in trajectory.events:
-        verb = "stopped there" if event.action == "stopped" else "continued without it"
         where = ", ".join(f"{k} = {v:.6g}" for k, v in event.state.items() if not k.endswith("_dot"))
-        lines.append(f"  event: constraint {event.constraint!r} released at t = {event.time:.10g} ({where}); {verb}")
-    lines.append(f"  steps: {stats['steps']}, right-hand-side evaluations: {stats['evaluations']}, "
-                 f"wall time: {stats['wall_time']:.3g} s")
+        if event.kind == "release":
+            verb = "stopped there" if event.action == "stopped" else "continued without it"
+            lines.append(f"  event: constraint {event.name!r} released at t = {event.time:.10g} ({where}); {verb}")
+        else:
+            verb = "sticks" if event.kind == "stick" else "slips again"
+            lines.append(f"  event: contact {event.name!r} {verb} at t = {event.time:.10g} ({where})")
+    work = f"  steps: {stats['steps']}, right-hand-side evaluations: {stats['evaluations']}"
+    lines.append(work + (f", wall time: {stats['wall_time']:.3g} s" if timing else ""))
     if trajectory.constraints:
         lines.append(f"  largest constraint residual (before projection): {stats['max_residual']:.3g}")
     if stats.get("energy_conserved"):
