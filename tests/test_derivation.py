@@ -4,6 +4,7 @@ answers are written out by hand here, never taken from the code."""
 from __future__ import annotations
 
 import dataclasses
+from pathlib import Path
 
 import pytest
 import sympy
@@ -352,3 +353,34 @@ def test_rough_tube_acceleration():
     assert exactly_equal(derivation.multipliers["tilt"],
                          -m * r**2 * sn * cs * omega**2 - m * g * r * sn)
     assert exactly_equal(derivation.multipliers["spin"], 2 * m * r * rd * omega * sn**2)
+
+
+def test_coupled_friction_normal_force_closed_form_matches_the_numeric_solve():
+    """On the rough-floor ladder the closed-form N (the quadratic's root) equals the per-step numeric N
+    and the floor multiplier's size, and the accelerations use the symbol N with that value."""
+    import numpy as np
+
+    from lagsolve.mechanics.derivation import derive
+    from lagsolve.numeric.system import bind
+    from lagsolve.problem.load import load_problem
+
+    problem = load_problem(Path(__file__).resolve().parents[1] / "problems" / "ladder_rough_floor.yaml")
+    derivation = derive(problem)
+    friction = derivation.friction[0]
+    assert friction.case.startswith("coupled") and friction.valid_while is not None
+    system = bind(derivation.form)
+    symbols = problem.symbols
+    params = {symbols[n]: v for n, v in zip(system.parameter_names, system.parameters, strict=True)}
+    rng = np.random.default_rng(11)
+    for _ in range(12):
+        angle, rate = rng.uniform(0.3, 1.2), rng.choice([-1, 1]) * rng.uniform(0.2, 2.5)
+        q = np.array([np.cos(angle), 0.0, 0.0, np.sin(angle)])
+        qd = np.array([-np.sin(angle) * rate, 0.0, 0.0, np.cos(angle) * rate])
+        values = {**params, **{symbols[c]: v for c, v in zip(system.coordinates, q, strict=True)},
+                  **{symbols[f"{c}_dot"]: v for c, v in zip(system.coordinates, qd, strict=True)}}
+        closed = float(friction.normal_force.xreplace(values))
+        _, lam, normal, _ = system.solve_all(0.0, q, qd)
+        assert closed == pytest.approx(normal[0], rel=1e-9)
+        values[friction.term.normal] = closed
+        assert float(derivation.multipliers["floor"].xreplace(values)) == pytest.approx(lam[0], rel=1e-9)
+        assert abs(lam[0]) == pytest.approx(closed, rel=1e-9)

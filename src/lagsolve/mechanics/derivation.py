@@ -40,10 +40,14 @@ class ConstraintForce:
 
 @dataclass(frozen=True)
 class FrictionResult:
-    """A friction contact (``term``, with the symbol N in its forces) and the closed form of N."""
+    """A friction contact (``term``, with the symbol N in its forces), the closed form of N (the
+    symbol itself when only an implicit equation exists), which ``case`` applies and why, and
+    the condition under which that form is valid."""
 
     term: FrictionTerm
     normal_force: Any
+    case: str = ""
+    valid_while: Any = None
 
 
 @dataclass(frozen=True)
@@ -110,11 +114,15 @@ def derive(problem: Problem) -> Derivation:
     def result(expr: Any) -> Any:
         return tidy(elimination.apply(expr))
 
+    normals, cases = _normal_forces(frictions, raw_lam, constraints, reactions, elimination)
+    # decoupled normal forces are substituted; coupled ones stay symbols N in the results (as a worked
+    # solution writes them), with their closed form given once, in the friction results
+    substituted = {N: value for N, value in normals.items() if cases[str(N)[2:]][1] is None}
+    raw_lam = tuple(lam.xreplace(substituted) for lam in raw_lam)
     multipliers = {c.name: result(lam) for c, lam in zip(constraints, raw_lam, strict=True)}
     forces = {c.name: _constraint_force(reactions[c.name], multipliers[c.name], c, elimination)
               for c in constraints}
-    normals = _normal_forces(frictions, raw_lam, constraints, reactions, elimination)
-    raw_acc = tuple(a.xreplace(normals) for a in raw_acc)
+    raw_acc = tuple(a.xreplace(substituted) for a in raw_acc)
     accelerations = {c.name: result(a) for c, a in zip(problem.coordinates, raw_acc, strict=True)}
 
     lhs = tuple(r - g for r, g in zip(lagrange.momenta_rates, lagrange.gradients, strict=True))
@@ -152,7 +160,8 @@ def derive(problem: Problem) -> Derivation:
         accelerations=accelerations,
         multipliers=multipliers,
         constraint_forces=forces,
-        friction=tuple(FrictionResult(f, tidy(elimination.apply(normals[f.normal]))) for f in frictions),
+        friction=tuple(FrictionResult(f, tidy(elimination.apply(normals.get(f.normal, f.normal))), *cases[f.name])
+                       for f in frictions),
         form=form,
     )
     _check_free_symbols(derivation)
@@ -161,25 +170,28 @@ def derive(problem: Problem) -> Derivation:
 
 def _normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, ...],
                    constraints: tuple[ConstraintTerms, ...], reactions: dict[str, Reaction],
-                   elimination: Elimination) -> dict[Any, Any]:
-    r"""Closed form of each friction contact's normal force :math:`N = |\sum_j \mathbf f_j|`.
+                   elimination: Elimination) -> tuple[dict[Any, Any], dict[str, tuple[str, Any]]]:
+    r"""Each friction contact's normal force :math:`N = |\sum_j \mathbf f_j|`, and which case applies.
 
-    Solved when the multipliers do not depend on any N (friction acts along a
-    direction that the constraints do not feel: a bead in a tube, on a wire, a
-    block on a fixed incline). Otherwise N and the multipliers are coupled; that
-    case is not handled yet and is reported as such.
+    The multipliers are affine in the normal forces, :math:`\lambda = \lambda_0 + \Lambda N`
+    (the friction forces are), so with :math:`\mathbf a = \sum_j \lambda_{0j}\mathbf u_j` and
+    :math:`\mathbf b = \sum_j \Lambda_j\mathbf u_j` the normal force solves :math:`N = |\mathbf a + \mathbf b N|`:
+
+    * **decoupled** (:math:`\mathbf b = 0`: friction along a direction the constraints do not
+      feel — a bead in a tube, on a wire, a block on a fixed incline): :math:`N = |\mathbf a|`;
+    * **coupled, one contact**: the quadratic :math:`(1 - b^2)N^2 - 2(\mathbf a\cdot\mathbf b)N - a^2 = 0`
+      has the one non-negative root
+      :math:`N = \big(\mathbf a\cdot\mathbf b + \sqrt{(\mathbf a\cdot\mathbf b)^2 + (1 - b^2)a^2}\big)/(1 - b^2)`
+      while :math:`b^2 < 1` (the sign of the sliding rate is part of :math:`\mathbf b`: one
+      formula covers both sign cases);
+    * **coupled, several contacts**: no closed form is attempted; N stays a symbol in the
+      results and ``simulate`` solves the implicit system at every step.
     """
     out: dict[Any, Any] = {}
-    symbols = [f.normal for f in frictions]
-    for lam, c in zip(multipliers, constraints, strict=True):
-        coupled = [str(N) for N in symbols if tidy(sympy.diff(lam, N)) != 0]
-        if coupled:
-            raise DerivationError(
-                f"the multiplier of constraint {c.name!r} depends on the friction (through {', '.join(coupled)}): "
-                "the normal force and the friction are coupled, which lagsolve cannot solve yet; "
-                "friction along a direction the constraints do not feel is supported"
-            )
+    cases: dict[str, tuple[str, Any]] = {}
     index = {c.name: j for j, c in enumerate(constraints)}
+    symbols = [f.normal for f in frictions]
+    coupled_any = any(tidy(sympy.diff(lam, N)) != 0 for lam in multipliers for N in symbols)
     for f in frictions:
         parts = []
         for name in f.constraints:
@@ -190,15 +202,37 @@ def _normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, 
                     f"friction {f.name!r}: constraint {name!r} has no known force on {f.particle!r} "
                     f"({react.note or 'it acts on other particles'}), so the normal force is unknown"
                 )
-            parts.append((sympy.Matrix(pushes[0].direction), elimination.apply(multipliers[index[name]])))
-        orthogonal = all(tidy((a.T * b)[0]) == 0 for i, (a, _) in enumerate(parts) for b, _ in parts[i + 1:])
-        if orthogonal:
-            # |sum f_j| = sqrt(sum |f_j|^2): keeps each force's factored form (the textbook's N)
-            out[f.normal] = root_of_sum_of_squares([lam * norm(list(u)) for u, lam in parts])
+            parts.append((sympy.Matrix(pushes[0].direction), multipliers[index[name]]))
+        if not coupled_any:
+            parts = [(u, elimination.apply(lam)) for u, lam in parts]
+            orthogonal = all(tidy((a.T * b)[0]) == 0 for i, (a, _) in enumerate(parts) for b, _ in parts[i + 1:])
+            if orthogonal:
+                # |sum f_j| = sqrt(sum |f_j|^2): keeps each force's factored form (the textbook's N)
+                out[f.normal] = root_of_sum_of_squares([lam * norm(list(u)) for u, lam in parts])
+            else:
+                total = sum((u * lam for u, lam in parts), sympy.zeros(parts[0][0].rows, 1))
+                out[f.normal] = norm(list(total))
+            cases[f.name] = ("decoupled: the multipliers do not depend on the friction, so N follows from them "
+                             "in closed form", None)
+        elif len(frictions) == 1:
+            zero = {f.normal: 0}
+            a = sum((u * lam.xreplace(zero) for u, lam in parts), sympy.zeros(parts[0][0].rows, 1))
+            b = sum((u * sympy.diff(lam, f.normal) for u, lam in parts), sympy.zeros(parts[0][0].rows, 1))
+            # sign(v)**2 = 1 while sliding, the case this formula is for
+            aa, ab, bb = (tidy(_unit_signs(elimination.apply(e))) for e in ((a.T * a)[0], (a.T * b)[0], (b.T * b)[0]))
+            out[f.normal] = tidy(_unit_signs((ab + sympy.sqrt(ab**2 + (1 - bb) * aa)) / (1 - bb)))
+            cases[f.name] = ("coupled: the friction changes the multipliers, so N solves N = |a + b N|, a quadratic "
+                             "with one non-negative root", sympy.StrictLessThan(bb, 1))
         else:
-            total = sum((u * lam for u, lam in parts), sympy.zeros(parts[0][0].rows, 1))
-            out[f.normal] = norm([elimination.apply(v) for v in total])
-    return out
+            cases[f.name] = ("coupled, with several contacts: N stays implicit in the results (N = |a + B N|) and "
+                             "simulate solves it at every step", None)
+    return out, cases
+
+
+def _unit_signs(expr: Any) -> Any:
+    """Even powers of sign(v) are 1 where v ≠ 0 (while a contact slides)."""
+    return expr.replace(lambda e: e.is_Pow and isinstance(e.base, sympy.sign) and e.exp.is_even,
+                          lambda e: sympy.Integer(1))
 
 
 def _eliminated_accelerations(constraints: tuple[ConstraintTerms, ...], model: Model,
@@ -240,6 +274,7 @@ def _check_free_symbols(derivation: Derivation) -> None:
     problem = derivation.problem
     allowed = set(problem.symbols.values()) | set(derivation.multiplier_symbols)
     allowed |= set(derivation.model.accelerations)
+    allowed |= {f.term.normal for f in derivation.friction}  # coupled normal forces stay symbols
     for name, expr in {**derivation.accelerations, **derivation.multipliers}.items():
         stray = expr.free_symbols - allowed
         if stray:
