@@ -105,8 +105,18 @@ class NumericSystem:
         p = self.parameters
         flat = self.matrices(t, q, qd, p)
         M = flat[: n * n].reshape(n, n)
-        if m == 0 and k == 0:  # the common unconstrained case, kept lean: it runs at every step
-            return _solve(M, flat[n * n: n * n + n]), _EMPTY, _EMPTY, _EMPTY
+        if k == 0 and (active is None or active.all()):
+            # the common cases without friction, kept lean: this runs at every step
+            if m == 0:
+                return _solve(M, flat[n * n: n * n + n]), _EMPTY, _EMPTY, _EMPTY
+            at = n * n + n
+            system = np.zeros((n + m, n + m))
+            system[:n, :n] = M
+            A = flat[at: at + m * n].reshape(m, n)
+            system[:n, n:] = -A.T
+            system[n:, :n] = A
+            solution = _solve(system, np.concatenate((flat[n * n: at], flat[at + m * n:])))
+            return solution[:n], solution[n:], _EMPTY, _EMPTY
         at = n * n
         F = flat[at: at + n * (k + 1)].reshape(n, k + 1).copy()
         at += n * (k + 1)
