@@ -59,6 +59,33 @@ def main() -> None:
 
 @main.command()
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
+@click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,
+              help="Seconds allowed for each derivation and check.")
+def check(files: tuple[Path, ...], timeout: float) -> None:
+    """Compare the expected answers in each problem FILE with the derivation.
+
+    ✓ ok, ! holds only in part (warning), ✗ mismatch (exit 1), – not checked.
+
+    \b
+    lagsolve check problems/*.yaml
+    """
+    from lagsolve.pipeline import check_file
+
+    status = 0
+    for path in files:
+        try:
+            checked = check_file(path, timeout=timeout)
+        except LagsolveError as error:
+            status = max(status, _fail(error))
+            continue
+        click.echo(checked.table, nl=False)
+        if not checked.passed:
+            status = max(status, 1)
+    sys.exit(status)
+
+
+@main.command()
+@click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("-o", "--output", type=click.Path(path_type=Path),
               help="Output folder (default out/), or a file name when one file and one --format are given.")
 @click.option("--format", "fmt", type=click.Choice(["md", "tex", "json"]),

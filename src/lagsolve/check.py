@@ -1,0 +1,501 @@
+r"""Compare a problem's ``expected:`` answers with its derivation (``lagsolve check``).
+
+An answer is right when it agrees with the derivation *on the constraint surface*; how it is
+written does not matter (the format's "Expected answers"). For each expected quantity E and the
+derived D:
+
+1. **Symbolic.** E is written with the constraints used as the derivation does (multipliers
+   :math:`\lambda_j` replaced by their derived values, explicitly solvable dependent coordinates
+   and velocities eliminated), and :math:`E - D` is reduced by cheap steps first (structural
+   equality, ``cancel``), then :func:`lagsolve.mechanics.simplify.tidy`. Zero → *ok (symbolic)*.
+2. **Numeric.** Otherwise both are evaluated at random states on the constraint surface
+   (:mod:`lagsolve.states`; declared functions become random smooth functions). Agreement at
+   every state → *ok (numeric)*.
+3. **Diagnosis** of a disagreement, from the values at those states:
+
+   * :math:`E = -D` everywhere: *opposite sign*; for a multiplier, *λ with the opposite sign
+     convention* (lagsolve's convention is :math:`\frac{d}{dt}\frac{\partial L}{\partial\dot q_i}
+     - \frac{\partial L}{\partial q_i} = Q_i + \sum_j\lambda_j a_{ji}`);
+   * for an acceleration, E is the acceleration with one constraint (or all) *released*
+     (:math:`\lambda = 0`): the answer ignores that constraint;
+   * :math:`E = D` at some states and :math:`E = -D` at the others: the answer *holds only where*
+     some quantity is positive (a magnitude written without ``Abs``) — a **warning**, not ok;
+   * :math:`E/D` constant (a number, or a power of a parameter times a number): a *constant
+     factor*, e.g. a missing 2 or m;
+   * :math:`E - D` constant: a *constant offset* — ok for a conserved quantity or a potential,
+     whose zero level is free (the verdict says so); a mismatch elsewhere;
+   * otherwise the two simply *differ*; a state where they do is reported.
+
+Agreement only off the constraint surface does not count: every state satisfies every
+constraint. The result is a frozen :class:`CheckReport`; nothing is printed here.
+"""
+
+from __future__ import annotations
+
+import contextlib
+from dataclasses import dataclass, field
+from typing import Any
+
+import mpmath
+import sympy
+
+from lagsolve.diagnose import (
+    SYMBOLIC_LIMIT,
+    ReleasedConstraints,
+    Row,
+    close,
+    constant_relation,
+    sign_condition,
+)
+from lagsolve.mechanics.derivation import Derivation
+from lagsolve.mechanics.simplify import tidy
+from lagsolve.states import Compiled, State, StateSpace
+
+OK, WARNING, MISMATCH, UNCHECKED = "ok", "warning", "mismatch", "unchecked"
+
+#: reasons (``Verdict.reason``)
+SYMBOLIC, NUMERIC = "symbolic", "numeric"
+OPPOSITE_SIGN, CONVENTION = "opposite sign", "multiplier convention"
+FACTOR, OFFSET, SIGN_DEPENDENT = "constant factor", "constant offset", "holds only where"
+UNDEFINED, DIFFERS, ABSENT, SHAPE = "undefined", "differs", "absent", "shape"
+RELEASED = "constraints released"
+NOT_DERIVED, TOO_FEW_STATES, SAME = "not derived", "too few states", "same"
+
+STATES = 24
+MINIMUM_STATES = 8
+
+
+@dataclass(frozen=True)
+class Witness:
+    """A state on the constraint surface where the answers differ.
+
+    ``values``: (name, value) of the time, parameters, coordinates and velocities that
+    matter; ``functions``: (name, :class:`sympy.Lambda`) used for each declared function;
+    ``expected`` and ``derived``: the values there, one per component.
+    """
+
+    values: tuple[tuple[str, float], ...]
+    functions: tuple[tuple[str, Any], ...]
+    expected: tuple[complex | None, ...]
+    derived: tuple[complex | None, ...]
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """The verdict on one expected quantity.
+
+    ``quantity`` is the result key (``accelerations``, ``multipliers``, ``constraint_forces``,
+    ``reduced``, ``conserved``, ``effective_potential``) and ``name`` the entry (``x``, ``wire``,
+    ``wire.vector``, ``energy``, ``expression``, ``equilibria[0].frequency``). ``status`` is one
+    of ok, warning, mismatch, unchecked; ``reason`` one of the module's reason constants.
+    ``expected`` and ``derived`` hold the components compared (one for a scalar).
+    ``factor`` (E = factor·D), ``offset`` (E = D + offset) and ``condition`` (where the answer
+    holds) are SymPy objects when the diagnosis found them; ``note`` is plain text.
+    """
+
+    quantity: str
+    name: str
+    status: str
+    reason: str
+    expected: tuple[Any, ...]
+    derived: tuple[Any, ...] | None = None
+    factor: Any = None
+    offset: Any = None
+    condition: Any = None
+    states: int = 0
+    agreeing: int = 0
+    note: str = ""
+    witness: Witness | None = None
+
+    @property
+    def passed(self) -> bool:
+        """True unless the answer is wrong (a warning or an unchecked answer passes)."""
+        return self.status != MISMATCH
+
+
+@dataclass(frozen=True)
+class CheckReport:
+    """Every verdict on one problem, in the order of the file's ``expected:`` section."""
+
+    name: str
+    source: str
+    coordinates: tuple[str, ...]
+    verdicts: tuple[Verdict, ...]
+
+    def count(self, status: str) -> int:
+        return sum(1 for v in self.verdicts if v.status == status)
+
+    @property
+    def passed(self) -> bool:
+        """True when no answer is a mismatch."""
+        return all(v.passed for v in self.verdicts)
+
+
+@dataclass(frozen=True)
+class _Item:
+    """One comparison to make: E and D, component by component."""
+
+    quantity: str
+    name: str
+    expected: tuple[Any, ...]
+    derived: tuple[Any, ...] | None
+    note: str = ""
+    shifts: bool = False  # an additive constant is harmless (conserved quantities, potentials)
+    real: bool = True  # values must be real (not so for equilibria, which may not exist everywhere)
+    missing: str = UNCHECKED  # status when there is nothing derived to compare with
+    extra: dict[str, Any] = field(default_factory=dict)
+
+
+def check(derivation: Derivation, *, states: int = STATES, seed: int = 0) -> CheckReport:
+    """Compare the problem's expected answers with ``derivation``.
+
+    Parameters
+    ----------
+    derivation : Derivation
+        The derived problem; its ``problem.expected`` holds the answers.
+    states : int
+        How many random states on the constraint surface a numeric comparison uses.
+    seed : int
+        Seed of those states (the same seed gives the same states, so a report is reproducible).
+
+    Returns
+    -------
+    CheckReport
+        One :class:`Verdict` per expected quantity.
+
+    Examples
+    --------
+    >>> from lagsolve.problem.load import load_text
+    >>> from lagsolve.mechanics.derivation import derive
+    >>> problem = load_text('''
+    ... name: falling mass
+    ... parameters: {m: mass, g: gravity}
+    ... coordinates: [y]
+    ... particles: {p: {mass: m, position: [0, y]}}
+    ... gravity: [0, -g]
+    ... expected: {accelerations: {y: "g"}}
+    ... ''')
+    >>> report = check(derive(problem))
+    >>> [(v.status, v.reason) for v in report.verdicts]
+    [('mismatch', 'opposite sign')]
+    """
+    problem = derivation.problem
+    items = _items(derivation)
+    checker = _Checker(derivation, items, states, seed)
+    verdicts = [checker.verdict(item) for item in items]
+    verdicts += checker.equilibria()
+    return CheckReport(problem.name, problem.source, tuple(c.name for c in problem.coordinates), tuple(verdicts))
+
+
+# -- what to compare ----------------------------------------------------------------------------
+
+
+def _items(derivation: Derivation) -> list[_Item]:
+    expected = derivation.problem.expected
+    items: list[_Item] = []
+    for q, e in expected.accelerations.items():
+        items.append(_Item("accelerations", q, (e,), (derivation.accelerations[q],)))
+    for c, e in expected.multipliers.items():
+        items.append(_Item("multipliers", c, (e,), (derivation.multipliers[c],)))
+    for c, spec in expected.constraint_forces.items():
+        force = derivation.constraint_forces[c]
+        note = force.note or "lagsolve gives no single force for this constraint"
+        if "magnitude" in spec:
+            derived = None if force.magnitude is None else (force.magnitude,)
+            items.append(_Item("constraint_forces", c, (spec["magnitude"],), derived, note))
+        if "vector" in spec:
+            derived = None if force.vector is None else tuple(force.vector)
+            items.append(_Item("constraint_forces", f"{c}.vector", tuple(spec["vector"]), derived, note))
+    items += _analysis_items(derivation)
+    return items
+
+
+NOT_YET = "not derived yet (lagsolve's analysis does not give it for this problem)"
+
+
+def _analysis_items(derivation: Derivation) -> list[_Item]:
+    """``reduced``, ``conserved`` and ``effective_potential`` in the shapes of the format's section 2."""
+    expected = derivation.problem.expected
+    names = _names(derivation)
+    items: list[_Item] = []
+    reduced = derivation.reduced
+    for q, e in expected.reduced.items():
+        table = (reduced or {}).get("accelerations") or {}
+        value = _as_expr(table.get(q), names)
+        note = NOT_YET
+        if reduced is not None and value is None:
+            independent = ", ".join(map(str, reduced.get("independent") or ())) or "none"
+            note = f"{q} is not an independent coordinate of lagsolve's reduced system (independent: {independent})"
+        items.append(_Item("reduced", q, (e,), None if value is None else (value,), note))
+    conserved = derivation.conserved
+    for name, e in expected.conserved.items():
+        value = _as_expr((conserved or {}).get(name), names)
+        if conserved is not None and value is None:
+            found = ", ".join(conserved) or "none"
+            items.append(_Item("conserved", name, (e,), None,
+                               f"lagsolve finds no conserved quantity {name!r} (it finds: {found})", missing=MISMATCH))
+            continue
+        items.append(_Item("conserved", name, (e,), None if value is None else (value,), NOT_YET, shifts=True))
+    spec = expected.effective_potential
+    if spec and "expression" in spec:
+        derived = derivation.effective_potential
+        value = _as_expr((derived or {}).get("expression"), names)
+        note, missing = NOT_YET, UNCHECKED
+        if derived is not None and str(derived.get("coordinate")) != spec["coordinate"]:
+            note = (f"expected a potential in {spec['coordinate']}, lagsolve reduces to "
+                    f"{derived.get('coordinate')}")
+            value, missing = None, MISMATCH
+        items.append(_Item("effective_potential", "expression", (spec["expression"],),
+                           None if value is None else (value,), note, shifts=True, missing=missing))
+    return items
+
+
+def _names(derivation: Derivation) -> Any:
+    """The names a derived analysis result (when given as text) may use."""
+    from lagsolve.problem import expr as gateway
+
+    problem = derivation.problem
+    symbols = dict(problem.symbols)
+    for c in problem.coordinates:
+        symbols.setdefault(f"p_{c.name}", sympy.Symbol(f"p_{c.name}", real=True))
+    functions = {f.name: f.function for f in problem.functions}
+    return gateway.Namespace(symbols, functions)
+
+
+def _as_expr(value: Any, names: Any) -> Any:
+    """A derived analysis value as a SymPy expression: kept when it is one, read through the
+    safe parser when it is text (the JSON form), ``None`` when absent or unreadable."""
+    if value is None or isinstance(value, bool):
+        return None
+    if isinstance(value, sympy.Basic):
+        return None if isinstance(value, sympy.logic.boolalg.Boolean) else value
+    if isinstance(value, int | float | str):
+        from lagsolve.errors import ExpressionError
+        from lagsolve.problem import expr as gateway
+
+        try:
+            return gateway.parse(value, names)
+        except ExpressionError:
+            return None
+    return None
+
+
+# -- the comparisons ------------------------------------------------------------------------------
+
+
+class _Checker:
+    """Shared state of one check: the prepared expressions and, when needed, the random states."""
+
+    def __init__(self, derivation: Derivation, items: list[_Item], count: int, seed: int) -> None:
+        self.derivation = derivation
+        self.count = count
+        self.seed = seed
+        self.items = items
+        self._by_name = {s.name: s for s in derivation.problem.symbols.values()}
+        self._space: StateSpace | None = None
+        self._states: list[State] | None = None
+        self._extra: set[Any] = set()
+        self._released: ReleasedConstraints | None = None
+        for item in items:
+            for e in (*item.expected, *(item.derived or ())):
+                self._extra |= self.prepare(e).free_symbols
+
+    # preparation
+
+    def _unify(self, expr: Any) -> Any:
+        """Symbols that carry a problem name are the problem's symbols (a derived ``p_theta`` made
+        elsewhere, with other assumptions, is the same quantity)."""
+        swap = {s: self._by_name[s.name] for s in expr.free_symbols
+                if s.name in self._by_name and self._by_name[s.name] != s}
+        return expr.xreplace(swap) if swap else expr
+
+    def prepare(self, expr: Any) -> Any:
+        """``expr`` with the derived multipliers and friction normal forces put in (results of coupled
+        friction keep the symbol ``N_<contact>``) and the constraints used as the derivation does."""
+        derivation = self.derivation
+        known = {c.multiplier: derivation.multipliers[c.name] for c in derivation.constraints}
+        known |= {f.term.normal: f.normal_force for f in derivation.friction}
+        expr = self._unify(expr)
+        for _ in range(3):  # a multiplier may hold N, and N the multipliers' pieces
+            expr = expr.xreplace(known)
+        return derivation.elimination.apply(expr)
+
+    def space(self) -> StateSpace:
+        if self._space is None:
+            self._space = StateSpace(self.derivation, self._extra, self.seed)
+        return self._space
+
+    def states(self) -> list[State]:
+        if self._states is None:
+            self._states = self.space().states(self.count)
+        return self._states
+
+    # verdicts
+
+    def verdict(self, item: _Item) -> Verdict:
+        expected = tuple(self.prepare(e) for e in item.expected)
+        base = {"quantity": item.quantity, "name": item.name, "expected": item.expected}
+        if item.derived is None:
+            return Verdict(**base, status=item.missing,
+                           reason=NOT_DERIVED if item.missing == UNCHECKED else ABSENT, note=item.note)
+        derived = tuple(self.prepare(d) for d in item.derived)
+        base["derived"] = item.derived
+        if len(expected) != len(derived):
+            return Verdict(**base, status=MISMATCH, reason=SHAPE,
+                           note=f"expected {len(expected)} components, lagsolve has {len(derived)}")
+        if all(_symbolically_equal(e, d) for e, d in zip(expected, derived, strict=True)):
+            return Verdict(**base, status=OK, reason=SYMBOLIC)
+        return self.numeric(item, expected, derived, base)
+
+    def numeric(self, item: _Item, expected: tuple[Any, ...], derived: tuple[Any, ...],
+                base: dict[str, Any]) -> Verdict:
+        space = self.space()
+        got = [Compiled(e, space) for e in expected]
+        want = [Compiled(d, space) for d in derived]
+        rows: list[Row] = []
+        for state in self.states():
+            d = [w(state) for w in want]
+            if any(v is None or (item.real and not isinstance(v, mpmath.mpf)) for v in d):
+                continue  # outside the derived result's domain
+            rows.append((state, [g(state) for g in got], d))
+        if len(rows) < MINIMUM_STATES:
+            return Verdict(**base, status=UNCHECKED, reason=TOO_FEW_STATES, states=len(rows),
+                           note=f"only {len(rows)} states on the constraint surface where the derived value is "
+                                "defined were found")
+        agree = [all(close(e, d) for e, d in zip(es, ds, strict=True)) for _, es, ds in rows]
+        n, k = len(rows), sum(agree)
+        base |= {"states": n, "agreeing": k}
+        if k == n:
+            return Verdict(**base, status=OK, reason=NUMERIC)
+        witness_row = rows[agree.index(False)]
+        base["witness"] = self.witness(witness_row, expected, derived)
+        if any(e is None for _, es, _ in rows for e in es):
+            return Verdict(**base, status=MISMATCH, reason=UNDEFINED,
+                           note="the expected answer is undefined at a state that satisfies the constraints")
+        flipped = [all(close(e, -d) for e, d in zip(es, ds, strict=True)) for _, es, ds in rows]
+        if all(a or f for a, f in zip(agree, flipped, strict=True)):
+            if k == 0:
+                if item.quantity == "multipliers":
+                    return Verdict(**base, status=MISMATCH, reason=CONVENTION, factor=sympy.Integer(-1),
+                                   note="λ with the opposite sign convention: expected = −derived, and that is the "
+                                        "only difference")
+                return Verdict(**base, status=MISMATCH, reason=OPPOSITE_SIGN, factor=sympy.Integer(-1))
+            condition = sign_condition(rows, agree, expected, derived, self.space())
+            return Verdict(**base, status=WARNING, reason=SIGN_DEPENDENT, condition=condition,
+                           note="agrees where the condition holds and has the opposite sign elsewhere")
+        if item.quantity == "accelerations":
+            if self._released is None:
+                self._released = ReleasedConstraints(self.derivation, self.space())
+            released = self._released.which(item.name, rows)
+            if released is not None:
+                return Verdict(**base, status=MISMATCH, reason=RELEASED,
+                               note=f"it is the acceleration with {released} released (λ = 0), as if the motion "
+                                    "were free to leave the constraint surface")
+        constant, factor = constant_relation(rows, expected, derived, self.derivation, additive=False)
+        if constant:
+            opposite = factor is not None and factor.is_negative and item.quantity == "multipliers"
+            note = "λ with the opposite sign convention, and a constant factor" if opposite else ""
+            if factor is None:
+                note = "the ratio depends only on the parameters"
+            return Verdict(**base, status=MISMATCH, reason=CONVENTION if opposite else FACTOR, factor=factor,
+                           note=note)
+        constant, offset = constant_relation(rows, expected, derived, self.derivation, additive=True)
+        if constant:
+            harmless = item.shifts
+            note = "the same quantity with another zero level" if harmless else ""
+            return Verdict(**base, status=OK if harmless else MISMATCH, reason=OFFSET, offset=offset, note=note)
+        return Verdict(**base, status=MISMATCH, reason=DIFFERS)
+
+    # diagnosis helpers
+
+    def witness(self, row: Row, expected: tuple[Any, ...], derived: tuple[Any, ...]) -> Witness:
+        """The state of ``row`` as numbers: what the answers use, the parameters, and the coordinates
+        and velocities of the constraints (which define the surface), with the functions used there."""
+        state, es, ds = row
+        used: set[Any] = set(self.space().parameters)
+        calls: set[str] = set()
+        model = self.derivation.model
+        for c in self.derivation.constraints:
+            used |= c.expression.free_symbols & {*model.coordinates, *model.velocities}
+        for expr in (*expected, *derived):
+            used |= expr.free_symbols
+            calls |= {f.func.__name__ for f in expr.atoms(sympy.core.function.AppliedUndef)}
+        space = self.space()
+        order = {s: i for i, s in enumerate((space.time, *model.coordinates, *model.velocities, *space.parameters,
+                                             *space.extra))}
+        values = tuple((str(s), float(mpmath.re(state.values[s])))
+                       for s in sorted(used & set(state.values), key=lambda s: order.get(s, len(order))))
+        functions = tuple((name, lam) for name, lam in state.functions.items() if name in calls)
+        return Witness(values, functions, tuple(_complex(v) for v in es), tuple(_complex(v) for v in ds))
+
+    def equilibria(self) -> list[Verdict]:
+        """Each expected equilibrium of the effective potential: its value, stability and frequency."""
+        spec = self.derivation.problem.expected.effective_potential
+        if not spec or not spec.get("equilibria"):
+            return []
+        derived = self.derivation.effective_potential
+        names = _names(self.derivation)
+        out: list[Verdict] = []
+        found = [] if derived is None else list(derived.get("equilibria") or [])
+        for i, eq in enumerate(spec["equilibria"]):
+            label = f"equilibria[{i}]"
+            if derived is None or str(derived.get("coordinate")) != spec["coordinate"]:
+                out.append(Verdict("effective_potential", label, UNCHECKED, NOT_DERIVED, (eq["value"],), note=NOT_YET))
+                continue
+            match = None
+            for candidate in found:
+                value = _as_expr(candidate.get("value"), names)
+                if value is None:
+                    continue
+                verdict = self.verdict(_Item("effective_potential", f"{label}.value", (eq["value"],), (value,),
+                                             real=False))
+                if verdict.status == OK:
+                    match = (candidate, verdict)
+                    break
+            if match is None:
+                shown = ", ".join(str(c.get("value")) for c in found) or "none"
+                out.append(Verdict("effective_potential", f"{label}.value", MISMATCH, ABSENT, (eq["value"],),
+                                   note=f"no equilibrium lagsolve finds has this value (it finds: {shown})"))
+                continue
+            candidate, verdict = match
+            out.append(verdict)
+            if "stable" in eq:
+                stable = candidate.get("stable")
+                if stable is None:
+                    out.append(Verdict("effective_potential", f"{label}.stable", UNCHECKED, NOT_DERIVED,
+                                       (sympy.true if eq["stable"] else sympy.false,),
+                                       note="lagsolve does not decide the stability of this equilibrium"))
+                else:
+                    same = bool(stable) == bool(eq["stable"])
+                    out.append(Verdict("effective_potential", f"{label}.stable", OK if same else MISMATCH,
+                                       SAME if same else DIFFERS, (sympy.true if eq["stable"] else sympy.false,),
+                                       (sympy.true if stable else sympy.false,)))
+            if "frequency" in eq:
+                frequency = _as_expr(candidate.get("frequency"), names)
+                out.append(self.verdict(_Item("effective_potential", f"{label}.frequency", (eq["frequency"],),
+                                              None if frequency is None else (frequency,),
+                                              "lagsolve gives no frequency for this equilibrium", real=False)))
+        return out
+
+
+# -- small numeric helpers -------------------------------------------------------------------------
+
+
+def _symbolically_equal(expected: Any, derived: Any) -> bool:
+    """E − D reduces to zero: structural equality, then ``cancel``, then ``tidy`` (cheap steps first)."""
+    if expected == derived:
+        return True
+    difference = expected - derived
+    if difference == 0:
+        return True
+    if sympy.count_ops(difference) > SYMBOLIC_LIMIT:
+        return False
+    with contextlib.suppress(sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):
+        if sympy.cancel(difference) == 0:
+            return True
+        return bool(tidy(difference) == 0)
+    return False
+
+
+def _complex(value: Any) -> complex | None:
+    return None if value is None else complex(value)
