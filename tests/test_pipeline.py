@@ -1,4 +1,4 @@
-"""Library entry points: output names are safe, golden comparison reports every difference."""
+"""Library entry points: output names are safe, golden comparison reports every difference, check returns counts."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from lagsolve.errors import SpecError
-from lagsolve.pipeline import Reports, derive_file, golden_differences, safe_slug
+from lagsolve.pipeline import Reports, check_file, derive_file, golden_differences, safe_slug
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -48,3 +48,19 @@ def test_derive_file_returns_all_formats() -> None:
     reports = derive_file(ROOT / "problems" / "bead.yaml", ("json",))
     assert reports.slug == "bead" and set(reports.outputs) == {"json"}
     assert reports.summary.startswith("Bead on a wire")
+
+
+def test_check_file_returns_the_table_and_counts() -> None:
+    """check_file derives and checks in the budgeted child and returns the table and the verdict counts."""
+    checked = check_file(ROOT / "problems" / "atwood.yaml")
+    assert checked.name == "Atwood machine" and checked.passed
+    assert checked.counts == {"ok": 4, "warning": 0, "mismatch": 0, "unchecked": 0}
+    assert checked.table.startswith("Atwood machine (") and "✓" in checked.table
+
+
+def test_check_file_validates_before_deriving(tmp_path: Path) -> None:
+    """An invalid file raises SpecError before any derivation or check starts."""
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("name: x\n")
+    with pytest.raises(SpecError, match="missing required key 'coordinates'"):
+        check_file(bad)
