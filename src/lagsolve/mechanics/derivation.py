@@ -15,6 +15,7 @@ from typing import Any
 import sympy
 
 from lagsolve.errors import DerivationError
+from lagsolve.mechanics.analysis import with_analysis
 from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.forces import ForceTerm, FrictionTerm
 from lagsolve.mechanics.lagrange import LagrangeTerms, solve_augmented
@@ -60,6 +61,8 @@ class Derivation:
     (each equation as (left, right), before and after using the constraints), ``accelerations``, ``multipliers``,
     ``constraint_forces``. Raw forms: ``model``, ``lagrange`` (matrix form) and
     ``raw_accelerations``/``raw_multipliers`` (the augmented solve, unsimplified).
+    Analysis (:mod:`lagsolve.mechanics.analysis`): ``analysis`` with every step, and the
+    contract forms ``reduced``, ``conserved``, ``effective_potential`` (format section 2).
     """
 
     problem: Problem
@@ -88,6 +91,7 @@ class Derivation:
     reduced: dict[str, Any] | None = None
     conserved: dict[str, Any] | None = None
     effective_potential: dict[str, Any] | None = None
+    analysis: Any = None  # lagsolve.mechanics.analysis.Analysis: classification, reduction, conservation, ...
     form: MatrixForm | None = None  # the unsolved matrix form the numeric stage compiles
 
     @property
@@ -165,7 +169,7 @@ def derive(problem: Problem) -> Derivation:
         form=form,
     )
     _check_free_symbols(derivation)
-    return derivation
+    return with_analysis(derivation)
 
 
 def _normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, ...],

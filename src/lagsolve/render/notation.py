@@ -77,6 +77,12 @@ class MechanicsLatexPrinter(LatexPrinter):
         return f"{name}{_prime(order)}\\left({self._print(inner.args[0])}\\right)"
 
 
+def _greek(name: str, mark: str = "") -> str:
+    """``theta1`` → ``θ1`` (``θ̇1`` with a dot ``mark``): a Greek name, then any digits."""
+    letters = name.rstrip("0123456789")
+    return _GREEK.get(letters, letters) + mark + name[len(letters):]
+
+
 class MechanicsTextPrinter(StrPrinter):
     """One-line text for terminals: ``ẋ``, ``θ̈``, ``f'(x)``, Greek letters."""
 
@@ -87,9 +93,9 @@ class MechanicsTextPrinter(StrPrinter):
     def _print_Symbol(self, expr: Any) -> str:
         base, order = _split_rate(expr.name)
         if order and base in self.rates:
-            return _GREEK.get(base, base) + (_DOT if order == 1 else _DDOT)
+            return _greek(base, _DOT if order == 1 else _DDOT)
         head, sep, tail = expr.name.partition("_")
-        return _GREEK.get(head, head) + sep + tail if sep else _GREEK.get(expr.name, expr.name)
+        return _greek(head) + sep + _GREEK.get(tail, tail) if sep else _greek(expr.name)
 
     def _print_Pow(self, expr: Any, rational: bool = False) -> str:
         base, exp = expr.args

@@ -19,6 +19,7 @@ import sympy
 
 from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation
+from lagsolve.render.analysis_report import analysis_context, analysis_json, analysis_summary, contract_json
 from lagsolve.render.notation import FILTERS, Notation, to_json
 
 FORMAT_VERSION = 1
@@ -150,6 +151,7 @@ def context(derivation: Derivation) -> dict[str, Any]:
         "multipliers": multipliers,
         "forces": forces,
         "friction": friction,
+        "analysis": analysis_context(derivation, note),
     }
 
 
@@ -254,9 +256,8 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
             }
             for f in derivation.friction
         },
-        "reduced": derivation.reduced,
-        "conserved": derivation.conserved,
-        "effective_potential": derivation.effective_potential,
+        **contract_json(derivation),
+        "analysis": analysis_json(derivation),
     }
 
 
@@ -280,4 +281,5 @@ def summary(derivation: Derivation) -> str:
             lines.append(f"    |F_{f['name']}| = {value}")
     for f in ctx["friction"]:
         lines.append(f"  friction {f['name']}: normal force {f['normal_text']} = {f['normal_force']['text']}")
+    lines += analysis_summary(derivation, Notation([c.name for c in derivation.problem.coordinates]))
     return "\n".join(lines) + "\n"

@@ -1,0 +1,112 @@
+"""After the equations: what kind of constraints, how many degrees of freedom, what is conserved,
+what the motion looks like near equilibrium.
+
+:func:`analyse` runs, in order,
+
+1. :mod:`~lagsolve.mechanics.integrability` — each velocity constraint integrable
+   (integrated, :math:`\\theta = \\theta_0`) or truly nonholonomic (Frobenius);
+2. :mod:`~lagsolve.mechanics.minimal` — the reduced Lagrangian in minimal coordinates and
+   its equations, checked against the multiplier route;
+3. :mod:`~lagsolve.mechanics.conserved` — cyclic momenta and the Jacobi integral of the
+   reduced system (or of the full one with its constraints when no reduction exists),
+   each verified along the equations;
+4. :mod:`~lagsolve.mechanics.equilibria` — with one degree of freedom left after the cyclic
+   ones, the effective potential, its equilibria, stability and frequencies;
+5. :mod:`~lagsolve.mechanics.linearize` — with several left, equilibria and normal modes.
+
+:func:`with_analysis` stores the result in a :class:`~lagsolve.mechanics.derivation.Derivation`
+together with the contract forms ``reduced``, ``conserved`` and ``effective_potential``
+(format section 2, SymPy expressions; the JSON writer prints them).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from lagsolve.mechanics.conserved import Conservation, MotionSystem, conserved_quantities, constraint_surface
+from lagsolve.mechanics.constraints import constraint_terms
+from lagsolve.mechanics.equilibria import EffectivePotential, effective_potential
+from lagsolve.mechanics.integrability import Classification, classify_all
+from lagsolve.mechanics.linearize import Linearization, linearize
+from lagsolve.mechanics.minimal import ReducedSystem, reduce_system
+
+if TYPE_CHECKING:
+    from lagsolve.mechanics.derivation import Derivation
+
+
+@dataclass(frozen=True)
+class Analysis:
+    """Everything :func:`analyse` found; each ``*_note`` says why a part is absent."""
+
+    classification: tuple[Classification, ...]
+    reduced: ReducedSystem | None
+    reduced_note: str
+    system: MotionSystem
+    conservation: Conservation
+    effective_potential: EffectivePotential | None
+    effective_note: str
+    linearization: Linearization | None
+    linearization_note: str
+
+
+def analyse(derivation: Derivation) -> Analysis:
+    """The analysis of a finished derivation (see the module docstring)."""
+    problem, model, lagrange = derivation.problem, derivation.model, derivation.lagrange
+    constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
+    taken = set(problem.symbols) | {f.name for f in problem.functions} | {f"p_{c.name}" for c in problem.coordinates}
+    classes = classify_all(constraints, model, problem.constraints, taken)
+    # a normal force the multiplier route keeps as a symbol N (coupled friction) stays a symbol here too
+    normals = {f.term.normal: f.normal_force for f in derivation.friction
+               if not any(a.has(f.term.normal) for a in derivation.raw_accelerations)}
+    reduced, reduced_note = reduce_system(model, constraints, classes, lagrange.generalized_forces, normals,
+                                          derivation.raw_accelerations, problem.independent)
+    if reduced is not None:
+        system = MotionSystem(reduced.model, reduced.generalized_forces, reduced.acceleration_map(), kind="reduced")
+    else:
+        forces = tuple(f.xreplace(normals) for f in lagrange.generalized_forces)
+        system = MotionSystem(model, forces, dict(zip(model.accelerations, derivation.raw_accelerations, strict=True)),
+                              constraints, constraint_surface(constraints, model), kind="full")
+    friction = bool(problem.friction)
+    conservation = conserved_quantities(system, friction=friction)
+    effective, effective_note = effective_potential(system, conservation, friction)
+    linear, linear_note = None, "the effective potential covers this system"
+    if effective is None:
+        linear, linear_note = linearize(system, conservation.cyclic, friction)
+    return Analysis(classes, reduced, reduced_note, system, conservation, effective, effective_note,
+                    linear, linear_note)
+
+
+def contract_forms(analysis: Analysis) -> dict[str, Any]:
+    r"""``reduced``, ``conserved`` and ``effective_potential`` shaped as format section 2 says
+    (expressions left as SymPy objects; a condition ``Eq`` where a value has no closed form).
+
+    Only the input's names appear: a constant of integration is written back as the integral
+    it stands for (:math:`\theta_0 \to \theta`, :math:`\phi_0 \to \phi - \Omega t`), which has that
+    value along every motion.
+    """
+    back = {k.constant: k.integral for k in analysis.classification if k.constant is not None}
+    reduced = None
+    if analysis.reduced is not None:
+        reduced = {"independent": list(analysis.reduced.names),
+                   "accelerations": {q: a.xreplace(back) for q, a in analysis.reduced.accelerations.items()}}
+    conserved = {c.name: c.expression.xreplace(back) for c in analysis.conservation.quantities}
+    effective = None
+    v = analysis.effective_potential
+    if v is not None:
+        effective = {
+            "coordinate": v.coordinate.name,
+            "expression": v.expression.xreplace(back),
+            "equilibria": [{"value": (e.value if e.value is not None else e.condition).xreplace(back),
+                            "stable": e.stable,
+                            "frequency": e.frequency.xreplace(back) if e.frequency is not None else None}
+                           for e in v.equilibria],
+        }
+    return {"reduced": reduced, "conserved": conserved, "effective_potential": effective}
+
+
+def with_analysis(derivation: Derivation) -> Derivation:
+    """``derivation`` with ``analysis`` and the contract forms filled in."""
+    analysis = analyse(derivation)
+    return dataclasses.replace(derivation, analysis=analysis, **contract_forms(analysis))

@@ -1,0 +1,174 @@
+r"""Conserved quantities: cyclic momenta and the Jacobi integral, each verified along the motion.
+
+For a system :math:`L(q, \dot q, t)` with generalized forces :math:`Q` and (possibly)
+velocity constraints :math:`\sum_i a_{ji}\dot q_i + b_j = 0` left over:
+
+* a coordinate :math:`q_k` is **cyclic** when :math:`\partial L/\partial q_k = 0`,
+  :math:`Q_k = 0` and no constraint involves :math:`q_k` or :math:`\dot q_k`; then
+  :math:`p_k = \partial L/\partial\dot q_k` is constant, since
+  :math:`\dot p_k = \partial L/\partial q_k + Q_k + \sum_j\lambda_j a_{jk} = 0`;
+* the **Jacobi integral** :math:`h = \sum_i \dot q_i\,\partial L/\partial\dot q_i - L` obeys
+
+  .. math:: \frac{dh}{dt} = -\frac{\partial L}{\partial t} + \sum_i Q_i\dot q_i - \sum_j \lambda_j b_j,
+
+  so it is conserved when L has no explicit t, the forces do no work and every
+  constraint has :math:`b_j = 0`. It equals T + V when T is a quadratic form in the
+  velocities (:math:`h = T_2 - T_0 + V` in general).
+
+Every candidate is then **verified**: its total time derivative, with the accelerations
+of the equations of motion substituted (and the state put on the constraint surface), must
+simplify to zero exactly. A candidate that fails is dropped, never claimed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import sympy
+
+from lagsolve.mechanics.constraints import ConstraintTerms
+from lagsolve.mechanics.identities import proved_zero
+from lagsolve.mechanics.model import Model
+from lagsolve.mechanics.simplify import tidy, tidy_sum
+
+
+@dataclass(frozen=True)
+class MotionSystem:
+    """Equations of motion to check conservation against.
+
+    ``accelerations`` maps each acceleration symbol to its expression; ``constraints`` are
+    the velocity constraints still in force (none for a reduced system) and ``surface``
+    substitutes one velocity per constraint so that a state satisfies them. ``kind`` is
+    ``"reduced"`` or ``"full"``.
+    """
+
+    model: Model
+    generalized_forces: tuple[Any, ...]
+    accelerations: dict[Any, Any]
+    constraints: tuple[ConstraintTerms, ...] = ()
+    surface: dict[Any, Any] = field(default_factory=dict)
+    kind: str = "reduced"
+
+    def rate(self, expr: Any) -> Any:
+        """Total time derivative of ``expr`` along the motion, on the constraint surface."""
+        rate = self.model.time_derivative(expr, second_order=True).xreplace(self.accelerations)
+        return _on(rate, self.surface)
+
+
+def _on(expr: Any, surface: dict[Any, Any]) -> Any:
+    for _ in range(len(surface) + 1):
+        new = expr.xreplace(surface)
+        if new == expr:
+            break
+        expr = new
+    return expr
+
+
+def constraint_surface(constraints: tuple[ConstraintTerms, ...], model: Model) -> dict[Any, Any]:
+    """One velocity per constraint in terms of the others (the simplest non-zero coefficient)."""
+    surface: dict[Any, Any] = {}
+    for c in constraints:
+        rate = _on(sum((a * v for a, v in zip(c.coefficients, model.velocities, strict=True)), c.offset), surface)
+        options = [(sympy.count_ops(sympy.diff(rate, v)), -i, v) for i, v in enumerate(model.velocities)
+                   if v not in surface and sympy.diff(rate, v) != 0]
+        if not options:
+            continue
+        _, _, v = min(options, key=lambda o: (o[0], o[1]))
+        surface[v] = sympy.cancel(v - rate / sympy.diff(rate, v))
+    return surface
+
+
+@dataclass(frozen=True)
+class Conserved:
+    r"""One verified constant of the motion.
+
+    ``name`` is ``p_<q>`` or ``energy``; ``kind`` is ``"momentum"`` or ``"jacobi"``;
+    ``expression`` its display form; ``reason`` a sentence in plain text. For the Jacobi
+    integral ``equals_energy`` says whether :math:`h = T + V`, ``moving`` whether T has a
+    part :math:`T_0` free of the velocities (a moving constraint), and ``flags`` which
+    conditions held (``"no_time"``, ``"no_work"``, ``"eliminated"``/``"workless"``).
+    """
+
+    name: str
+    kind: str
+    expression: Any
+    coordinate: Any = None
+    reason: str = ""
+    equals_energy: bool | None = None
+    moving: bool = False
+    flags: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Conservation:
+    """The verified quantities, the cyclic coordinates, and notes on what is not conserved."""
+
+    quantities: tuple[Conserved, ...]
+    cyclic: tuple[Any, ...]
+    notes: tuple[str, ...]
+
+
+def conserved_quantities(system: MotionSystem, *, friction: bool = False) -> Conservation:
+    """Cyclic momenta and the Jacobi integral of ``system``, each verified (module docstring)."""
+    model = system.model
+    L = model.lagrangian
+    quantities: list[Conserved] = []
+    notes: list[str] = []
+    cyclic = []
+    for i, q in enumerate(model.coordinates):
+        involved = any(c.coefficients[i] != 0 or q in c.expression.free_symbols or
+                       any(q in a.free_symbols for a in (*c.coefficients, c.offset)) for c in system.constraints)
+        if involved or not proved_zero(sympy.diff(L, q)) or not proved_zero(system.generalized_forces[i]):
+            continue
+        momentum = sympy.diff(L, model.velocities[i])
+        if momentum == 0:
+            continue
+        cyclic.append(q)
+        if not proved_zero(system.rate(momentum)):
+            notes.append(f"p_{q.name}: {q.name} is cyclic but dp/dt did not simplify to 0; not claimed")
+            continue
+        quantities.append(Conserved(
+            f"p_{q.name}", "momentum", tidy(momentum), q,
+            f"{q.name} is cyclic: dL/d{q.name} = 0, Q_{q.name} = 0"
+            + (" and no constraint involves it" if system.constraints else ""),
+        ))
+    energy = _jacobi(system, friction, notes)
+    if energy is not None:
+        quantities.append(energy)
+    return Conservation(tuple(quantities), tuple(cyclic), tuple(notes))
+
+
+def _jacobi(system: MotionSystem, friction: bool, notes: list[str]) -> Conserved | None:
+    model = system.model
+    L = model.lagrangian
+    if not proved_zero(sympy.diff(L, model.time)):
+        notes.append("energy: not conserved, L depends explicitly on the time")
+        return None
+    power = _on(sum((f * v for f, v in zip(system.generalized_forces, model.velocities, strict=True)),
+                    sympy.Integer(0)), system.surface)
+    if friction or not proved_zero(power):
+        what = "friction does" if friction else "the non-conservative forces do"
+        notes.append(f"energy: not conserved, {what} work (sum of Q_i q_i_dot is not 0)")
+        return None
+    moving = [c.name for c in system.constraints if not proved_zero(c.offset)]
+    if moving:
+        notes.append(f"energy: not conserved, constraint {', '.join(moving)} has b != 0, so its force does work")
+        return None
+    h = sum((v * sympy.diff(L, v) for v in model.velocities), sympy.Integer(0)) - L
+    if not proved_zero(system.rate(h)):
+        notes.append("energy: the conditions hold but dh/dt did not simplify to 0; not claimed")
+        return None
+    forces_zero = all(proved_zero(f) for f in system.generalized_forces)
+    flags = ["no_time", "no_work" if not forces_zero else "no_forces",
+             "eliminated" if system.kind == "reduced" else "workless"]
+    if not system.constraints and system.kind == "full":
+        flags[-1] = "unconstrained"
+    T0 = model.kinetic.xreplace({v: 0 for v in model.velocities})
+    equals = proved_zero(h - model.kinetic - model.potential)
+    moving_t0 = not proved_zero(T0)
+    reason = "L has no explicit t" + (", no force does work" if flags[1] == "no_work" else ", Q = 0")
+    reason += {"eliminated": ", the constraints are built into the coordinates",
+               "workless": ", every constraint has b = 0 (workless)", "unconstrained": ""}[flags[2]]
+    reason += "; h = T + V" if equals else "; h = T2 - T0 + V, not T + V (a constraint moves)"
+    return Conserved("energy", "jacobi", tidy_sum(h), None, reason, equals, moving_t0, tuple(flags))

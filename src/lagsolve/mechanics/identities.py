@@ -1,0 +1,93 @@
+"""Deciding whether an expression vanishes identically — proofs, not display.
+
+The analysis makes claims (a constraint is integrable, a quantity is conserved, two
+routes agree) that rest on some expression being identically zero. :func:`zero_status`
+answers in three ways: proved zero by exact rewriting (``cancel``, then the display
+simplifier :func:`~lagsolve.mechanics.simplify.tidy`, which knows sin² + cos² = 1),
+proved non-zero by a numeric value at a random point, or undecided (numerically zero
+everywhere we looked, but not proved). Callers claim a result only on a proof.
+"""
+
+from __future__ import annotations
+
+import random
+from enum import Enum
+from typing import Any
+
+import sympy
+
+from lagsolve.mechanics.simplify import tidy
+
+#: concrete smooth functions standing in for declared functions in numeric probes
+_PROBES = (lambda u: sympy.sin(u) + u**2 / 3, lambda u: sympy.exp(u / 2) - u, lambda u: u**3 / 5 + sympy.cos(u))
+
+
+class Zero(Enum):
+    """Outcome of :func:`zero_status`."""
+
+    PROVED = "proved zero"
+    NONZERO = "non-zero"
+    UNDECIDED = "numerically zero, not proved"
+
+
+def zero_status(expr: Any, *, samples: int = 6, seed: int = 3) -> Zero:
+    """Whether ``expr`` is identically zero.
+
+    Tries ``expr == 0``, ``cancel(expr) == 0`` and ``tidy(expr) == 0`` (exact identities);
+    when none holds, evaluates ``expr`` at ``samples`` random points (positive symbols get
+    positive values, declared functions concrete bodies): a value clearly away from zero
+    proves it non-zero, otherwise the answer is :attr:`Zero.UNDECIDED`.
+
+    >>> import sympy
+    >>> th = sympy.Symbol("theta", real=True)
+    >>> zero_status(sympy.sin(th)**2 + sympy.cos(th)**2 - 1)
+    <Zero.PROVED: 'proved zero'>
+    >>> zero_status(sympy.sin(th)**2 - 1)
+    <Zero.NONZERO: 'non-zero'>
+    """
+    if not isinstance(expr, sympy.Basic):
+        return Zero.PROVED if expr == 0 else Zero.NONZERO
+    if expr == 0:
+        return Zero.PROVED
+    try:
+        if sympy.cancel(expr) == 0:
+            return Zero.PROVED
+    except (sympy.PolynomialError, ValueError, TypeError):
+        pass
+    if tidy(expr) == 0:
+        return Zero.PROVED
+    return Zero.UNDECIDED if numerically_zero(expr, samples=samples, seed=seed) else Zero.NONZERO
+
+
+def proved_zero(expr: Any) -> bool:
+    """``expr`` is identically zero, by exact rewriting (see :func:`zero_status`)."""
+    return zero_status(expr) is Zero.PROVED
+
+
+def numerically_zero(expr: Any, *, samples: int = 6, seed: int = 3, tol: float = 1e-10) -> bool:
+    """``expr`` is below ``tol`` (relative to its terms' size) at ``samples`` random points."""
+    functions = sorted(expr.atoms(sympy.core.function.AppliedUndef), key=sympy.default_sort_key)
+    kinds = sorted({f.func for f in functions}, key=str)
+    rng = random.Random(seed)
+    symbols = sorted(expr.free_symbols, key=sympy.default_sort_key)
+    terms = sympy.Add.make_args(expr)
+    for k in range(samples):
+        concrete = expr
+        scale_terms = list(terms)
+        for i, fn in enumerate(kinds):
+            body = _PROBES[(i + k) % len(_PROBES)]
+            u = sympy.Dummy("u")
+            concrete = concrete.replace(fn, sympy.Lambda(u, body(u)))
+            scale_terms = [t.replace(fn, sympy.Lambda(u, body(u))) for t in scale_terms]
+        point = {s: sympy.Rational(rng.randint(5, 20) if s.is_positive else rng.randint(-20, 20), 10) or
+                 sympy.Rational(7, 10) for s in symbols}
+        try:
+            value = complex(sympy.N(concrete.doit().xreplace(point), 30))
+            scale = sum(abs(complex(sympy.N(t.doit().xreplace(point), 30))) for t in scale_terms)
+        except (TypeError, ValueError, ZeroDivisionError):
+            continue
+        if value != value:  # NaN: a singular point, try another
+            continue
+        if abs(value) > tol * max(1.0, scale):
+            return False
+    return True

@@ -1,0 +1,91 @@
+"""The analysis in the reports (``lagsolve.render.analysis_report``): JSON contract shapes,
+worked-solution sections and terminal lines."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from lagsolve.render.analysis_report import analysis_context
+from lagsolve.render.notation import Notation
+from lagsolve.render.report import render, result_dict, summary
+from mechanics_support import derived_file
+
+
+@pytest.fixture(scope="module")
+def hole():
+    return derived_file("hole_table")
+
+
+def test_json_contract_for_the_hole_table(hole):
+    """reduced, conserved and effective_potential appear as format section 2 says, as strings and bools."""
+    data = json.loads(render(hole, "json"))
+    assert data["reduced"] == {"independent": ["r", "theta"], "accelerations": data["reduced"]["accelerations"]}
+    assert set(data["conserved"]) == {"p_theta", "energy"}
+    assert data["conserved"]["p_theta"] == "m1*r**2*theta_dot"
+    effective = data["effective_potential"]
+    assert effective["coordinate"] == "r"
+    assert effective["expression"] == "g*m2*r + p_theta**2/(2*m1*r**2)"
+    (orbit,) = effective["equilibria"]
+    assert orbit["stable"] is True and isinstance(orbit["value"], str) and isinstance(orbit["frequency"], str)
+    assert data["analysis"]["constraints"]["string"]["class"] == "holonomic"
+    assert data["analysis"]["reduced"]["dependent"] == {"z": "-l + r"}
+
+
+def test_json_nulls_where_the_analysis_does_not_apply():
+    """The knife edge has no reduced system and no effective potential (null), and a reason for each."""
+    data = result_dict(derived_file("knife_edge"))
+    assert data["reduced"] is None and data["effective_potential"] is None
+    assert "nonholonomic" in data["analysis"]["reduced"]["note"]
+    assert data["analysis"]["constraints"]["skate"]["frobenius"]["value"] == "-1"
+
+
+def test_markdown_has_the_worked_analysis(hole):
+    """The Markdown report has the classification, minimal coordinates, conserved quantities and V_eff."""
+    md = render(hole, "md")
+    for heading in ("## Analysis", "### Constraint classification", "### Minimal coordinates",
+                    "### Conserved quantities", "### Effective potential"):
+        assert heading in md
+    assert "checked symbolically" in md
+    assert r"V_{\mathrm{eff}}(r) = g m_{2} r + \frac{p_{\theta}^{2}}{2 m_{1} r^{2}}" in md
+    assert r"r_{0}^{3} = \frac{p_{\theta}^{2}}{g m_{1} m_{2}}" in md and "**stable**" in md
+
+
+def test_markdown_equilibria_section_for_several_degrees_of_freedom():
+    """The double pendulum's report lists its equilibria with omega^2 and stability."""
+    md = render(derived_file("double_pendulum"), "md")
+    assert "### Equilibria and small oscillations" in md
+    assert r"\omega^2 = \frac{g \left(2 - \sqrt{2}\right)}{l}" in md
+
+
+def test_latex_has_the_analysis_sections(hole):
+    """The LaTeX report carries the same sections."""
+    tex = render(hole, "tex")
+    assert r"\section*{Analysis}" in tex and r"\subsection*{Effective potential}" in tex
+
+
+def test_context_is_plain_data(hole):
+    """The analysis context holds only strings, numbers, booleans, lists, dicts and None."""
+
+    def check(value: object) -> None:
+        if isinstance(value, dict):
+            for v in value.values():
+                check(v)
+        elif isinstance(value, list):
+            for v in value:
+                check(v)
+        else:
+            assert value is None or isinstance(value, str | int | float | bool), type(value)
+
+    for name in ("hole_table", "knife_edge", "rotating_tube", "double_pendulum", "spherical_pendulum"):
+        derivation = derived_file(name)
+        check(analysis_context(derivation, Notation([c.name for c in derivation.problem.coordinates])))
+
+
+def test_summary_shows_the_analysis(hole):
+    """The terminal summary lists the conserved quantities, V_eff and the circular orbit."""
+    text = summary(hole)
+    assert "p_θ = m1*r²*θ̇" in text
+    assert "V_eff(r) = g*m2*r + p_θ²/(2*m1*r²)" in text
+    assert "r_0³ = p_θ²/(g*m1*m2): stable, ω² = 3*g*m2/(r_0*(m1 + m2))" in text

@@ -1,0 +1,34 @@
+"""Zero tests (``lagsolve.mechanics.identities``): proved, disproved, or honestly undecided."""
+
+from __future__ import annotations
+
+import sympy
+
+from lagsolve.mechanics.identities import Zero, numerically_zero, proved_zero, zero_status
+
+x = sympy.Symbol("x", real=True)
+f = sympy.Function("f", real=True)
+
+
+def test_pythagoras_is_proved():
+    """sin^2 + cos^2 - 1 is proved zero by exact rewriting."""
+    assert zero_status(sympy.sin(x) ** 2 + sympy.cos(x) ** 2 - 1) is Zero.PROVED
+    assert proved_zero(sympy.Integer(0))
+
+
+def test_non_zero_is_shown_by_a_value():
+    """sin^2 - 1 is non-zero at a random point."""
+    assert zero_status(sympy.sin(x) ** 2 - 1) is Zero.NONZERO
+
+
+def test_identity_beyond_the_rewriting_is_undecided_not_claimed():
+    """cos^2 - (1 + cos 2x)/2 is zero, but not proved by the cheap rewriting: undecided, never PROVED."""
+    status = zero_status(sympy.cos(x) ** 2 - (1 + sympy.cos(2 * x)) / 2)
+    assert status in (Zero.PROVED, Zero.UNDECIDED)
+    assert status is not Zero.NONZERO
+
+
+def test_declared_functions_get_concrete_bodies():
+    """Numeric probes replace f by concrete functions, so f(x) - f(x)**1 is zero and f'(x) is not."""
+    assert numerically_zero(f(x) - f(x) ** 1)
+    assert not numerically_zero(sympy.Derivative(f(x), x))
