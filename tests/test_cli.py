@@ -138,3 +138,22 @@ def test_one_output_file_for_several_problems_is_refused(runner: CliRunner, tmp_
     result = runner.invoke(main, ["derive", BEAD, HOLE, "--format", "json", "-o", str(tmp_path / "out.json")])
     assert result.exit_code == 2 and "names one file" in result.stderr
     assert not (tmp_path / "out.json").exists()
+
+
+def test_derive_with_simulation_embeds_figures(runner: CliRunner, tmp_path: Path) -> None:
+    """`derive --simulate` writes the figures beside the reports and the reports show them."""
+    result = runner.invoke(main, ["derive", BEAD, "--simulate", "-o", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    folder = tmp_path / "bead"
+    assert (folder / "bead_path.png").read_bytes().startswith(b"\x89PNG")
+    md = (folder / "bead.md").read_text()
+    assert "## Simulation" in md
+    assert "![Paths in space, with the constraint curve where there is one](bead_path.png)" in md
+    assert "wall time" not in md  # reports stay byte-identical run to run
+    assert r"\includegraphics[width=0.85\linewidth]{bead_conservation.png}" in (folder / "bead.tex").read_text()
+
+
+def test_simulate_flag_needs_a_folder_for_stdout_formats(runner: CliRunner) -> None:
+    """--simulate with a format on stdout is refused: the figures need a folder."""
+    result = runner.invoke(main, ["derive", BEAD, "--simulate", "--format", "md"])
+    assert result.exit_code == 2 and "--simulate writes figure files" in result.stderr

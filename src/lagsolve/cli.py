@@ -97,8 +97,10 @@ def check(files: tuple[Path, ...], timeout: float) -> None:
 @click.option("--golden", type=click.Path(file_okay=False, path_type=Path),
               help="Compare the reports with DIR/<problem>.<ext>; exit 1 with a diff when any differs.")
 @click.option("--update-golden", is_flag=True, help="With --golden: write the golden files instead.")
+@click.option("--simulate", "with_simulation", is_flag=True,
+              help="Also simulate (the file's simulation block) and embed the figures in the reports.")
 def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeout: float,
-           templates: Path | None, golden: Path | None, update_golden: bool) -> None:
+           templates: Path | None, golden: Path | None, update_golden: bool, with_simulation: bool) -> None:
     """Derive the equations of motion of each problem FILE.
 
     \b
@@ -106,8 +108,9 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     lagsolve derive problems/*.yaml -o reports/        # several problems at once
     lagsolve derive problems/bead.yaml --format json   # the result contract on stdout
     lagsolve derive problems/bead.yaml --format tex -o bead.tex
+    lagsolve derive problems/bead.yaml --simulate      # the report with the simulation's figures
     """
-    from lagsolve.pipeline import derive_file, safe_slug
+    from lagsolve.pipeline import SimulationOptions, derive_file, safe_slug
 
     if update_golden and golden is None:
         raise click.UsageError("--update-golden needs --golden DIR")
@@ -116,13 +119,16 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     slugs = [safe_slug(f) for f in files]
     if len(set(slugs)) != len(slugs):
         raise click.UsageError("two problem files have the same name; their reports would overwrite each other")
+    if with_simulation and fmt and output is None:
+        raise click.UsageError("--simulate writes figure files beside the report: give -o DIR (or no --format)")
     single_file = fmt is not None and output is not None and output.suffix == EXTENSIONS[fmt]
     if single_file and len(files) > 1:
         raise click.UsageError(f"-o {output} names one file, but {len(files)} problems were given; give a folder")
     status = 0
     for path in files:
         try:
-            reports = derive_file(path, formats, templates=templates, timeout=timeout)
+            simulate = SimulationOptions(values={}, initial={}, plots=True) if with_simulation else None
+            reports = derive_file(path, formats, templates=templates, timeout=timeout, simulate=simulate)
         except LagsolveError as error:
             status = max(status, _fail(error))
             continue
@@ -142,6 +148,8 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
             click.echo(reports.summary, nl=False)
         for f, target in targets.items():
             click.echo(f"  wrote {_write(target, reports.outputs[f])}")
+        for name, data in reports.files.items():
+            click.echo(f"  wrote {_write(next(iter(targets.values())).parent / name, data)}")
     sys.exit(status)
 
 

@@ -6,21 +6,25 @@ Nothing here prints, exits or writes files; results come back as data.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
+
+from lagsolve.simulation import SimulationOptions, SimulationResult, run_simulation
 
 DEFAULT_TIMEOUT = 120.0
 
 
 @dataclass(frozen=True)
 class Reports:
-    """Rendered output of one problem: ``outputs`` maps a format ("md", "tex", "json") to text."""
+    """Rendered output of one problem: ``outputs`` maps a format ("md", "tex", "json") to text;
+    ``files`` holds figures the reports refer to (file name → PNG bytes), to be written beside them."""
 
     source: str
     slug: str
     name: str
     summary: str
     outputs: dict[str, str]
+    files: dict[str, bytes] = field(default_factory=dict)
 
 
 def safe_slug(path: str | Path) -> str:
@@ -31,16 +35,42 @@ def safe_slug(path: str | Path) -> str:
     return slug or "problem"
 
 
-def _derive_and_render(problem: object, formats: tuple[str, ...], templates: Path | None) -> tuple[str, dict[str, str]]:
+FIGURE_CAPTIONS = {
+    "path": "Paths in space, with the constraint curve where there is one",
+    "coordinates": "Coordinates against time",
+    "phase": "Phase portraits",
+    "forces": "Multipliers and magnitudes of the forces of constraint",
+    "conservation": "Drift of the conserved quantities and the constraint residual",
+}
+
+
+def _derive_and_render(problem: object, formats: tuple[str, ...], templates: Path | None,
+                       simulate: SimulationOptions | None = None) -> tuple[str, dict[str, str], dict[str, bytes]]:
     from lagsolve.mechanics.derivation import derive
     from lagsolve.render.report import render, summary
 
     derivation = derive(problem)  # type: ignore[arg-type]
-    return summary(derivation), {fmt: render(derivation, fmt, templates) for fmt in formats}
+    files: dict[str, bytes] = {}
+    simulation = None
+    text = summary(derivation)
+    if simulate is not None:
+        run = run_simulation(derivation.form, derivation.conserved, simulate)
+        slug = safe_slug(derivation.problem.source)
+        figures = []
+        for key, data in run.figures.items():
+            name = f"{slug}_{key}.png"
+            files[name] = data
+            figures.append({"file": name, "caption": FIGURE_CAPTIONS.get(key, key)})
+        from lagsolve.render.trajectory import summary as run_summary
+
+        simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures}
+        text += run.summary
+    return text, {fmt: render(derivation, fmt, templates, simulation) for fmt in formats}, files
 
 
 def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json"), *,
-                templates: Path | None = None, timeout: float = DEFAULT_TIMEOUT) -> Reports:
+                templates: Path | None = None, timeout: float = DEFAULT_TIMEOUT,
+                simulate: SimulationOptions | None = None) -> Reports:
     """Load, derive and render one problem file.
 
     Loading (validation) runs here; derivation and rendering run in a child
@@ -57,9 +87,9 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
-    text, outputs = run_with_budget(_derive_and_render, (problem, formats, templates), timeout,
-                                    f"the derivation of {path}")
-    return Reports(str(path), safe_slug(path), problem.name, text, outputs)
+    text, outputs, files = run_with_budget(_derive_and_render, (problem, formats, templates, simulate), timeout,
+                                           f"the derivation of {path}")
+    return Reports(str(path), safe_slug(path), problem.name, text, outputs, files)
 
 
 @dataclass(frozen=True)
@@ -128,110 +158,20 @@ def golden_differences(reports: Reports, folder: Path) -> list[str]:
     return diffs
 
 
-@dataclass(frozen=True)
-class SimulationOptions:
-    """What ``lagsolve simulate`` may change; ``None`` means "from the file, else the default"."""
-
-    values: dict[str, float]
-    initial: dict[str, float]
-    t_end: float | None = None
-    samples: int | None = None
-    method: str | None = None
-    rtol: float | None = None
-    atol: float | None = None
-    max_step: float | None = None
-    after_release: str = "stop"
-    tables: tuple[str, ...] = ()  # "csv", "npz"
-    plots: bool = False
-    animate: bool = False
-    analysis_timeout: float = 60.0  # budget of the derivation that finds the conserved quantities
-
-
-@dataclass(frozen=True)
-class SimulationResult:
-    """A finished run: the text summary, the requested tables and figures (PNG/GIF bytes)."""
-
-    source: str
-    slug: str
-    name: str
-    summary: str
-    tables: dict[str, str | bytes]
-    figures: dict[str, bytes]
-    trajectory: object
-
-
 def _simulate(problem: object, options: SimulationOptions, progress: object) -> SimulationResult:
-    import numpy as np
-
     from lagsolve.budget import run_with_budget
-    from lagsolve.errors import Issue, LagsolveError, SpecError
+    from lagsolve.errors import LagsolveError
     from lagsolve.mechanics.matrix_form import matrix_form
-    from lagsolve.numeric.initial import complete_initial
-    from lagsolve.numeric.integrate import integrate_motion
-    from lagsolve.numeric.system import bind
-    from lagsolve.render import trajectory as table
 
     form = matrix_form(problem)  # type: ignore[arg-type]
-    problem = form.problem
-    spec = problem.simulation
-    source = problem.source
     # conserved quantities come from the full derivation (analysis); it gets a budget of its own,
     # so that a system too large to solve symbolically can still be simulated from its matrix form
     conserved, note = None, ""
     try:
-        conserved = run_with_budget(_conserved, (problem,), options.analysis_timeout, "the analysis")
+        conserved = run_with_budget(_conserved, (form.problem,), options.analysis_timeout, "the analysis")
     except LagsolveError as error:
         note = f"  conserved quantities not checked: {error}\n"
-    system = bind(form, options.values, conserved)
-    t_end = options.t_end if options.t_end is not None else (spec.t_end if spec else None)
-    if t_end is None:
-        raise SpecError([Issue(source, 0, "simulation.t_end", "no end time",
-                               "give simulation.t_end in the file or --t-end")])
-    given = {**(spec.initial if spec else {}), **options.initial}
-    q0, qd0 = complete_initial(system, given, source)
-    trajectory = integrate_motion(
-        system, q0, qd0, t_end,
-        samples=options.samples or (spec.samples if spec and spec.samples else 1001),
-        method=options.method or (spec.method if spec and spec.method else "DOP853"),
-        rtol=options.rtol or (spec.rtol if spec and spec.rtol else 1e-10),
-        atol=options.atol or (spec.atol if spec and spec.atol else 1e-12),
-        max_step=options.max_step or np.inf,
-        after_release=options.after_release,
-        progress=progress(t_end) if callable(progress) else None,
-    )
-    name = problem.name
-    tables: dict[str, str | bytes] = {}
-    if "csv" in options.tables:
-        tables["csv"] = table.to_csv(trajectory)
-    if "npz" in options.tables:
-        tables["npz"] = table.to_npz(trajectory)
-    figures: dict[str, bytes] = {}
-    if options.plots or options.animate:
-        from lagsolve.render import plots
-        from lagsolve.render.notation import Notation
-
-        notation = Notation([c.name for c in problem.coordinates])
-        labels = {c.name: notation.latex(c.symbol) for c in problem.coordinates}
-        curve = None
-        if system.curve is not None and system.curve_coordinate is not None:
-            k, fn = system.curve_coordinate, system.curve
-
-            def shape(values: np.ndarray) -> np.ndarray:
-                q = np.array(q0, dtype=float)
-                rows = []
-                for u in values:
-                    q[k] = u
-                    rows.append(fn(0.0, q, qd0, system.parameters))
-                return np.array(rows)
-
-            curve = (k, shape)
-        if options.plots:
-            for key, figure in plots.figures(trajectory, name, labels, curve).items():
-                figures[key] = plots.png_bytes(figure)
-        if options.animate and trajectory.particles:
-            figures["animation"] = plots.animation_gif(trajectory, name)
-    return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name) + note, tables,
-                            figures, trajectory)
+    return run_simulation(form, conserved, options, progress, note)
 
 
 def _conserved(problem: object) -> dict | None:

@@ -66,6 +66,11 @@ class MechanicsLatexPrinter(LatexPrinter):
         if order and base in self.rates:
             inner = super()._print_Symbol(sympy.Symbol(base))
             return ("\\dot{%s}" if order == 1 else "\\ddot{%s}") % inner
+        for prefix, head in (("lambda_", "\\lambda"), ("N_", "N")):
+            if expr.name.startswith(prefix) and "_" in expr.name[len(prefix):]:
+                # a multiplier or normal force named after a constraint with '_' in its name
+                label = expr.name[len(prefix):].replace("_", "\\_")
+                return f"{head}_{{\\mathrm{{{label}}}}}"
         return super()._print_Symbol(expr)
 
     def _print_Derivative(self, expr: Any) -> str:

@@ -110,7 +110,10 @@ def context(derivation: Derivation) -> dict[str, Any]:
          "force": [tex(v) for v in f.term.force],
          "generalized": [{"coordinate": coords[i]["tex"], "value": tex(v)}
                          for i, v in enumerate(f.term.generalized) if v != 0],
-         "valid_while": tex(f.term.valid_while), "normal_force": both(f.normal_force)}
+         "valid_while": tex(f.term.valid_while), "normal_force": both(f.normal_force),
+         "case": f.case, "condition": tex(f.valid_while) if f.valid_while is not None else "",
+         "static": next((tex(g.static if g.static is not None else g.coefficient)
+                         for g in problem.friction if g.name == f.term.name), "")}
         for f in derivation.friction
     ]
     return {
@@ -188,7 +191,8 @@ def environment(kind: str, extra: Path | None = None) -> jinja2.Environment:
     return env
 
 
-def render(derivation: Derivation, fmt: str, templates: Path | None = None) -> str:
+def render(derivation: Derivation, fmt: str, templates: Path | None = None,
+           simulation: dict[str, Any] | None = None) -> str:
     """The report of ``derivation`` in ``fmt`` ("md", "tex" or "json")."""
     if fmt == "json":
         return result_json(derivation)
@@ -202,7 +206,7 @@ def render(derivation: Derivation, fmt: str, templates: Path | None = None) -> s
         searched = ", ".join(str(d) for d in template_dirs(kind or "", templates))
         raise RenderError(f"template {kind}/{name} not found; searched: {searched}") from None
     try:
-        return template.render(**context(derivation))
+        return template.render(**context(derivation), simulation=simulation)
     except jinja2.TemplateError as exc:
         raise RenderError(f"template {kind}/{name} failed: {exc}") from None
 
@@ -253,6 +257,8 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
                 "generalized": {q.name: to_json(v)
                                 for q, v in zip(problem.coordinates, f.term.generalized, strict=True)},
                 "valid_while": to_json(f.term.valid_while),
+                "case": f.case,
+                "normal_force_valid_while": to_json(f.valid_while) if f.valid_while is not None else None,
             }
             for f in derivation.friction
         },

@@ -1,0 +1,122 @@
+"""One simulation run, from a problem's matrix form to summary, tables and figures.
+
+Shared by ``lagsolve simulate`` and ``lagsolve derive --simulate``; nothing here
+prints, exits or writes files.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+
+@dataclass(frozen=True)
+class SimulationOptions:
+    """What ``lagsolve simulate`` may change; ``None`` means "from the file, else the default"."""
+
+    values: dict[str, float]
+    initial: dict[str, float]
+    t_end: float | None = None
+    samples: int | None = None
+    method: str | None = None
+    rtol: float | None = None
+    atol: float | None = None
+    max_step: float | None = None
+    after_release: str = "stop"
+    tables: tuple[str, ...] = ()  # "csv", "npz"
+    plots: bool = False
+    animate: bool = False
+    analysis_timeout: float = 60.0  # budget of the derivation that finds the conserved quantities
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """A finished run: the text summary, the requested tables and figures (PNG/GIF bytes)."""
+
+    source: str
+    slug: str
+    name: str
+    summary: str
+    tables: dict[str, str | bytes]
+    figures: dict[str, bytes]
+    trajectory: object
+
+
+def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progress: Any = None,
+                   note: str = "") -> SimulationResult:
+    """Bind ``form`` (a :class:`~lagsolve.mechanics.matrix_form.MatrixForm`) to numbers, integrate,
+    and build the requested tables and figures. ``conserved`` maps names to expressions whose
+    drift is reported; ``note`` is appended to the summary.
+
+    Raises
+    ------
+    SpecError
+        Missing values, an end time, or initial values that violate the constraints.
+    SimulationError
+        The integration failed.
+    """
+    import numpy as np
+
+    from lagsolve.errors import Issue, SpecError
+    from lagsolve.numeric.initial import complete_initial
+    from lagsolve.numeric.integrate import integrate_motion
+    from lagsolve.numeric.system import bind
+    from lagsolve.render import trajectory as table
+
+    problem = form.problem
+    spec = problem.simulation
+    source = problem.source
+    system = bind(form, options.values, conserved)
+    t_end = options.t_end if options.t_end is not None else (spec.t_end if spec else None)
+    if t_end is None:
+        raise SpecError([Issue(source, 0, "simulation.t_end", "no end time",
+                               "give simulation.t_end in the file or --t-end")])
+    given = {**(spec.initial if spec else {}), **options.initial}
+    q0, qd0 = complete_initial(system, given, source)
+    trajectory = integrate_motion(
+        system, q0, qd0, t_end,
+        samples=options.samples or (spec.samples if spec and spec.samples else 1001),
+        method=options.method or (spec.method if spec and spec.method else "DOP853"),
+        rtol=options.rtol or (spec.rtol if spec and spec.rtol else 1e-10),
+        atol=options.atol or (spec.atol if spec and spec.atol else 1e-12),
+        max_step=options.max_step or np.inf,
+        after_release=options.after_release,
+        progress=progress(t_end) if callable(progress) else None,
+    )
+    name = problem.name
+    tables: dict[str, str | bytes] = {}
+    if "csv" in options.tables:
+        tables["csv"] = table.to_csv(trajectory)
+    if "npz" in options.tables:
+        tables["npz"] = table.to_npz(trajectory)
+    figures: dict[str, bytes] = {}
+    if options.plots or options.animate:
+        from lagsolve.render import plots
+        from lagsolve.render.notation import Notation
+
+        notation = Notation([c.name for c in problem.coordinates])
+        labels = {c.name: notation.latex(c.symbol) for c in problem.coordinates}
+        curve = None
+        if system.curve is not None and system.curve_coordinate is not None:
+            k, fn = system.curve_coordinate, system.curve
+
+            def shape(values: np.ndarray) -> np.ndarray:
+                q = np.array(q0, dtype=float)
+                rows = []
+                for u in values:
+                    q[k] = u
+                    rows.append(fn(0.0, q, qd0, system.parameters))
+                return np.array(rows)
+
+            curve = (k, shape)
+        if options.plots:
+            for key, figure in plots.figures(trajectory, name, labels, curve).items():
+                figures[key] = plots.png_bytes(figure)
+        if options.animate and trajectory.particles:
+            figures["animation"] = plots.animation_gif(trajectory, name)
+    from lagsolve.pipeline import safe_slug
+
+    return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name) + note, tables,
+                            figures, trajectory)
+
+
