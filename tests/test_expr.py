@@ -363,16 +363,22 @@ def test_valid_names(name: str) -> None:
         ("sin", "'sin' is the name of a built-in function or constant; choose another name"),
         ("pi", "'pi' is the name of a built-in function or constant"),
         ("E", "'E' is the name of a built-in function or constant"),
-        ("I", "'I' is the name of a built-in function or constant"),
+        ("oo", "'oo' is the name of a built-in function or constant"),
         ("Derivative", "'Derivative' is the name of a built-in function or constant"),
         ("\u0430", "non-ASCII character '\u0430' (U+0430 CYRILLIC SMALL LETTER A) in name"),
         ("x\u0430", "names use ASCII letters, digits and '_'"),
     ],
     ids=["empty", "not-text", "leading-digit", "dash", "leading-underscore", "double-underscore",
-         "trailing-underscore", "keyword", "soft-keyword", "function", "pi", "E", "I",
+         "trailing-underscore", "keyword", "soft-keyword", "function", "pi", "E", "oo",
          "Derivative", "cyrillic", "cyrillic-inside"],
 )
 def test_names_that_cannot_be_declared(name: Any, fragment: str) -> None:
     """Names that would shadow a function or constant, or are not plain ASCII, are refused."""
     problem = name_problem(name)
     assert problem is not None and fragment in problem
+
+
+@pytest.mark.parametrize("name", ["I", "S", "N", "O", "Q", "theta", "m_1", "Omega"])
+def test_ordinary_names_can_be_declared(name: str) -> None:
+    """Single capital letters such as I (a moment of inertia) and Greek names are ordinary names."""
+    assert name_problem(name) is None

@@ -95,9 +95,11 @@ DERIVATIVE = "Derivative"
 #: Names a problem may not declare: built-in functions and constants, SymPy's
 #: own single-letter objects that its printer and ``parse_expr`` treat specially.
 RESERVED = frozenset(FUNCTIONS) | frozenset(CONSTANTS) | {
-    DERIVATIVE, "I", "oo", "zoo", "nan", "S", "N", "O", "Q", "Function", "Symbol", "Integer",
-    "Rational", "Float",
+    DERIVATIVE, "oo", "zoo", "nan", "Function", "Symbol", "Integer", "Rational", "Float",
 }
+# Single letters such as I (a moment of inertia, as in the format's own example), S, N, O and Q
+# are ordinary names here: this parser gives them no meaning, and the JSON output reads back with
+# parse_expr when the problem's names are passed as its local_dict.
 
 #: SymPy function class -> float evaluator, to size numbers SymPy made by itself.
 _EVALUATORS: dict[Any, Callable[..., complex]] = {
