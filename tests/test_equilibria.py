@@ -116,3 +116,20 @@ def test_no_effective_potential_with_friction_or_several_degrees_of_freedom():
     """The rough tube (friction) and the double pendulum (two coordinates left) get none, with reasons."""
     assert derived_file("rotating_tube").analysis.effective_note.startswith("Coulomb friction")
     assert "2 coordinates are left" in derived_file("double_pendulum").analysis.effective_note
+
+
+def test_heavy_top_effective_potential_with_two_momenta():
+    """Heavy top: V_eff = m g l cos + (p_phi - p_psi cos)^2/(2 (I1 + m l^2) sin^2) up to a constant; the
+    equilibrium relation involves both momenta, so its stability is not claimed."""
+    top = derived_file("heavy_top")
+    s = names(top.problem)
+    m, g, arm, i1, th = s["m"], s["g"], s["l"], s["I1"], s["theta"]
+    p_phi, p_psi = sympy.Symbol("p_phi", real=True), sympy.Symbol("p_psi", real=True)
+    effective = top.analysis.effective_potential
+    assert effective.coordinate == th
+    assert exactly_equal(effective.mass, i1 + m * arm**2)
+    precession = (p_phi - p_psi * sympy.cos(th)) ** 2 / (2 * (i1 + m * arm**2) * sympy.sin(th) ** 2)
+    textbook = m * g * arm * sympy.cos(th) + precession
+    assert exactly_equal(sympy.diff(effective.expression - textbook, th), 0)
+    (relation,) = effective.equilibria
+    assert relation.value is None and relation.stable is None and relation.frequency is None

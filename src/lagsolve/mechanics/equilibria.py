@@ -9,7 +9,12 @@ cyclic velocities gives the Routhian Lagrangian
     = \tfrac12 m_{eff}(q)\,\dot q^2 + g_1(q)\,\dot q - V_{eff}(q),
 
 whose equation is :math:`m_{eff}\ddot q + \tfrac12 m_{eff}'\dot q^2 = -V_{eff}'(q)` (the
-:math:`g_1` terms cancel). Additive constants are dropped from :math:`V_{eff}`. With no cyclic
+:math:`g_1` terms cancel). With T quadratic, :math:`L = \tfrac12 v^TAv + (b + C\dot q)^Tv + \dots`
+in the cyclic velocities v, these are computed from small pieces:
+:math:`v = A^{-1}(p - b - C\dot q)`, :math:`m_{eff} = \partial^2L/\partial\dot q^2 - C^TA^{-1}C` and
+:math:`V_{eff} = -L|_{\dot q = v = 0} + \tfrac12(p - b)^TA^{-1}(p - b)` (so that
+:math:`(p_\phi - p_\psi\cos\theta)^2/(2I_1\sin^2\theta)` of the heavy top appears as such).
+Additive constants are dropped from :math:`V_{eff}`. With no cyclic
 coordinate at all, :math:`V_{eff}` is the potential of the one remaining coordinate (with
 the centrifugal part of a moving constraint). Equilibria solve :math:`V_{eff}'(q_0) = 0`;
 one is stable when :math:`V_{eff}''(q_0) > 0`, and small oscillations about it have
@@ -42,6 +47,10 @@ from lagsolve.mechanics.simplify import tidy, tidy_sum
 SOLVE_LIMIT = 40
 #: at most this many equilibria are listed
 MAX_EQUILIBRIA = 8
+#: V_eff larger than this (operations) is not offered to ``tidy`` as one fraction
+COMPACT_LIMIT = 40
+#: the raw expanded V_eff is grouped over denominators only up to this size
+GROUP_LIMIT = 200
 
 
 @dataclass(frozen=True)
@@ -74,7 +83,8 @@ class Equilibrium:
 class EffectivePotential:
     """The one-degree-of-freedom reduction (module docstring).
 
-    ``cyclic`` lists ``(q_c, p_c, q̇_c in terms of p_c)``; ``routhian`` is :math:`L_R`,
+    ``cyclic`` lists ``(q_c, p_c, q̇_c in terms of p_c)``; ``routhian`` is :math:`L_R` (up to a
+    constant, as :math:`\tfrac12 m_{eff}\\dot q^2 + g_1\\dot q - V_{eff}`),
     ``mass`` :math:`m_{eff}(q)`, ``expression`` :math:`V_{eff}(q)`, ``equation`` the pair
     (left side, right side) of the reduced equation; ``damped`` says a velocity-dependent
     force acts on q.
@@ -119,41 +129,62 @@ def effective_potential(system: MotionSystem, conservation: Conservation,
     indices = [model.coordinates.index(c) for c in cyclic]
     velocities = [model.velocities[i] for i in indices]
     momenta = [momentum_symbol(c) for c in cyclic]
-    solution: dict[Any, Any] = {}
-    if velocities:
-        solved = sympy.solve([sympy.diff(L, v) - p for v, p in zip(velocities, momenta, strict=True)],
-                             velocities, dict=True)
-        if len(solved) != 1 or set(solved[0]) != set(velocities):
-            return None, "the cyclic velocities cannot be solved from their momenta"
-        solution = {v: tidy(e) for v, e in solved[0].items()}
-    routhian = (L - sum((p * v for p, v in zip(momenta, velocities, strict=True)), sympy.Integer(0)))
-    routhian = sympy.expand(routhian.xreplace(solution))
-    mass = tidy(sympy.diff(routhian, qd, 2))
-    if mass == 0 or sympy.diff(routhian, qd, 3) != 0:
-        return None, f"the Routhian is not quadratic in {qd.name}"
-    potential = _drop_constants(-routhian.xreplace({qd: 0}), q)
+    if any(sympy.diff(L, v, 3) != 0 for v in model.velocities):
+        return None, "T is not quadratic in the velocities"
+    # L = 1/2 v^T A v + (b + C qd)^T v + (terms without v), v the cyclic velocities
+    rest = {v: 0 for v in model.velocities}
+    A = sympy.Matrix(len(velocities), len(velocities), lambda i, j: sympy.diff(L, velocities[i], velocities[j]))
+    b = sympy.Matrix([sympy.diff(L, v).xreplace(rest) for v in velocities])
+    C = sympy.Matrix([sympy.diff(L, v, qd) for v in velocities])
+    P = sympy.Matrix(momenta)
+    try:
+        inverse = A.inv(method="LU").applyfunc(lambda e: tidy(sympy.cancel(e))) if velocities else A
+    except (ValueError, ZeroDivisionError):
+        return None, "the cyclic velocities cannot be solved from their momenta"
+    at_rest = {v: tidy(e) for v, e in zip(velocities, inverse * (P - b), strict=True)}
+    solution = {v: _display(e) for v, e in zip(velocities, inverse * (P - b - C * qd), strict=True)}
+    # Routh: L_R = 1/2 m_eff qd^2 + g1 qd - V_eff, with (module docstring)
+    mass = _display(sympy.diff(L, qd, 2) - (C.T * inverse * C)[0, 0]) if velocities else tidy(sympy.diff(L, qd, 2))
+    if mass == 0:
+        return None, f"{q.name} has no inertia once the cyclic motion is removed"
+    gyroscopic = _display(sympy.diff(L, qd).xreplace({**rest, **at_rest}).xreplace({qd: 0}))
+    raw = -L.xreplace(rest) + ((P - b).T * inverse * (P - b))[0, 0] / 2 if velocities else -L.xreplace(rest)
+    potential = _drop_constants(raw, q)
     lhs = mass * qdd + sympy.diff(mass, q) * qd**2 / 2
     rhs = -sympy.diff(potential, q)
     # the reduced equation, with the cyclic velocities written through the momenta, must read lhs = rhs + Q
     acceleration = system.accelerations[qdd].xreplace(solution)
     if not proved_zero(lhs.xreplace({qdd: acceleration}) - rhs - force):
         return None, "the Routh form could not be verified against the reduced equation"
+    routhian = mass * qd**2 / 2 + gyroscopic * qd - potential
     equilibria = tuple(_equilibria(potential, mass, q, momenta))
     return EffectivePotential(q, tuple(zip(cyclic, momenta, (solution[v] for v in velocities), strict=True)),
-                              tidy_sum(routhian), mass, potential, (tidy_sum(lhs), tidy(rhs)), equilibria,
+                              routhian, mass, potential, (tidy_sum(lhs), _display(rhs)), equilibria,
                               damped=not proved_zero(force)), ""
+
+
+def _display(expr: Any) -> Any:
+    """``tidy`` for small expressions; a sum over common denominators for large ones (cheaper)."""
+    return tidy(expr) if sympy.count_ops(expr) <= COMPACT_LIMIT else _by_denominator(sympy.expand(expr))
 
 
 def _drop_constants(expr: Any, q: Any) -> Any:
     """``expr`` without its additive terms free of ``q``: a sum of terms, one per denominator
     (the textbook's ``m2*g*r + p**2/(2*m1*r**2)``), unless one fraction is much shorter."""
-    candidates = []
-    for form in (sympy.expand(expr), sympy.expand(tidy_sum(expr))):
-        kept = sympy.Add(*[t for t in sympy.Add.make_args(form) if t.has(q)])
-        candidates.append(_by_denominator(_by_denominator(kept)))  # twice: merged groups may share one
+    def varying(e: Any) -> Any:
+        return sympy.Add(*[t for t in sympy.Add.make_args(e) if t.has(q)])
+
     def size(e: Any) -> tuple[int, int, str]:
         return (sympy.count_ops(e), len(str(e)), str(e))
-    terms = min(candidates, key=size)
+
+    # grouped twice (merged groups may share a denominator); constants dropped before and after
+    expanded = sympy.expand(expr)
+    forms = [sympy.expand(tidy_sum(expr))]
+    if sympy.count_ops(expanded) <= GROUP_LIMIT:  # grouping a long raw sum costs seconds
+        forms.append(expanded)
+    terms = min((varying(_by_denominator(_by_denominator(varying(form)))) for form in forms), key=size)
+    if sympy.count_ops(terms) > COMPACT_LIMIT:
+        return terms
     compact = tidy(terms)
     return compact if 2 * sympy.count_ops(compact) < sympy.count_ops(terms) else terms
 
@@ -199,7 +230,9 @@ def _equilibria(potential: Any, mass: Any, q: Any, momenta: list[Any]) -> list[E
         factor = _canonical_sign(factor)
         condition = _condition(factor, q)
         values = _solve(factor, q)
-        if values is None:
+        if values is None and eliminated is None and any(factor.has(p) for p in momenta):
+            out.append(Equilibrium(None, condition))  # a relation between q0 and several momenta: no more
+        elif values is None:
             out.append(_at_condition(condition, curvature, mass, q, eliminated))
         else:
             out += [_at_value(v, condition, curvature, mass, q, eliminated) for v in values]
@@ -223,9 +256,11 @@ def _condition(factor: Any, q: Any) -> Any:
     if len(with_q) == 1:
         coefficient, part = with_q[0].as_independent(q, as_Add=False)
         return sympy.Eq(part, tidy(-without / coefficient), evaluate=False)
-    left = [t for t in terms if not t.could_extract_minus_sign()]
-    right = [-t for t in terms if t.could_extract_minus_sign()]
-    return sympy.Eq(tidy(sympy.Add(*left)), tidy(sympy.Add(*right)), evaluate=False)
+    left = sympy.Add(*[t for t in terms if not t.could_extract_minus_sign()])
+    right = sympy.Add(*[-t for t in terms if t.could_extract_minus_sign()])
+    if sympy.count_ops(factor) <= COMPACT_LIMIT:
+        left, right = tidy(left), tidy(right)
+    return sympy.Eq(left, right, evaluate=False)
 
 
 def _generators(expr: Any, q: Any) -> set[Any]:

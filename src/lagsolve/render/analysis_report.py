@@ -116,7 +116,8 @@ def analysis_context(derivation: Derivation, note: Notation) -> dict[str, Any] |
                 "value": tex(e.value) if e.value is not None and not power else "",
                 "condition": tex(e.condition.xreplace({q: q0})),
                 "exists_if": tex(e.exists_if.xreplace({q: q0})) if e.exists_if is not None else "",
-                "curvature": tex((e.curvature_at if e.curvature_at is not None else e.curvature).xreplace({q: q0})),
+                "curvature": (tex((e.curvature_at if e.curvature_at is not None else e.curvature).xreplace({q: q0}))
+                              if e.curvature is not None else ""),
                 "stable": e.stable,
                 "stability_condition": (tex(e.stability_condition.xreplace({q: q0}))
                                         if e.stability_condition is not None else ""),
@@ -293,8 +294,10 @@ def analysis_summary(derivation: Derivation, note: Notation) -> list[str]:
                 verdict = "stable"
             elif e.stable is False:
                 verdict = "unstable"
-            else:
+            elif e.stability_condition is not None:
                 verdict = f"stable if {text(e.stability_condition.xreplace({q: q0}))}"
+            else:
+                verdict = "stability not analysed (several momenta)"
             line = f"    equilibrium {where}: {verdict}"
             if e.frequency_squared is not None:
                 square = e.frequency_squared_at if e.frequency_squared_at is not None else e.frequency_squared
