@@ -117,8 +117,9 @@ def test_reports_do_not_depend_on_hash_seed(tmp_path: Path) -> None:
     for seed in ("0", "4242"):
         target = tmp_path / seed
         env = {**os.environ, "PYTHONHASHSEED": seed}
-        subprocess.run([sys.executable, "-m", "lagsolve", "derive", *problems, "-o", str(target)],
-                       check=True, env=env, capture_output=True)
+        run = subprocess.run([sys.executable, "-m", "lagsolve", "derive", *problems, "-o", str(target)],
+                             env=env, capture_output=True, text=True)
+        assert run.returncode == 0, run.stderr
         outputs.append({p.relative_to(target): p.read_bytes() for p in sorted(target.rglob("*.*"))})
     assert outputs[0] == outputs[1]
     assert len(outputs[0]) == 3 * len(problems)
