@@ -158,3 +158,12 @@ def test_simulate_flag_needs_a_folder_for_stdout_formats(runner: CliRunner) -> N
     """--simulate with a format on stdout is refused: the figures need a folder."""
     result = runner.invoke(main, ["derive", BEAD, "--simulate", "--format", "md"])
     assert result.exit_code == 2 and "--simulate writes figure files" in result.stderr
+
+
+def test_effective_potential_plot_beside_the_report(runner: CliRunner, tmp_path: Path) -> None:
+    """A problem with an effective potential and simulation values gets its V_eff plot in the report."""
+    result = runner.invoke(main, ["derive", HOLE, "-o", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    folder = tmp_path / "hole_table"
+    assert (folder / "hole_table_effective_potential.png").read_bytes().startswith(b"\x89PNG")
+    assert "](hole_table_effective_potential.png)" in (folder / "hole_table.md").read_text()

@@ -130,8 +130,13 @@ def test_latex_compiles(name: str, tmp_path: Path) -> None:
     """Each problem's LaTeX report compiles with pdflatex (skipped where pdflatex is not installed)."""
     if shutil.which("pdflatex") is None:
         pytest.skip("pdflatex is not installed (CI installs texlive-latex-base)")
-    tex = (ROOT / "tests" / "golden" / f"{name}.tex").read_text()
-    (tmp_path / "r.tex").write_text(tex)
+    from lagsolve.pipeline import derive_file
+
+    reports = derive_file(ROOT / "problems" / f"{name}.yaml", ("tex",))
+    assert reports.outputs["tex"] == (ROOT / "tests" / "golden" / f"{name}.tex").read_text()
+    (tmp_path / "r.tex").write_text(reports.outputs["tex"])
+    for file_name, data in reports.files.items():  # figures the report includes
+        (tmp_path / file_name).write_bytes(data)
     run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "r.tex"],
                          cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stdout[-2000:]

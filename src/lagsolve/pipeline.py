@@ -52,6 +52,9 @@ def _derive_and_render(problem: object, formats: tuple[str, ...], templates: Pat
     derivation = derive(problem)  # type: ignore[arg-type]
     files: dict[str, bytes] = {}
     simulation = None
+    potential = _potential_figure(derivation)
+    if potential is not None:
+        files[potential["file"]] = potential.pop("png")
     text = summary(derivation)
     if simulate is not None:
         run = run_simulation(derivation.form, derivation.conserved, simulate)
@@ -65,7 +68,30 @@ def _derive_and_render(problem: object, formats: tuple[str, ...], templates: Pat
 
         simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures}
         text += run.summary
-    return text, {fmt: render(derivation, fmt, templates, simulation) for fmt in formats}, files
+    return text, {fmt: render(derivation, fmt, templates, simulation, potential) for fmt in formats}, files
+
+
+def _potential_figure(derivation: object) -> dict | None:
+    """The V_eff plot with its equilibria, for a problem that has an effective potential and numbers
+    (simulation values and initial state) to draw it with; None otherwise."""
+    from lagsolve.render.plots import png_bytes
+    from lagsolve.render.potential_plot import potential_curve, potential_figure
+
+    problem = derivation.problem  # type: ignore[attr-defined]
+    spec = problem.simulation
+    analysis = getattr(derivation, "analysis", None)
+    if spec is None or analysis is None or getattr(analysis, "effective_potential", None) is None:
+        return None
+    if problem.functions:  # drawing V_eff with declared functions would need their concrete forms
+        return None
+    try:
+        curve = potential_curve(derivation, dict(spec.values), initial=dict(spec.initial))  # type: ignore[arg-type]
+    except (ValueError, KeyError, TypeError, ZeroDivisionError, StopIteration, NameError, OverflowError):
+        return None
+    figure = potential_figure(curve.q, curve.v, curve.equilibria, coordinate=curve.coordinate,
+                              title=f"{problem.name}: effective potential")
+    return {"file": f"{safe_slug(problem.source)}_effective_potential.png", "png": png_bytes(figure),
+            "caption": "Effective potential with its equilibria, for the simulation's values"}
 
 
 def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json"), *,

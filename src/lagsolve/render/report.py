@@ -192,7 +192,7 @@ def environment(kind: str, extra: Path | None = None) -> jinja2.Environment:
 
 
 def render(derivation: Derivation, fmt: str, templates: Path | None = None,
-           simulation: dict[str, Any] | None = None) -> str:
+           simulation: dict[str, Any] | None = None, potential: dict[str, Any] | None = None) -> str:
     """The report of ``derivation`` in ``fmt`` ("md", "tex" or "json")."""
     if fmt == "json":
         return result_json(derivation)
@@ -206,7 +206,7 @@ def render(derivation: Derivation, fmt: str, templates: Path | None = None,
         searched = ", ".join(str(d) for d in template_dirs(kind or "", templates))
         raise RenderError(f"template {kind}/{name} not found; searched: {searched}") from None
     try:
-        return template.render(**context(derivation), simulation=simulation)
+        return template.render(**context(derivation), simulation=simulation, potential_plot=potential)
     except jinja2.TemplateError as exc:
         raise RenderError(f"template {kind}/{name} failed: {exc}") from None
 
