@@ -121,7 +121,8 @@ def derive(problem: Problem) -> Derivation:
     normals, cases = _normal_forces(frictions, raw_lam, constraints, reactions, elimination)
     # decoupled normal forces are substituted; coupled ones stay symbols N in the results (as a worked
     # solution writes them), with their closed form given once, in the friction results
-    substituted = {N: value for N, value in normals.items() if cases[str(N)[2:]][1] is None}
+    substituted = {f.normal: normals[f.normal] for f in frictions
+                   if f.normal in normals and cases[f.name][1] is None}
     raw_lam = tuple(lam.xreplace(substituted) for lam in raw_lam)
     multipliers = {c.name: result(lam) for c, lam in zip(constraints, raw_lam, strict=True)}
     forces = {c.name: _constraint_force(reactions[c.name], multipliers[c.name], c, elimination)
