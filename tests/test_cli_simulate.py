@@ -29,6 +29,23 @@ def test_summary_by_default(runner: CliRunner) -> None:
     assert "energy (Jacobi integral) conserved: relative drift" in result.stdout
 
 
+def test_coordinates_minimal_or_full(runner: CliRunner) -> None:
+    """By default the bead is integrated in x alone (y = f(x) exactly); --coordinates full integrates x and y
+    with projection; both end in the same state. A problem without a closed-form reduction says why."""
+    minimal = runner.invoke(main, ["simulate", BEAD, "--t-end", "2", "--format", "csv"])
+    full = runner.invoke(main, ["simulate", BEAD, "--t-end", "2", "--format", "csv", "--coordinates", "full"])
+    assert minimal.exit_code == full.exit_code == 0, minimal.output + full.output
+    assert "coordinates: minimal: x, with y from the constraints" in minimal.stderr
+    assert "largest constraint residual: 0\n" in minimal.stderr
+    assert "coordinates: all, projected onto the constraints after each step" in full.stderr
+    a = np.loadtxt(io.StringIO(minimal.stdout), delimiter=",", skiprows=1)
+    b = np.loadtxt(io.StringIO(full.stdout), delimiter=",", skiprows=1)
+    assert np.array_equal(a[:, 2], a[:, 1] ** 2 / 2)  # y = f(x) = x^2/2 to the last bit
+    assert np.max(np.abs(a[:, 1:5] - b[:, 1:5])) < 1e-8
+    sphere = runner.invoke(main, ["simulate", SPHERE])
+    assert "not in minimal coordinates: constraint 'surface'" in sphere.stdout
+
+
 def test_plot_writes_figures(runner: CliRunner, tmp_path: Path) -> None:
     """--plot writes the PNG figures under the output folder with stable names."""
     result = runner.invoke(main, ["simulate", BEAD, "--plot", "-o", str(tmp_path), "--t-end", "2"])
@@ -106,8 +123,9 @@ def test_animate_and_show(runner: CliRunner, tmp_path: Path, monkeypatch: pytest
     (["--method", "Euler"], "Invalid value for '--method'"),
     (["--samples", "1"], "Invalid value for '--samples'"),
     (["--rtol", "0"], "Invalid value for '--rtol'"),
+    (["--coordinates", "polar"], "Invalid value for '--coordinates'"),
 ], ids=["negative-t-end", "unknown-parameter", "nan", "no-value", "bad-number", "unknown-initial",
-        "inconsistent-initial", "bad-method", "few-samples", "zero-rtol"])
+        "inconsistent-initial", "bad-method", "few-samples", "zero-rtol", "bad-coordinates"])
 def test_bad_values_exit_2(runner: CliRunner, args: list[str], message: str) -> None:
     """Bad option values are reported clearly with exit code 2 and no traceback."""
     result = runner.invoke(main, ["simulate", BEAD, *args])

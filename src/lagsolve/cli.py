@@ -201,6 +201,9 @@ def _progress_bar(t_end: float) -> object:
 @click.option("--max-step", type=click.FloatRange(min=0, min_open=True), help="Largest step size.")
 @click.option("--after-release", type=click.Choice(["stop", "continue"]), default="stop", show_default=True,
               help="When a unilateral constraint's force reaches zero: stop there, or go on without it.")
+@click.option("--coordinates", type=click.Choice(["minimal", "full"]), default="minimal", show_default=True,
+              help="minimal: integrate the independent coordinates alone where the constraints are solved in "
+                   "closed form; full: integrate every coordinate and project onto the constraints.")
 @click.option("--format", "fmt", type=click.Choice(["summary", "csv", "npz"]), default="summary",
               show_default=True, help="csv: the trajectory table (stdout unless -o); npz: NumPy archive.")
 @click.option("-o", "--output", type=click.Path(path_type=Path),
@@ -212,8 +215,8 @@ def _progress_bar(t_end: float) -> object:
               help="Seconds allowed for derivation and integration of each file.")
 def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ...], initial: tuple[str, ...],
              samples: int | None, method: str | None, rtol: float | None, atol: float | None,
-             max_step: float | None, after_release: str, fmt: str, output: Path | None, plot: bool, show: bool,
-             animate: bool, timeout: float) -> None:
+             max_step: float | None, after_release: str, coordinates: str, fmt: str, output: Path | None,
+             plot: bool, show: bool, animate: bool, timeout: float) -> None:
     """Integrate the equations of motion of each problem FILE.
 
     \b
@@ -227,7 +230,7 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
     options = SimulationOptions(
         values=_assignments(values, "--set"), initial=_assignments(initial, "--initial"), t_end=t_end,
         samples=samples, method=method, rtol=rtol, atol=atol, max_step=max_step, after_release=after_release,
-        tables=(fmt,) if fmt != "summary" else (), plots=plot or show, animate=animate)
+        coordinates=coordinates, tables=(fmt,) if fmt != "summary" else (), plots=plot or show, animate=animate)
     single = output is not None and output.suffix == f".{fmt}"
     if single and len(files) > 1:
         raise click.UsageError(f"-o {output} names one file, but {len(files)} problems were given; give a folder")

@@ -57,7 +57,10 @@ def _derive_and_render(problem: object, formats: tuple[str, ...], templates: Pat
         files[potential["file"]] = potential.pop("png")
     text = summary(derivation)
     if simulate is not None:
-        run = run_simulation(derivation.form, derivation.conserved, simulate)
+        from lagsolve.mechanics.chart import minimal_chart
+
+        chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
+        run = run_simulation(derivation.form, derivation.conserved, simulate, chart=chart, chart_note=chart_note)
         slug = safe_slug(derivation.problem.source)
         figures = []
         for key, data in run.figures.items():
@@ -190,20 +193,27 @@ def _simulate(problem: object, options: SimulationOptions, progress: object) -> 
     from lagsolve.mechanics.matrix_form import matrix_form
 
     form = matrix_form(problem)  # type: ignore[arg-type]
-    # conserved quantities come from the full derivation (analysis); it gets a budget of its own,
-    # so that a system too large to solve symbolically can still be simulated from its matrix form
-    conserved, note = None, ""
+    # conserved quantities and minimal coordinates come from the full derivation (analysis); it gets a
+    # budget of its own, so that a system too large to solve symbolically can still be simulated from its
+    # matrix form (in all coordinates)
+    conserved, chart, chart_note, note = None, None, "", ""
     try:
-        conserved = run_with_budget(_conserved, (form.problem,), options.analysis_timeout, "the analysis")
+        conserved, chart, chart_note = run_with_budget(_analysed, (form.problem,), options.analysis_timeout,
+                                                       "the analysis")
     except LagsolveError as error:
         note = f"  conserved quantities not checked: {error}\n"
-    return run_simulation(form, conserved, options, progress, note)
+        chart_note = "the analysis did not finish"
+    return run_simulation(form, conserved, options, progress, note, chart, chart_note)
 
 
-def _conserved(problem: object) -> dict | None:
+def _analysed(problem: object) -> tuple[dict | None, object, str]:
+    """What a simulation takes from the derivation: the conserved quantities and the minimal chart."""
+    from lagsolve.mechanics.chart import minimal_chart
     from lagsolve.mechanics.derivation import derive
 
-    return derive(problem).conserved  # type: ignore[arg-type]
+    derivation = derive(problem)  # type: ignore[arg-type]
+    chart, note = minimal_chart(derivation.analysis, derivation.model)
+    return derivation.conserved, chart, note
 
 
 def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: float = 600.0,

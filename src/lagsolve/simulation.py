@@ -23,6 +23,7 @@ class SimulationOptions:
     atol: float | None = None
     max_step: float | None = None
     after_release: str = "stop"
+    coordinates: str = "minimal"  # "minimal" where the constraints are solved in closed form, else "full"
     tables: tuple[str, ...] = ()  # "csv", "npz"
     plots: bool = False
     animate: bool = False
@@ -43,10 +44,12 @@ class SimulationResult:
 
 
 def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progress: Any = None,
-                   note: str = "") -> SimulationResult:
+                   note: str = "", chart: Any = None, chart_note: str = "") -> SimulationResult:
     """Bind ``form`` (a :class:`~lagsolve.mechanics.matrix_form.MatrixForm`) to numbers, integrate,
     and build the requested tables and figures. ``conserved`` maps names to expressions whose
-    drift is reported; ``note`` is appended to the summary.
+    drift is reported; ``note`` is appended to the summary. ``chart`` (a
+    :class:`~lagsolve.mechanics.chart.MinimalChart`) lets the run integrate in minimal
+    coordinates; ``chart_note`` says why there is none.
 
     Raises
     ------
@@ -66,7 +69,12 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     problem = form.problem
     spec = problem.simulation
     source = problem.source
-    system = bind(form, options.values, conserved)
+    if options.coordinates not in ("minimal", "full"):
+        raise ValueError(f"unknown coordinates option {options.coordinates!r}")
+    minimal = options.coordinates == "minimal"
+    system = bind(form, options.values, conserved, chart if minimal else None)
+    if minimal and chart is None and chart_note and form.constraints:
+        note = f"  not in minimal coordinates: {chart_note}\n" + note
     t_end = options.t_end if options.t_end is not None else (spec.t_end if spec else None)
     if t_end is None:
         raise SpecError([Issue(source, 0, "simulation.t_end", "no end time",
@@ -81,6 +89,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
         atol=options.atol or (spec.atol if spec and spec.atol else 1e-12),
         max_step=options.max_step or np.inf,
         after_release=options.after_release,
+        minimal=minimal,
         progress=progress(t_end) if callable(progress) else None,
     )
     name = problem.name

@@ -35,6 +35,7 @@ import numpy as np
 from scipy import integrate, optimize
 
 from lagsolve.errors import SimulationError
+from lagsolve.numeric.chart import NumericChart
 from lagsolve.numeric.system import NumericSystem
 
 EXPLICIT = ("DOP853", "RK45", "RK23")
@@ -102,6 +103,8 @@ class _Run:
     stuck: np.ndarray
     direction: np.ndarray
     project: bool
+    chart: NumericChart | None = None  # set while the integrator's state is in minimal coordinates
+    extended: np.ndarray = field(default_factory=lambda: np.zeros(0))  # parameters, then the chart's constants
 
     def solve(self, t: float, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         n = self.system.n
@@ -110,8 +113,18 @@ class _Run:
         except np.linalg.LinAlgError:
             raise SimulationError(f"the augmented system is singular at t = {t:.6g}") from None
 
+    def full(self, t: float, y: np.ndarray) -> np.ndarray:
+        """The whole state (q, q̇) from the integrator's state."""
+        return y if self.chart is None else self.chart.full(t, y, self.system.n, self.extended)
+
+    def local(self, y: np.ndarray) -> np.ndarray:
+        """The integrator's state from a whole one."""
+        return y if self.chart is None else self.chart.local(y, self.system.n)
+
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
-        return np.concatenate([y[self.system.n:], self.solve(t, y)[0]])
+        if self.chart is None:
+            return np.concatenate([y[self.system.n:], self.solve(t, y)[0]])
+        return np.concatenate([y[self.chart.size:], self.solve(t, self.full(t, y))[0][self.chart.independent]])
 
     def _velocity_rows(self, t: float, q: np.ndarray, qd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         system, p, n = self.system, self.system.parameters, self.system.n
@@ -163,8 +176,8 @@ class _Run:
 
 def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_end: float, *,
                      samples: int = 1001, method: str = "DOP853", rtol: float = 1e-10, atol: float = 1e-12,
-                     max_step: float = np.inf, project: bool = True, after_release: str = "stop",
-                     progress: Callable[[float], None] | None = None) -> Trajectory:
+                     max_step: float = np.inf, project: bool = True, minimal: bool = True,
+                     after_release: str = "stop", progress: Callable[[float], None] | None = None) -> Trajectory:
     """Integrate from ``(q0, qd0)`` at t = 0 to ``t_end``.
 
     Parameters
@@ -172,6 +185,10 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
     method : str
         One of DOP853 (default), RK45, RK23 (explicit; projected after every step),
         Radau, BDF, LSODA (implicit, for stiff problems; samples are projected).
+    minimal : bool
+        Integrate in minimal coordinates when the system has a chart (the constraints solved
+        in closed form): the state is the independent coordinates and velocities, and the
+        dependent ones follow exactly. After a release the run goes on in all coordinates.
     after_release : {"stop", "continue"}
         What to do when a unilateral constraint's force reaches zero.
 
@@ -186,6 +203,13 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         raise ValueError("t_end must be a positive number")
     n, m, k = system.n, system.m, len(system.contacts)
     run = _Run(system, np.ones(m, dtype=bool), np.zeros(k, dtype=bool), np.zeros(k), project)
+    coordinates = "all, projected onto the constraints after each step" if m else "all"
+    if minimal and system.chart is not None:
+        run.chart = system.chart
+        run.extended = system.chart.extended(0.0, q0, qd0, system.parameters)
+        names = np.array(system.coordinates)
+        coordinates = (f"minimal: {', '.join(names[system.chart.independent])}, with "
+                       f"{', '.join(names[system.chart.dependent])} from the constraints")
     explicit = method in EXPLICIT
     times = np.linspace(0.0, t_end, samples)
     rows: list[tuple] = []
@@ -193,18 +217,19 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
     start = clock.perf_counter()
     steps = nfev = 0
     max_residual = run.residual(0.0, q0, qd0)
-    t0, y0 = 0.0, np.concatenate([q0, qd0])
+    t0, y0 = 0.0, np.concatenate([q0, qd0])  # the whole state at each (re)start
     _start_contacts(run, t0, y0, events)
     next_sample = 0
     finished = stopped = False
     while not finished:
         pulling = [j for j in system.unilateral if run.active[j] and run.solve(t0, y0)[1][j] < 0]
         if pulling:  # a unilateral constraint that would have to pull: contact is lost at once
-            run.active[pulling[0]] = False
+            _release(run, pulling[0])
             events.append(Event(float(t0), "release", system.constraints[pulling[0]], _state(system, y0),
                                 "released"))
             continue
-        solver = getattr(integrate, method)(run.rhs, t0, y0, t_end, rtol=rtol, atol=atol, max_step=max_step)
+        solver = getattr(integrate, method)(run.rhs, t0, run.local(y0), t_end, rtol=rtol, atol=atol,
+                                            max_step=max_step)
         watch_old = _watch(run, t0, y0)
         restarted = False
         while solver.status == "running":
@@ -213,8 +238,9 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
                 raise SimulationError(f"the integrator ({method}) failed at t = {solver.t:.6g}: {message}")
             steps += 1
             t_old, t_new = solver.t_old, solver.t
-            dense = solver.dense_output()
-            watch_new = _watch(run, t_new, solver.y)
+            dense = _whole(run, solver.dense_output())
+            y_new = run.full(t_new, solver.y)
+            watch_new = _watch(run, t_new, y_new)
             event = _first_event(run, dense, t_old, t_new, watch_old, watch_new)
             t_stop = event[0] if event is not None else t_new
             while next_sample < samples and times[next_sample] <= t_stop + 1e-12 * max(1.0, t_end):
@@ -227,12 +253,13 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
                     finished = True
                 restarted = True
                 break
-            max_residual = max(max_residual, run.residual(t_new, solver.y[:n], solver.y[n:]))
-            if explicit and project and (m or run.stuck.any()):
-                q, qd = run.projected(t_new, solver.y[:n], solver.y[n:])
-                solver.y = np.concatenate([q, qd])
+            max_residual = max(max_residual, run.residual(t_new, y_new[:n], y_new[n:]))
+            if explicit and project and ((m and run.chart is None) or run.stuck.any()):
+                q, qd = run.projected(t_new, y_new[:n], y_new[n:])
+                y_new = np.concatenate([q, qd])
+                solver.y = run.local(y_new)
                 solver.f = run.rhs(t_new, solver.y)
-                watch_new = _watch(run, t_new, solver.y)
+                watch_new = _watch(run, t_new, y_new)
             watch_old = watch_new
             if progress is not None:
                 progress(t_new)
@@ -240,14 +267,30 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         if not restarted:
             finished = True
     if next_sample < samples and not stopped:
-        rows.append(_sample(run, t_end, solver.y))
+        rows.append(_sample(run, t_end, run.full(t_end, solver.y)))
     if progress is not None:
         progress(t_end)
+    if system.chart is not None and minimal and run.chart is None:
+        coordinates += "; all, projected onto the constraints after each step, once a constraint was released"
     return _trajectory(system, rows, events, {
         "method": method, "rtol": rtol, "atol": atol, "steps": steps, "evaluations": system.evaluations[0],
         "solver_evaluations": nfev, "wall_time": clock.perf_counter() - start, "max_residual": max_residual,
         "energy_conserved": system.energy_conserved, "energy_note": system.energy_note,
+        "coordinates": coordinates,
     })
+
+
+def _whole(run: _Run, dense: Callable[[float], np.ndarray]) -> Callable[[float], np.ndarray]:
+    """The step's dense output as whole states."""
+    if run.chart is None:
+        return dense
+    return lambda tau: run.full(tau, dense(tau))
+
+
+def _release(run: _Run, j: int) -> None:
+    """Constraint ``j`` no longer holds; minimal coordinates that used it no longer describe the motion."""
+    run.active[j] = False
+    run.chart = None
 
 
 def _start_contacts(run: _Run, t: float, y: np.ndarray, events: list[Event]) -> None:
@@ -324,7 +367,7 @@ def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_rele
         events.append(Event(float(t), "release", system.constraints[index], _state(system, y),
                             "stopped" if stop else "released"))
         if not stop:
-            run.active[index] = False
+            _release(run, index)
         return t, y, stop
     if kind == "stick":
         run.stuck[index] = True

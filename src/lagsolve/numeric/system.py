@@ -30,8 +30,10 @@ import sympy
 from scipy.linalg import lapack
 
 from lagsolve.errors import Issue, SimulationError, SpecError
+from lagsolve.mechanics.chart import MinimalChart
 from lagsolve.mechanics.matrix_form import MatrixForm
 from lagsolve.mechanics.simplify import norm
+from lagsolve.numeric.chart import NumericChart, compile_chart
 from lagsolve.numeric.compile import StateFunction, compile_state_function, substitute_functions
 
 
@@ -71,6 +73,7 @@ class NumericSystem:
     curve: StateFunction | None
     energy_conserved: bool
     energy_note: str
+    chart: NumericChart | None = None  # minimal coordinates, when the constraints are solved in closed form
     evaluations: list[int] = field(default_factory=lambda: [0])
 
     @property
@@ -221,10 +224,11 @@ def _values(form: MatrixForm, overrides: Mapping[str, float]) -> dict[str, float
 
 
 def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
-         conserved: Mapping[str, Any] | None = None) -> NumericSystem:
+         conserved: Mapping[str, Any] | None = None, chart: MinimalChart | None = None) -> NumericSystem:
     """Bind a problem's matrix form to parameter values (the file's, then ``overrides``) and its
     concrete functions, and compile everything the integrator needs. ``conserved`` maps names to
-    expressions whose drift should be reported (those with unknown symbols are skipped).
+    expressions whose drift should be reported (those with unknown symbols are skipped); with a
+    ``chart`` the system can be integrated in minimal coordinates.
 
     Raises
     ------
@@ -366,6 +370,9 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
             curve=curve,
             energy_conserved=energy_conserved,
             energy_note=note,
+            chart=None if chart is None else compile_chart(chart, prepare, parameters=parameter_symbols,
+                                                           **{k: v for k, v in arguments.items()
+                                                              if k != "parameters"}),
         )
     except (ValueError, TypeError, NameError) as exc:  # pragma: no cover - lambdify of a derived expression
         raise SimulationError(f"could not compile the equations of {source}: {exc}") from None

@@ -156,7 +156,8 @@ def conservation_figure(trajectory: Trajectory, title: str) -> Any:
     ax.grid(alpha=0.3, which="both")
     ax2 = axes[1][0]
     ax2.semilogy(trajectory.t, np.maximum(trajectory.residual, 1e-17), linewidth=1, color="C3")
-    ax2.set_ylabel("constraint residual\n(before projection)")
+    projected = "projected" in trajectory.stats.get("coordinates", "projected")
+    ax2.set_ylabel("constraint residual\n(before projection)" if projected else "constraint residual")
     ax2.set_xlabel("$t$")
     ax2.grid(alpha=0.3, which="both")
     _events(ax2, trajectory)

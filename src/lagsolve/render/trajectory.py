@@ -76,8 +76,12 @@ def summary(trajectory: Trajectory, name: str, timing: bool = True) -> str:
             lines.append(f"  event: contact {event.name!r} {verb} at t = {event.time:.10g} ({where})")
     work = f"  steps: {stats['steps']}, right-hand-side evaluations: {stats['evaluations']}"
     lines.append(work + (f", wall time: {stats['wall_time']:.3g} s" if timing else ""))
+    if "coordinates" in stats:
+        lines.append(f"  coordinates: {stats['coordinates']}")
     if trajectory.constraints:
-        lines.append(f"  largest constraint residual (before projection): {stats['max_residual']:.3g}")
+        projected = "projected" in stats.get("coordinates", "projected")
+        lines.append(f"  largest constraint residual{' (before projection)' if projected else ''}: "
+                     f"{stats['max_residual']:.3g}")
     if stats.get("energy_conserved"):
         lines.append(f"  energy (Jacobi integral) conserved: relative drift {stats['energy_drift']:.3g}")
     else:
