@@ -28,6 +28,7 @@ lint: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python bench/derive.py
+	$(BIN)/python bench/simulate.py
 
 clean:
 	rm -rf $(VENV) out build dist .pytest_cache

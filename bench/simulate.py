@@ -2,8 +2,9 @@
 """Benchmark: lagsolve's compiled right-hand side against SymPy's LagrangesMethod + lambdify.
 
 For the seed problems and a planar n-link pendulum (n = 2, 4, 6) this measures the time
-to build the numeric callables (``load`` + ``matrix_form`` + ``bind``), the right-hand-side
-evaluations per second of ``system.solve`` at a fixed state (SymEngine's LLVM backend, the
+to build the numeric callables (``load`` + ``matrix_form(display=False)`` + ``bind``, as
+``lagsolve simulate`` does), the right-hand-side evaluations per second of ``system.solve``
+at a fixed state (SymEngine's LLVM backend, the
 default, and the plain ``lambdify`` backend), and the wall time of a 10 s integration; next
 to them the same system written by hand for ``sympy.physics.mechanics.LagrangesMethod``,
 ``rhs = LM.rhs()`` and ``f = lambdify((t, q..., qd..., params...), rhs, cse=True)``: its
@@ -168,7 +169,7 @@ def child_lagsolve(name: str) -> dict[str, Any]:
     start = time.perf_counter()
     problem = load_text(pendulum_yaml(size), f"<{name}>") if size else load_problem(ROOT / "problems" / f"{name}.yaml")
     loaded = time.perf_counter()
-    form = matrix_form(problem)
+    form = matrix_form(problem, display=False)
     formed = time.perf_counter()
     system = system_module.bind(form)
     bound = time.perf_counter()

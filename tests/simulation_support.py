@@ -51,7 +51,7 @@ simulation:
 
 def system_of(text: str, values: dict[str, float] | None = None) -> tuple[NumericSystem, dict]:
     problem = load_text(text, "inline.yaml")
-    system = bind(matrix_form(problem), values or {})
+    system = bind(matrix_form(problem, display=False), values or {})
     assert problem.simulation is not None
     return system, dict(problem.simulation.initial)
 

@@ -271,3 +271,40 @@ def test_solve_linear_rejects_a_singular_matrix():
     matrix = sympy.Matrix([[a, 2 * a], [1, 2]])
     with pytest.raises(ValueError, match="no pivot"):
         solve_linear(matrix, sympy.Matrix([1, 1]))
+
+
+def _shipped():
+    from mechanics_support import PROBLEMS
+
+    return sorted(p.stem for p in PROBLEMS.glob("*.yaml"))
+
+
+@pytest.mark.parametrize("name", _shipped())
+def test_symengine_engine_gives_the_same_equations(name):
+    """The numeric stage's matrix form (untidied energies, derivatives by SymEngine) equals the derivation's
+    (tidied energies, derivatives by SymPy): M, F, the momenta and the equations agree at random points,
+    and use the problem's own symbols."""
+    from lagsolve.mechanics.matrix_form import matrix_form
+
+    problem = problem_file(name)
+    shown, fast = matrix_form(problem), matrix_form(problem, display=False)
+    pairs = [(shown.lagrange.mass_matrix, fast.lagrange.mass_matrix), (shown.lagrange.forcing, fast.lagrange.forcing)]
+    pairs += list(zip(shown.lagrange.momenta, fast.lagrange.momenta, strict=True))
+    pairs += list(zip(shown.lagrange.equations, fast.lagrange.equations, strict=True))
+    own = set(problem.symbols.values()) | {c.acceleration for c in problem.coordinates}
+    own |= {c.multiplier for c in shown.constraints} | {f.normal for f in shown.frictions}
+    for a, b in pairs:
+        a, b = sympy.Matrix([a]), sympy.Matrix([b])
+        assert set().union(*(e.free_symbols for e in b)) <= own
+        for x, y in zip(a, b, strict=True):
+            assert_zero(x - y, samples=6)
+
+
+def test_symengine_engine_on_the_pendulum_is_exact():
+    """On the double pendulum the two engines' M and F are symbolically identical."""
+    from lagsolve.mechanics.matrix_form import matrix_form
+
+    problem = problem_file("double_pendulum")
+    shown, fast = matrix_form(problem), matrix_form(problem, display=False)
+    assert exactly_equal(shown.lagrange.mass_matrix, fast.lagrange.mass_matrix)
+    assert exactly_equal(shown.lagrange.forcing, fast.lagrange.forcing)

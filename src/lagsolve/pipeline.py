@@ -192,7 +192,7 @@ def _simulate(problem: object, options: SimulationOptions, progress: object) -> 
     from lagsolve.errors import LagsolveError
     from lagsolve.mechanics.matrix_form import matrix_form
 
-    form = matrix_form(problem)  # type: ignore[arg-type]
+    form = matrix_form(problem, display=False)  # type: ignore[arg-type]
     # conserved quantities and minimal coordinates come from the full derivation (analysis); it gets a
     # budget of its own, so that a system too large to solve symbolically can still be simulated from its
     # matrix form (in all coordinates)

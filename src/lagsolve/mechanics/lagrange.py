@@ -53,25 +53,73 @@ class LagrangeTerms:
 
 
 def lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...],
-                   generalized_forces: tuple[Any, ...]) -> LagrangeTerms:
-    """Build each Lagrange equation and the matrix form :math:`M\\ddot q = F + A^T\\lambda`."""
-    L = model.lagrangian
+                   generalized_forces: tuple[Any, ...], *, engine: str = "sympy") -> LagrangeTerms:
+    r"""Build each Lagrange equation and the matrix form :math:`M\ddot q = F + A^T\lambda`.
+
+    ``engine="symengine"`` takes the derivatives with SymEngine (tens of times faster on a large
+    Lagrangian) and converts them back; the results are the same expressions up to SymPy's
+    automatic ordering, but not in the tidy shape a report wants. Where SymEngine is missing or
+    cannot express the Lagrangian (declared functions), SymPy is used.
+    """
     q, qd, qdd = model.coordinates, model.velocities, model.accelerations
-    momenta = tuple(sympy.diff(L, v) for v in qd)
-    rates = tuple(model.time_derivative(p, second_order=True) for p in momenta)
-    gradients = tuple(sympy.diff(L, c) for c in q)
+    parts = _symengine_parts(model) if engine == "symengine" else None
+    if parts is None:
+        L = model.lagrangian
+        momenta = tuple(sympy.diff(L, v) for v in qd)
+        rates = tuple(model.time_derivative(p, second_order=True) for p in momenta)
+        gradients = tuple(sympy.diff(L, c) for c in q)
+        M = sympy.Matrix([[sympy.diff(p, v) for v in qd] for p in momenta])
+        zero_acc = {a: 0 for a in qdd}
+        drift = [r.xreplace(zero_acc) for r in rates]
+    else:
+        momenta, rates, gradients, M, drift = parts
     C = tuple(sum((c.multiplier * c.coefficients[i] for c in constraints), sympy.Integer(0))
               for i in range(len(q)))
     equations = tuple(rates[i] - gradients[i] - generalized_forces[i] - C[i] for i in range(len(q)))
-
-    M = sympy.Matrix([[sympy.diff(p, v) for v in qd] for p in momenta])
-    zero_acc = {a: 0 for a in qdd}
-    F = sympy.Matrix([gradients[i] + generalized_forces[i] - rates[i].xreplace(zero_acc) for i in range(len(q))])
+    F = sympy.Matrix([gradients[i] + generalized_forces[i] - drift[i] for i in range(len(q))])
     A = sympy.Matrix(len(constraints), len(q), lambda j, i: constraints[j].coefficients[i])
     beta = sympy.Matrix([c.acceleration_rhs for c in constraints])
     return LagrangeTerms(momenta, rates, gradients, tuple(generalized_forces), C, equations,
                          sympy.ImmutableMatrix(M), sympy.ImmutableMatrix(F),
                          sympy.ImmutableMatrix(A), sympy.ImmutableMatrix(beta))
+
+
+def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
+    """Momenta, their rates, gradients, M and the velocity part of the rates, differentiated with SymEngine
+    and converted back to SymPy (with the model's own symbols); None where SymEngine cannot be used."""
+    L = model.lagrangian
+    if L.atoms(sympy.core.function.AppliedUndef) or L.has(sympy.Derivative):
+        return None
+    try:
+        import symengine
+        from symengine.lib.symengine_wrapper import sympy2symengine
+    except ImportError:
+        return None
+    try:
+        t, q, qd, qdd = (sympy2symengine(model.time), [sympy2symengine(x) for x in model.coordinates],
+                         [sympy2symengine(x) for x in model.velocities],
+                         [sympy2symengine(x) for x in model.accelerations])
+        lagrangian = sympy2symengine(L)
+        momenta = [lagrangian.diff(v) for v in qd]
+        mass = [[p.diff(v) for v in qd] for p in momenta]
+        drift = [p.diff(t) + sum((p.diff(c) * v for c, v in zip(q, qd, strict=True)), symengine.Integer(0))
+                 for p in momenta]
+        gradients = [lagrangian.diff(c) for c in q]
+        own = {s.name: s for s in L.free_symbols | {model.time, *model.coordinates, *model.velocities,
+                                                    *model.accelerations}}
+
+        def back(expr: Any) -> Any:
+            value = expr._sympy_()  # a SymEngine object, never text
+            return value.xreplace({s: own[s.name] for s in value.free_symbols})
+
+        momenta_back = tuple(back(p) for p in momenta)
+        mass_back = sympy.Matrix([[back(e) for e in row] for row in mass])
+        drift_back = [back(d) for d in drift]
+        rates = tuple(d + sum((mass_back[i, k] * model.accelerations[k] for k in range(len(qdd))), sympy.Integer(0))
+                      for i, d in enumerate(drift_back))
+        return momenta_back, rates, tuple(back(g) for g in gradients), mass_back, drift_back
+    except (RuntimeError, TypeError, ValueError, NotImplementedError, AttributeError, KeyError):
+        return None
 
 
 def solve_augmented(terms: LagrangeTerms) -> tuple[tuple[Any, ...], tuple[Any, ...]]:

@@ -41,14 +41,19 @@ class MatrixForm:
     reactions: dict[str, Reaction]
 
 
-def matrix_form(problem: Problem) -> MatrixForm:
-    """Build the matrix form of ``problem``'s equations of motion (no solve, no display simplification)."""
-    model = build_model(problem)
+def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
+    """Build the matrix form of ``problem``'s equations of motion (no solve, no display simplification).
+
+    ``display=False`` is for the numeric stage alone: the energies are not tidied and the derivatives
+    are taken with SymEngine (see :func:`~lagsolve.mechanics.lagrange.lagrange_terms`). The
+    equations are the same; only their written shape differs, which compiled code does not see.
+    """
+    model = build_model(problem, tidy=display)
     constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
     loads = force_terms(problem, model)
     frictions = tuple(friction_term(f, problem, model) for f in problem.friction)
     n = len(model.coordinates)
     q_forces = tuple(sum((t.generalized[i] for t in (*loads, *frictions)), sympy.Integer(0)) for i in range(n))
-    lagrange = lagrange_terms(model, constraints, q_forces)
+    lagrange = lagrange_terms(model, constraints, q_forces, engine="sympy" if display else "symengine")
     reactions = {c.name: reaction(problem, model, c) for c in constraints}
     return MatrixForm(problem, model, constraints, loads, frictions, q_forces, lagrange, reactions)

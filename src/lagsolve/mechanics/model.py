@@ -65,7 +65,7 @@ def time_derivative(expr: Any, model: Model, *, second_order: bool = False) -> A
     return result
 
 
-def build_model(problem: Problem) -> Model:
+def build_model(problem: Problem, *, tidy: bool = True) -> Model:
     r"""Energies of ``problem``.
 
     .. math::
@@ -75,6 +75,8 @@ def build_model(problem: Problem) -> Model:
 
     with :math:`T_{rot} = \tfrac12 I\omega^2` for a planar body and
     :math:`\tfrac12\sum_k I_k\omega_k^2` (principal axes, body-frame components) in 3-D.
+    ``tidy=False`` leaves the energies as built (for the numeric stage, which compiles them with
+    common-subexpression elimination and has no use for a compact display form).
     """
     q = tuple(c.symbol for c in problem.coordinates)
     qd = tuple(c.velocity for c in problem.coordinates)
@@ -97,5 +99,6 @@ def build_model(problem: Problem) -> Model:
         potential += problem.potential
     # Simplify the energies once, here: every later expression is built from them,
     # so a compact L keeps the whole derivation small (an identity, not an approximation).
-    kinetic, potential = tidy_sum(kinetic), tidy_sum(potential)
+    if tidy:
+        kinetic, potential = tidy_sum(kinetic), tidy_sum(potential)
     return Model(problem.time, q, qd, qdd, kinetic, potential, kinetic - potential)
