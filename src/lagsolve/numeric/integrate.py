@@ -394,7 +394,9 @@ def _state(system: NumericSystem, y: np.ndarray) -> dict[str, float]:
 def _sample(run: _Run, t: float, y: np.ndarray) -> tuple:
     n = run.system.n
     residual = run.residual(t, y[:n], y[n:])
-    q, qd = run.projected(t, y[:n], y[n:]) if run.project else (y[:n].copy(), y[n:].copy())
+    # in minimal coordinates the state is on the constraints by construction
+    projecting = run.project and (run.chart is None or run.stuck.any())
+    q, qd = run.projected(t, y[:n], y[n:]) if projecting else (y[:n].copy(), y[n:].copy())
     return (float(t), q, qd, residual, run.active.copy(), run.stuck.copy(), run.direction.copy())
 
 

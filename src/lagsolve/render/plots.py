@@ -143,7 +143,8 @@ def conservation_figure(trajectory: Trajectory, title: str) -> Any:
     if trajectory.stats.get("energy_conserved"):
         series["energy $h$"] = trajectory.energy
     for name, values in trajectory.conserved.items():
-        series[name.replace("_", " ")] = values
+        if name != "energy" or "energy $h$" not in series:  # the same h, drawn once
+            series[name.replace("_", " ")] = values
     for label, values in series.items():
         scale = abs(values[0]) if abs(values[0]) > 1e-300 else 1.0
         ax.semilogy(trajectory.t, np.maximum(np.abs(values - values[0]) / scale, 1e-17), linewidth=1, label=label)
@@ -155,8 +156,15 @@ def conservation_figure(trajectory: Trajectory, title: str) -> Any:
     ax.set_ylabel("relative drift")
     ax.grid(alpha=0.3, which="both")
     ax2 = axes[1][0]
-    ax2.semilogy(trajectory.t, np.maximum(trajectory.residual, 1e-17), linewidth=1, color="C3")
     projected = "projected" in trajectory.stats.get("coordinates", "projected")
+    if trajectory.constraints and not np.any(trajectory.residual):
+        ax2.set_yscale("log")
+        ax2.set_ylim(1e-17, 1e-13)
+        ax2.text(0.5, 0.5, "the residual is exactly 0 at every sample"
+                 + ("" if projected else ":\nminimal coordinates, the dependent ones computed from the constraints"),
+                 transform=ax2.transAxes, ha="center", va="center", fontsize="small")
+    else:
+        ax2.semilogy(trajectory.t, np.maximum(trajectory.residual, 1e-17), linewidth=1, color="C3")
     ax2.set_ylabel("constraint residual\n(before projection)" if projected else "constraint residual")
     ax2.set_xlabel("$t$")
     ax2.grid(alpha=0.3, which="both")
