@@ -64,8 +64,8 @@ BASELINE_NOTES = {
 COLUMNS = """\
 Columns (best of {repeat} run(s); builds each in a fresh Python process with a cold SymPy cache,
 times leave out interpreter start-up and imports):
-  build        lagsolve: load (YAML -> Problem) + matrix_form + bind (compiling every callable
-               the integrator needs, not only the right-hand side); (load form bind) split it
+  build        lagsolve: load (YAML -> Problem) + matrix_form(display=False) + bind (compiling every
+               callable the integrator needs, not only the right-hand side); (load form bind) split it
   rhs/s        evaluations per second of system.solve(t, q, qd) at the problem's initial state:
                compiled M, F, A, beta (SymEngine LLVM) + the LAPACK solve of the augmented system
   (python)     the same with compile_state_function(..., backend="python") (sympy.lambdify with
