@@ -370,9 +370,7 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
             curve=curve,
             energy_conserved=energy_conserved,
             energy_note=note,
-            chart=None if chart is None else compile_chart(chart, prepare, parameters=parameter_symbols,
-                                                           **{k: v for k, v in arguments.items()
-                                                              if k != "parameters"}),
+            chart=None if chart is None else compile_chart(chart, prepare, **arguments),
         )
     except (ValueError, TypeError, NameError) as exc:  # pragma: no cover - lambdify of a derived expression
         raise SimulationError(f"could not compile the equations of {source}: {exc}") from None
