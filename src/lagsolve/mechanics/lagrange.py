@@ -96,9 +96,8 @@ def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
     except ImportError:
         return None
     try:
-        t, q, qd, qdd = (sympy2symengine(model.time), [sympy2symengine(x) for x in model.coordinates],
-                         [sympy2symengine(x) for x in model.velocities],
-                         [sympy2symengine(x) for x in model.accelerations])
+        t, q, qd = (sympy2symengine(model.time), [sympy2symengine(x) for x in model.coordinates],
+                    [sympy2symengine(x) for x in model.velocities])
         lagrangian = sympy2symengine(L)
         momenta = [lagrangian.diff(v) for v in qd]
         mass = [[p.diff(v) for v in qd] for p in momenta]
@@ -115,7 +114,7 @@ def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
         momenta_back = tuple(back(p) for p in momenta)
         mass_back = sympy.Matrix([[back(e) for e in row] for row in mass])
         drift_back = [back(d) for d in drift]
-        rates = tuple(d + sum((mass_back[i, k] * model.accelerations[k] for k in range(len(qdd))), sympy.Integer(0))
+        rates = tuple(d + sum((mass_back[i, k] * a for k, a in enumerate(model.accelerations)), sympy.Integer(0))
                       for i, d in enumerate(drift_back))
         return momenta_back, rates, tuple(back(g) for g in gradients), mass_back, drift_back
     except (RuntimeError, TypeError, ValueError, NotImplementedError, AttributeError, KeyError):

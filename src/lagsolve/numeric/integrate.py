@@ -276,7 +276,7 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         "method": method, "rtol": rtol, "atol": atol, "steps": steps, "evaluations": system.evaluations[0],
         "solver_evaluations": nfev, "wall_time": clock.perf_counter() - start, "max_residual": max_residual,
         "energy_conserved": system.energy_conserved, "energy_note": system.energy_note,
-        "coordinates": coordinates,
+        "coordinates": coordinates, "projected": bool(m) and run.chart is None,
     })
 
 

@@ -156,7 +156,7 @@ def conservation_figure(trajectory: Trajectory, title: str) -> Any:
     ax.set_ylabel("relative drift")
     ax.grid(alpha=0.3, which="both")
     ax2 = axes[1][0]
-    projected = "projected" in trajectory.stats.get("coordinates", "projected")
+    projected = trajectory.stats.get("projected", True)
     if trajectory.constraints and not np.any(trajectory.residual):
         ax2.set_yscale("log")
         ax2.set_ylim(1e-17, 1e-13)

@@ -79,7 +79,7 @@ def summary(trajectory: Trajectory, name: str, timing: bool = True) -> str:
     if "coordinates" in stats:
         lines.append(f"  coordinates: {stats['coordinates']}")
     if trajectory.constraints:
-        projected = "projected" in stats.get("coordinates", "projected")
+        projected = stats.get("projected", True)
         lines.append(f"  largest constraint residual{' (before projection)' if projected else ''}: "
                      f"{stats['max_residual']:.3g}")
     if stats.get("energy_conserved"):
