@@ -31,6 +31,8 @@ from lagsolve.mechanics.equilibria import EffectivePotential, effective_potentia
 from lagsolve.mechanics.integrability import Classification, classify_all
 from lagsolve.mechanics.linearize import Linearization, linearize
 from lagsolve.mechanics.minimal import ReducedSystem, reduce_system
+from lagsolve.mechanics.names import momentum_name
+from lagsolve.mechanics.stages import Stages
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.derivation import Derivation
@@ -51,31 +53,62 @@ class Analysis:
     linearization_note: str
 
 
-def analyse(derivation: Derivation) -> Analysis:
-    """The analysis of a finished derivation (see the module docstring)."""
+def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
+    """The analysis of a finished derivation (see the module docstring), each part a stage of ``stages``
+    (a fresh budget when None): a part that runs out of its share, or does not apply, says why in its note."""
+    stages = stages if stages is not None else Stages()
     problem, model, lagrange = derivation.problem, derivation.model, derivation.lagrange
-    constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
-    taken = set(problem.symbols) | {f.name for f in problem.functions} | {f"p_{c.name}" for c in problem.coordinates}
-    classes = classify_all(constraints, model, problem.constraints, taken)
+    constraints = derivation.form.constraints if derivation.form is not None else \
+        tuple(constraint_terms(c, model) for c in problem.constraints)
+    taken = set(problem.symbols) | {f.name for f in problem.functions} | {momentum_name(c.symbol)
+                                                                          for c in problem.coordinates}
+    classes = stages.run("constraint classification", classify_all, constraints, model, problem.constraints, taken)
     # a normal force the multiplier route keeps as a symbol N (coupled friction) stays a symbol here too
+    raw = derivation.raw_accelerations
     normals = {f.term.normal: f.normal_force for f in derivation.friction
-               if not any(a.has(f.term.normal) for a in derivation.raw_accelerations)}
-    reduced, reduced_note = reduce_system(model, constraints, classes, lagrange.generalized_forces, normals,
-                                          derivation.raw_accelerations, problem.independent)
+               if raw is not None and not any(a.has(f.term.normal) for a in raw)}
+    reduced, reduced_note = None, ""
+    if classes is None:
+        reduced_note = _stage_reason(stages, "constraint classification")
+        stages.skip("minimal coordinates", "needs the constraint classification, which did not finish")
+        classes = ()
+    else:
+        found = stages.run("minimal coordinates", reduce_system, model, constraints, classes,
+                           lagrange.generalized_forces, normals, raw, problem.independent)
+        reduced, reduced_note = found if found is not None else (None, _stage_reason(stages, "minimal coordinates"))
     if reduced is not None:
         system = MotionSystem(reduced.model, reduced.generalized_forces, reduced.acceleration_map(), kind="reduced")
     else:
         forces = tuple(f.xreplace(normals) for f in lagrange.generalized_forces)
-        system = MotionSystem(model, forces, dict(zip(model.accelerations, derivation.raw_accelerations, strict=True)),
-                              constraints, constraint_surface(constraints, model), kind="full")
+        accelerations = dict(zip(model.accelerations, raw, strict=True)) if raw is not None else {}
+        system = MotionSystem(model, forces, accelerations, constraints, constraint_surface(constraints, model),
+                              kind="full")
     friction = bool(problem.friction)
-    conservation = conserved_quantities(system, friction=friction)
-    effective, effective_note = effective_potential(system, conservation, friction)
+    conservation = stages.run("conserved quantities", conserved_quantities, system, friction=friction)
+    if conservation is None:
+        conservation = Conservation((), (), (_stage_reason(stages, "conserved quantities"),))
+    effective, effective_note = None, ""
+    if friction:
+        stages.skip("effective potential", "Coulomb friction acts: equilibria are not isolated points")
+        effective_note = "Coulomb friction acts"
+    else:
+        found_v = stages.run("effective potential", effective_potential, system, conservation, friction)
+        effective, effective_note = (found_v if found_v is not None
+                                     else (None, _stage_reason(stages, "effective potential")))
     linear, linear_note = None, "the effective potential covers this system"
     if effective is None:
-        linear, linear_note = linearize(system, conservation.cyclic, friction)
+        found_l = stages.run("equilibria and normal modes", linearize, system, conservation.cyclic, friction)
+        linear, linear_note = (found_l if found_l is not None
+                               else (None, _stage_reason(stages, "equilibria and normal modes")))
+    else:
+        stages.skip("equilibria and normal modes", "the effective potential covers this system", "n/a")
     return Analysis(classes, reduced, reduced_note, system, conservation, effective, effective_note,
                     linear, linear_note)
+
+
+def _stage_reason(stages: Stages, stage: str) -> str:
+    note = stages.note_for(stage)
+    return note.reason if note is not None else "did not finish"
 
 
 def contract_forms(analysis: Analysis) -> dict[str, Any]:
@@ -106,7 +139,7 @@ def contract_forms(analysis: Analysis) -> dict[str, Any]:
     return {"reduced": reduced, "conserved": conserved, "effective_potential": effective}
 
 
-def with_analysis(derivation: Derivation) -> Derivation:
+def with_analysis(derivation: Derivation, stages: Stages | None = None) -> Derivation:
     """``derivation`` with ``analysis`` and the contract forms filled in."""
-    analysis = analyse(derivation)
+    analysis = analyse(derivation, stages)
     return dataclasses.replace(derivation, analysis=analysis, **contract_forms(analysis))

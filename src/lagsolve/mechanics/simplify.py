@@ -103,6 +103,9 @@ def tidy(expr: Any) -> Any:
             continue
     if expr.has(*_TRIG):
         candidates += pythagoras(expr)
+        numerator, denominator = sympy.fraction(candidates[1])
+        contracted = compound_angles(sympy.expand(numerator)) / compound_angles(sympy.expand(denominator))
+        candidates += [contracted, sympy.factor_terms(contracted)]
         if sympy.count_ops(expr) <= TRIGSIMP_LIMIT:
             reduced = sympy.trigsimp(candidates[1])
             for step in (sympy.factor, lambda e: sympy.factor(sympy.expand_trig(e))):
@@ -131,8 +134,28 @@ def tidy_sum(expr: Any) -> Any:
         if sympy.count_ops(expanded) <= TRIGSIMP_LIMIT:
             reduced = sympy.trigsimp(expanded)
             candidates += [reduced, sympy.expand(sympy.expand_trig(reduced))]
+        candidates.append(compound_angles(expanded))
     candidates += [sympy.factor_terms(c) for c in candidates]
     return min(candidates, key=measure)
+
+
+def compound_angles(expr: Any) -> Any:
+    """``sin a sin b + cos a cos b`` → ``cos(a − b)`` and the like (sums of products to a function of a
+    sum), term by term of the expanded ``expr``: the textbook form of chains of pendulums.
+
+    >>> import sympy
+    >>> a, b = sympy.symbols("a b")
+    >>> compound_angles(sympy.sin(a)*sympy.sin(b) + sympy.cos(a)*sympy.cos(b))
+    cos(a - b)
+    """
+    from sympy.simplify.fu import TR10i
+
+    if not isinstance(expr, sympy.Basic) or not expr.has(sympy.sin, sympy.cos):
+        return expr
+    try:
+        return TR10i(sympy.expand(expr))
+    except _ERRORS:
+        return expr
 
 
 def tidy_abs(expr: Any) -> Any:
