@@ -10,6 +10,7 @@ simplified once, in :mod:`lagsolve.mechanics.simplify`.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -115,13 +116,16 @@ class Derivation:
         return not any(n.kind in ("budget", "size") for n in self.notes)
 
 
-def derive(problem: Problem, *, budget: float | None = None, analysis: bool = True) -> Derivation:
+def derive(problem: Problem, *, budget: float | None = None, analysis: bool = True,
+           on_core: Callable[[Derivation], None] | None = None) -> Derivation:
     """Derive the equations of motion, multipliers and forces of constraint of ``problem``.
 
     The core, the matrix form, always comes out; each later stage runs with its share of
     ``budget`` CPU seconds (default :data:`~lagsolve.mechanics.stages.DEFAULT_BUDGET`) and
     leaves a note instead of a result when it cannot finish (:class:`Derivation`). With
-    ``analysis=False`` the analysis after the equations is left out.
+    ``analysis=False`` the analysis after the equations is left out. ``on_core``, when given, is
+    called with the core alone (the matrix form, nothing solved or simplified) as soon as it is
+    built, so that a caller can still answer if a later stage is stopped from outside.
 
     Raises
     ------
@@ -132,6 +136,8 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     form = matrix_form(problem, display=False)
     model, constraints, frictions = form.model, form.constraints, form.frictions
     lagrange, reactions = form.lagrange, form.reactions
+    if on_core is not None:
+        on_core(core(form))
     solved = stages.run("explicit solve", _solve, lagrange)
     raw_acc, raw_lam = solved if solved is not None else (None, None)
     elimination = eliminate(constraints, model)
@@ -179,6 +185,17 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     if analysis:
         derivation = with_analysis(derivation, stages)
     return dataclasses.replace(derivation, notes=stages.shown())
+
+
+def core(form: MatrixForm, note: str = "") -> Derivation:
+    """The derivation's core alone: the matrix form with nothing solved or simplified (``note``, when
+    given, says why the later stages are missing)."""
+    elimination = eliminate(form.constraints, form.model)
+    shown = _display(form, elimination, None, None, _plain, _plain)
+    notes = (StageNote("later stages", note, "budget"),) if note else ()
+    return Derivation(problem=form.problem, model=form.model, lagrange=form.lagrange, elimination=elimination,
+                      raw_accelerations=None, raw_multipliers=None, constraint_forces=None, form=form,
+                      notes=notes, **shown)
 
 
 def _solve(lagrange: LagrangeTerms) -> tuple[tuple[Any, ...], tuple[Any, ...]]:

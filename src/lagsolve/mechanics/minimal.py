@@ -78,7 +78,7 @@ class ReducedSystem:
 
     def acceleration_map(self) -> dict[Any, Any]:
         """:math:`\\ddot q_k \\to` its raw expression, for substitution."""
-        return dict(zip(self.model.accelerations, self.raw_accelerations, strict=True))
+        return dict(zip(self.model.accelerations, self.raw_accelerations, strict=True)) if self.raw_accelerations else {}
 
 
 def holonomic_set(constraints: tuple[ConstraintTerms, ...],
@@ -156,12 +156,13 @@ def _eliminate_for(constraints: tuple[ConstraintTerms, ...], model: Model, indep
 def reduce_system(model: Model, constraints: tuple[ConstraintTerms, ...], classes: tuple[Classification, ...],
                   generalized_forces: tuple[Any, ...], normal_forces: dict[Any, Any],
                   full_accelerations: tuple[Any, ...] | None,
-                  independent: tuple[str, ...] = ()) -> tuple[ReducedSystem | None, str]:
+                  independent: tuple[str, ...] = (), *, solve: bool = True) -> tuple[ReducedSystem | None, str]:
     """The reduced system (see the module docstring), or None and the reason it is not formed.
 
     ``generalized_forces`` are the full :math:`Q_i` (friction with its normal-force symbols,
     replaced by ``normal_forces``); ``full_accelerations`` the multiplier route's raw
-    :math:`\\ddot q` for the agreement check.
+    :math:`\\ddot q` for the agreement check. ``solve=False`` stops after the reduced energies and
+    forces (no equations, no accelerations): what a simulation needs, cheaply.
     """
     holonomic, reason = holonomic_set(constraints, classes)
     if reason:
@@ -180,6 +181,12 @@ def reduce_system(model: Model, constraints: tuple[ConstraintTerms, ...], classe
     q_red = tuple(tidy(sum((forces[i] * sympy.diff(path[i], q) for i in range(len(path))), sympy.Integer(0)))
                   for q in q_ind)
     terms = lagrange_terms(reduced_model, (), q_red, engine="symengine")
+    if not solve:
+        constants = tuple(k.constant for k in classes if k.constant is not None)
+        return ReducedSystem(independent=q_ind, substitution=elimination, constants=constants, model=reduced_model,
+                             generalized_forces=q_red, lagrange=terms, raw_accelerations=(), kinetic=kinetic,
+                             potential=potential, lagrangian=kinetic - potential, equation_sides=(),
+                             accelerations={}, agreement="unchecked"), ""
     if not elimination.positions and full_accelerations is not None:
         raw = tuple(full_accelerations)  # nothing eliminated: the reduced system is the full one
     elif not elimination.positions:

@@ -38,6 +38,8 @@ def measure(expr: Any) -> tuple[int, int, str]:
 #: above this many operations SymPy's general ``simplify`` and ``trigsimp`` are skipped
 #: (they dominate run time on large expressions; the Pythagorean reduction below is cheap)
 SIMPLIFY_LIMIT = 60
+#: above this many operations :func:`tidy` only pulls out common factors (no factor, cancel or trig rewriting)
+TIDY_LIMIT = 400
 TRIGSIMP_LIMIT = 0
 _ERRORS = (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError)
 
@@ -95,6 +97,9 @@ def tidy(expr: Any) -> Any:
         return _number(expr)
     if expr.is_Number or expr.is_Symbol:
         return expr
+    if sympy.count_ops(expr) > TIDY_LIMIT:
+        # a governor: factor and cancel on a large expression cost far more than they gain
+        return min([expr, sympy.factor_terms(expr)], key=measure)
     candidates: list[Any] = [expr]
     for step in (sympy.cancel, sympy.factor_terms, lambda e: sympy.factor(sympy.cancel(e))):
         try:

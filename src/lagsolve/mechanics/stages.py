@@ -40,7 +40,11 @@ STAGES: dict[str, float] = {
     "conserved quantities": 1.0,
     "effective potential": 2.0,
     "equilibria and normal modes": 2.0,
+    "numeric equilibria": 1.0,
 }
+
+#: the largest part of the whole budget one optional stage may take, however much is left
+MAX_SHARE = 0.15
 
 #: the smallest slice a stage is given, so that a cheap stage still runs when the budget is nearly used up
 MIN_SLICE = 0.5
@@ -74,8 +78,9 @@ class StageNote:
 class Stages:
     """Runs the stages of one derivation under a CPU budget and collects their notes.
 
-    Each stage gets ``left × weight / (weights of the stages not yet run)``, at least
-    :data:`MIN_SLICE`, so time a stage does not use flows to the later ones.
+    Each stage gets ``left × weight / (weights of the stages not yet run)``, at most
+    :data:`MAX_SHARE` of the whole budget and at least :data:`MIN_SLICE`, so time a stage does not
+    use flows to the later ones, but no single optional step eats the budget.
     """
 
     budget: float = DEFAULT_BUDGET
@@ -90,7 +95,8 @@ class Stages:
     def slice_for(self, stage: str) -> float:
         rest = sum(w for s, w in STAGES.items() if s not in self._done)
         weight = STAGES[stage]
-        return max(MIN_SLICE, self.left() * weight / rest) if rest else MIN_SLICE
+        share = min(self.left() * weight / rest, self.budget * MAX_SHARE) if rest else 0.0
+        return max(MIN_SLICE, share)
 
     def skip(self, stage: str, reason: str, kind: str = "skipped") -> None:
         """Record that ``stage`` gives no result, and why."""
