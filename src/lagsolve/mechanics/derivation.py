@@ -27,7 +27,7 @@ from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.reactions import Reaction
 from lagsolve.mechanics.reduce import Elimination, eliminate
 from lagsolve.mechanics.simplify import compound_angles, norm, root_of_sum_of_squares, tidy, tidy_sum
-from lagsolve.mechanics.stages import DEFAULT_BUDGET, Stages, StageNote, StageTimeout, cpu_limit
+from lagsolve.mechanics.stages import DEFAULT_BUDGET, StageNote, Stages, StageTimeout, cpu_limit
 from lagsolve.problem.schema import Problem
 
 

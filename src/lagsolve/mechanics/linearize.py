@@ -189,7 +189,7 @@ STARTS = 64
 
 
 def numeric_linearization(system: MotionSystem, values: dict[str, float], initial: dict[str, float]) -> Linearization:
-    """Equilibria and normal modes of ``system`` at the parameter ``values``, found numerically.
+    r"""Equilibria and normal modes of ``system`` at the parameter ``values``, found numerically.
 
     The equilibria solve :math:`F(q_0, 0) = 0` by Newton's method (``scipy.optimize.root``) from
     :data:`STARTS` starting points around the ``initial`` state (angles anywhere in

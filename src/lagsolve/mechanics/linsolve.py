@@ -132,7 +132,7 @@ def solve_structured(M: Any, F: Any, A: Any, beta: Any, limit: int | None = SIZE
     would be larger than ``limit`` operations per expression (``None``: no bound).
     """
     M, F, A, beta = sympy.Matrix(M), sympy.Matrix(F), sympy.Matrix(A), sympy.Matrix(beta)
-    n, m = M.rows, A.rows
+    m = A.rows
     try:
         if m == 0:
             return list(_solve_blocks(M, F, limit)), []

@@ -37,10 +37,10 @@ from lagsolve.mechanics.identities import Zero, zero_status
 from lagsolve.mechanics.integrability import HOLONOMIC, INTEGRABLE, Classification
 from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms, solve_augmented
 from lagsolve.mechanics.linsolve import SIZE_LIMIT
-from lagsolve.mechanics.stages import StageSkipped
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.reduce import Elimination, eliminate
 from lagsolve.mechanics.simplify import tidy, tidy_sum
+from lagsolve.mechanics.stages import StageSkipped
 
 
 @dataclass(frozen=True)
@@ -78,7 +78,9 @@ class ReducedSystem:
 
     def acceleration_map(self) -> dict[Any, Any]:
         """:math:`\\ddot q_k \\to` its raw expression, for substitution."""
-        return dict(zip(self.model.accelerations, self.raw_accelerations, strict=True)) if self.raw_accelerations else {}
+        if not self.raw_accelerations:
+            return {}
+        return dict(zip(self.model.accelerations, self.raw_accelerations, strict=True))
 
 
 def holonomic_set(constraints: tuple[ConstraintTerms, ...],

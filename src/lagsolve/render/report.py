@@ -257,7 +257,7 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
             for c in derivation.constraints
         },
         "equations": [to_json(e) for e in derivation.equations],
-        "mass_matrix": [[to_json(e) for e in derivation.mass_matrix.row(i)] for i in range(derivation.mass_matrix.rows)],
+        "mass_matrix": [[to_json(e) for e in row] for row in derivation.mass_matrix.tolist()],
         "forcing": [to_json(e) for e in derivation.forcing],
         "accelerations": (None if derivation.accelerations is None
                           else {k: to_json(v) for k, v in derivation.accelerations.items()}),
