@@ -51,12 +51,12 @@ def _lagranges_method(n: int) -> tuple[sympy.Matrix, sympy.Matrix, list, list]:
 
     q = dynamicsymbols(f"q1:{n + 1}")
     t = dynamicsymbols._t
-    m, g, l = sympy.symbols("m g l", positive=True)
+    m, g, length = sympy.symbols("m g l", positive=True)
     kinetic = potential = 0
     x = y = 0
     for i in range(n):
-        x += l * sympy.sin(q[i])
-        y -= l * sympy.cos(q[i])
+        x += length * sympy.sin(q[i])
+        y -= length * sympy.cos(q[i])
         kinetic += m * (sympy.diff(x, t) ** 2 + sympy.diff(y, t) ** 2) / 2
         potential += m * g * y
     method = LagrangesMethod(kinetic - potential, q)
@@ -104,8 +104,8 @@ def test_analysis_without_closed_form_still_gives_the_accelerations() -> None:
     data = json.loads(result_json(derivation))
     assert set(data["accelerations"]) == {"theta1", "theta2"}
     s = {x.name: x for x in derivation.model.coordinates} | {p.name: p.symbol for p in derivation.problem.parameters}
-    t1, t2, m, g, l, k = (s[n] for n in ("theta1", "theta2", "m", "g", "l", "k"))
-    newton = -g / l * sympy.sin(t1) + k / m * sympy.cos(t1) * (sympy.sin(t2) - sympy.sin(t1))
+    t1, t2, m, g, rod, k = (s[n] for n in ("theta1", "theta2", "m", "g", "l", "k"))
+    newton = -g / rod * sympy.sin(t1) + k / m * sympy.cos(t1) * (sympy.sin(t2) - sympy.sin(t1))
     assert sympy.simplify(derivation.accelerations["theta1"] - newton) == 0
     assert any(n["stage"] == "equilibria and normal modes" for n in data["notes"])
 
