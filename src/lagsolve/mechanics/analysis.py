@@ -91,7 +91,7 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
         conservation = Conservation((), (), (_stage_reason(stages, "conserved quantities"),))
     effective, effective_note = None, ""
     if friction:
-        stages.skip("effective potential", "Coulomb friction acts: equilibria are not isolated points")
+        stages.skip("effective potential", "Coulomb friction acts: equilibria are not isolated points", "n/a")
         effective_note = "Coulomb friction acts"
     else:
         found_v = stages.run("effective potential", effective_potential, system, conservation, friction)
@@ -112,6 +112,9 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
                                  dict(spec.initial))
             if numeric is not None:
                 linear, linear_note = numeric, f"numeric: {linear_note}"
+            else:
+                linear_note += f"; {_stage_reason(stages, 'numeric equilibria')}"
+                stages.settle("numeric equilibria")  # the analysis section says it
     else:
         stages.skip("equilibria and normal modes", "the effective potential covers this system", "n/a")
     return Analysis(classes, reduced, reduced_note, system, conservation, effective, effective_note,

@@ -121,6 +121,11 @@ class Stages:
             self.notes.append(StageNote(stage, str(reason), kind))
         return None
 
+    def settle(self, stage: str) -> None:
+        """Mark ``stage``'s "skipped" note as nothing to report (its answer is given elsewhere)."""
+        self.notes = [StageNote(n.stage, n.reason, "n/a") if n.stage == stage and n.kind == "skipped" else n
+                      for n in self.notes]
+
     def shown(self) -> tuple[StageNote, ...]:
         """The notes a report shows (all but ``"n/a"``)."""
         return tuple(n for n in self.notes if n.kind != "n/a")
