@@ -34,10 +34,10 @@ from lagsolve.check import (
 )
 from lagsolve.mechanics.derivation import Derivation, derive
 from lagsolve.problem.load import load_text
-from mechanics_support import derived_file
+from mechanics_support import derived_file, shipped
 
 ROOT = Path(__file__).resolve().parents[1]
-PROBLEMS = sorted((ROOT / "problems").glob("*.yaml"))
+PROBLEMS = [ROOT / "problems" / f"{name}.yaml" for name in shipped()]
 
 
 @functools.cache
