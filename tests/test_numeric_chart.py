@@ -67,9 +67,9 @@ def test_accelerations_are_the_reduced_lagrangians(name):
 
 
 def _simulated():
-    # cart_two_wheels: the LLVM-compiled constraint Jacobian has +1 where -R belongs (the Python backend is right),
-    # and the chart leaves phi1 = phi10 + x1/R with x1 itself dependent; both are lagsolve bugs, reported
-    known = {"cart_two_wheels": "numeric stage: LLVM-compiled constraint rows and chained chart dependents are wrong"}
+    # cart_two_wheels: the LLVM-compiled state function (numeric/compile.py) evaluates the constraint Jacobian's -R
+    # entries as +1; with the Python backend both runs are right (x = 12.5, x_dot = 5 at t = 5). Reported as a bug
+    known = {"cart_two_wheels": "LLVM backend evaluates -R in the constraint rows as +1 (the Python backend is right)"}
     return [pytest.param(name, marks=pytest.mark.xfail(reason=known[name], strict=True)) if name in known else name
             for name in shipped()]
 
