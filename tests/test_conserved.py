@@ -91,6 +91,7 @@ def test_momentum_of_a_coordinate_only_in_other_coefficients_is_conserved():
     s = names(coin.problem)
     assert exactly_equal(coin.conserved["p_phi"], s["Id"] * s["phi_dot"])
     assert s["phi"] in coin.analysis.conservation.cyclic
+    assert set(coin.conserved) == {"p_phi", "energy"}  # x, y, theta are absent from L but their velocities constrained
     # independent route: Lagrange's equations with multipliers by SymPy, the coin written out by hand
     x, y, phi, theta = dynamicsymbols("x y phi theta")
     m, R, Ia, Id = sympy.symbols("m R Ia Id", positive=True)
