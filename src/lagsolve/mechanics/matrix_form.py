@@ -45,8 +45,9 @@ def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
     """Build the matrix form of ``problem``'s equations of motion (no solve, no display simplification).
 
     ``display=False`` is the core of a derivation and what the numeric stage compiles: the energies are
-    tidied only when they are small, and the derivatives are taken with SymEngine (see :func:`~lagsolve.mechanics.lagrange.lagrange_terms`). The
-    equations are the same; only their written shape differs, which compiled code does not see.
+    tidied only when they are small, and the derivatives are taken with SymEngine (see
+    :func:`~lagsolve.mechanics.lagrange.lagrange_terms`). The equations are the same; only their
+    written shape differs.
     """
     model = build_model(problem, tidy=True if display else None)
     constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
