@@ -55,6 +55,10 @@ class Analysis:
     linearization_note: str
 
 
+#: CPU seconds the symbolic equilibrium solve may take when numeric equilibria can be given instead
+NUMERIC_FALLBACK_CAP = 4.0
+
+
 def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
     """The analysis of a finished derivation (see the module docstring), each part a stage of ``stages``
     (a fresh budget when None): a part that runs out of its share, or does not apply, says why in its note."""
@@ -103,7 +107,10 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
         stages.skip("equilibria and normal modes", linear_note, "n/a")
     elif effective is None:
         values = dict(problem.simulation.values) if problem.simulation is not None else None
-        found_l = stages.run("equilibria and normal modes", linearize, system, conservation.cyclic, friction, values)
+        # with numbers to fall back on, a symbolic solve that has not finished in a few seconds will not help
+        cap = NUMERIC_FALLBACK_CAP if values is not None and not problem.functions else None
+        found_l = stages.run("equilibria and normal modes", linearize, system, conservation.cyclic, friction, values,
+                             cap=cap, instead="numeric equilibria at the simulation values are given instead")
         linear, linear_note = (found_l if found_l is not None
                                else (None, _stage_reason(stages, "equilibria and normal modes")))
         spec = problem.simulation
