@@ -167,11 +167,12 @@ def with_analysis(derivation: Derivation, stages: Stages | None = None) -> Deriv
     return dataclasses.replace(derivation, analysis=analysis, **contract_forms(analysis))
 
 
-def monitored(form: MatrixForm, budget: float = 30.0) -> tuple[dict[str, Any], MinimalChart | None, str]:
+def monitored(form: MatrixForm, budget: float = 30.0) -> tuple[dict[str, Any], MinimalChart | None, str, str]:
     """What a simulation needs from the analysis, decided cheaply from the matrix form: the conserved
     quantities to monitor (by the same criteria :func:`analyse` uses, without verifying them along
     explicit accelerations) and the chart of minimal coordinates (or the reason there is none).
-    Nothing is solved or simplified for display, so a simulation never waits for symbolic analysis."""
+    Nothing is solved or simplified for display, so a simulation never waits for symbolic analysis.
+    The last item says why the energy is not conserved ("" when it is)."""
     stages = Stages(budget)
     problem, model, constraints = form.problem, form.model, form.constraints
     taken = set(problem.symbols) | {f.name for f in problem.functions} | {momentum_name(c.symbol)
@@ -192,4 +193,12 @@ def monitored(form: MatrixForm, budget: float = 30.0) -> tuple[dict[str, Any], M
         conservation = Conservation((), (), ())
     analysis = Analysis(classes or (), reduced, note, system, conservation, None, "", None, "")
     chart, chart_note = minimal_chart(analysis, model)
-    return contract_forms(analysis)["conserved"], chart, chart_note
+    return contract_forms(analysis)["conserved"], chart, chart_note, energy_reason(conservation)
+
+
+def energy_reason(conservation: Conservation) -> str:
+    """Why the energy is not conserved, from the conservation notes ("" when it is)."""
+    if any(c.name == "energy" for c in conservation.quantities):
+        return ""
+    reason = next((n.split(": ", 1)[1] for n in conservation.notes if n.startswith("energy: ")), "")
+    return reason.removeprefix("not conserved, ") or "the analysis finds no conserved energy"
