@@ -284,7 +284,8 @@ def test_conserved_quantities_do_not_drift_in_simulation(name):
     assert problem.simulation is not None and problem.simulation.t_end is not None
     from lagsolve.mechanics.analysis import energy_reason
 
-    system = bind(derivation.form, {}, derivation.conserved, energy_note=energy_reason(derivation.analysis.conservation))
+    note = energy_reason(derivation.analysis.conservation)
+    system = bind(derivation.form, {}, derivation.conserved, energy_note=note)
     if not derivation.conserved:  # then the run does not claim energy either, and says why
         assert not system.energy_conserved and system.energy_note
         assert problem.friction or "time" in system.energy_note or "forces" in system.energy_note
