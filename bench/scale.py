@@ -46,6 +46,7 @@ SIZES = (2, 3, 4, 6, 8, 12)
 DEFAULT_CAP = 120.0  # seconds of wall time for one measurement (one fresh process)
 DEFAULT_REPEAT = 3
 SLOW_RUN = 15.0  # a measurement slower than this is not repeated (its figure is from one run)
+STOP_GRACE = 5.0  # seconds a child stopped at the cap gets to report how far it got, before SIGKILL
 T_END = 10.0  # seconds of simulated time for `lagsolve simulate`
 PROBLEM_TARGET = 5.0  # CPU seconds for the library derive of each problems/*.yaml
 SIMULATE_TARGET = 3.0  # wall seconds for `lagsolve simulate` of the 6-link pendulum, start-up included
@@ -80,7 +81,9 @@ was stopped at a smaller n before it gave any figure):
                no solve, no simplification (load_problem is not included)
   sim build    cpu: load + matrix_form(display=False) + bind(form), what `lagsolve simulate` builds
                before integrating (as bench/simulate.py's build column, but CPU time)
-  sim 10 s     wall: `lagsolve simulate FILE --t-end 10` (DOP853, default tolerances), start-up included
+  sim 10 s     wall: `lagsolve simulate FILE --t-end 10` (DOP853, default tolerances), start-up included;
+               this includes the derivation of the conserved quantities for the energy check, which
+               `lagsolve simulate` gives up after its own 60 s budget (SimulationOptions.analysis_timeout)
   LM           cpu: sympy.physics.mechanics.LagrangesMethod written by hand: building L +
                form_lagranges_equations() + rhs() (LU solve for the accelerations): derive + solve
   Kane core    cpu: KanesMethod with u_i = th_i': frames, points (v2pt_theory), KanesMethod(...) +
@@ -89,7 +92,8 @@ was stopped at a smaller n before it gave any figure):
   derive ratio LM / derive lib: how many times faster lagsolve's whole derivation is than
                LagrangesMethod's derive + solve (> 1: lagsolve is faster)
   core ratio   Kane core / core: how many times faster lagsolve's core is than KanesMethod's
-  A ratio with a capped side is a bound: ">" (at least) or "<" (at most); "?" when both are capped."""
+  A ratio with a capped side is a bound, ">" (at least) or "<" (at most), from the time the capped side
+  had run when it was stopped (CPU time for a cpu column); "?" when both are capped."""
 
 
 # --------------------------------------------------------------------------- the problem
@@ -134,13 +138,36 @@ def _emit(**figures: Any) -> None:
     print(json.dumps(figures), flush=True)
 
 
+class Stages:
+    """The CPU clock of a child's stages. Each finished stage is printed at once; when the parent
+    stops the child at the cap (SIGTERM), the CPU time each unfinished stage has run so far is
+    printed as ``<stage>_at_least`` before the child exits."""
+
+    def __init__(self) -> None:
+        self.pending: dict[str, float] = {}
+        signal.signal(signal.SIGTERM, self._stopped)
+
+    def begin(self, *keys: str) -> None:
+        now = time.process_time()
+        self.pending.update(dict.fromkeys(keys, now))
+
+    def done(self, key: str, **extra: float) -> None:
+        _emit(**{key: time.process_time() - self.pending.pop(key)}, **extra)
+
+    def _stopped(self, signum: int, frame: Any) -> None:
+        now = time.process_time()
+        _emit(**{f"{key}_at_least": now - start for key, start in self.pending.items()})
+        os._exit(3)
+
+
 def child_derive(path: str) -> None:
     from lagsolve.mechanics.derivation import derive
     from lagsolve.problem.load import load_problem
 
-    start = time.process_time()
+    stages = Stages()
+    stages.begin("lib_derive")
     derive(load_problem(path))
-    _emit(lib_derive=time.process_time() - start)
+    stages.done("lib_derive")
 
 
 def child_build(path: str) -> None:
@@ -150,21 +177,23 @@ def child_build(path: str) -> None:
 
     with contextlib.suppress(ImportError):  # the LLVM backend imports SymEngine on first use: not building
         import symengine  # noqa: F401
+    stages = Stages()
+    stages.begin("build")
     start = time.process_time()
     problem = load_problem(path)
-    loaded = time.process_time()
+    stages.begin("core")
     form = matrix_form(problem, display=False)
-    formed = time.process_time()
-    _emit(core=formed - loaded, load=loaded - start)
+    stages.done("core", load=stages.pending["core"] - start)
     bind(form)
-    _emit(build=time.process_time() - start)
+    stages.done("build")
 
 
 def child_lm(n: int) -> None:
     import sympy as sp
     import sympy.physics.mechanics as me
 
-    start = time.process_time()
+    stages = Stages()
+    stages.begin("lm_eqs", "lm_total")
     q = [me.dynamicsymbols(f"th{i}") for i in range(1, n + 1)]
     m, l, g = sp.symbols("m l g")  # noqa: E741 - the problem's name for the rod length
     t = me.dynamicsymbols._t
@@ -175,16 +204,17 @@ def child_lm(n: int) -> None:
         lagrangian += m * (x.diff(t) ** 2 + y.diff(t) ** 2) / 2 - m * g * y
     lm = me.LagrangesMethod(lagrangian, q)
     lm.form_lagranges_equations()
-    _emit(lm_eqs=time.process_time() - start)
+    stages.done("lm_eqs")
     lm.rhs()
-    _emit(lm_total=time.process_time() - start)
+    stages.done("lm_total")
 
 
 def child_kane(n: int) -> None:
     import sympy as sp
     import sympy.physics.mechanics as me
 
-    start = time.process_time()
+    stages = Stages()
+    stages.begin("kane_core", "kane_total")
     q = [me.dynamicsymbols(f"th{i}") for i in range(1, n + 1)]
     u = [me.dynamicsymbols(f"w{i}") for i in range(1, n + 1)]
     m, l, g = sp.symbols("m l g")  # noqa: E741
@@ -205,9 +235,9 @@ def child_kane(n: int) -> None:
     kinematics = [qi.diff() - ui for qi, ui in zip(q, u, strict=True)]
     kane = me.KanesMethod(frame, q_ind=q, u_ind=u, kd_eqs=kinematics)
     kane.kanes_equations(particles, loads)
-    _emit(kane_core=time.process_time() - start)
+    stages.done("kane_core")
     kane.rhs()
-    _emit(kane_total=time.process_time() - start)
+    stages.done("kane_total")
 
 
 def run_child(kind: str, arg: str) -> None:
@@ -237,29 +267,44 @@ class Run:
 
 
 def run_capped(cmd: list[str], cap: float, cwd: Path) -> Run:
-    """Run ``cmd`` in its own process group; kill the whole group after ``cap`` seconds of wall time."""
+    """Run ``cmd`` in its own process group; stop the whole group after ``cap`` seconds of wall time
+    (SIGTERM, so that a child can say how far it got, then SIGKILL after a grace period)."""
     start = time.perf_counter()
     process = subprocess.Popen(cmd, cwd=cwd, env=CHILD_ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                text=True, start_new_session=True)
-    capped = False
     try:
         out, err = process.communicate(timeout=cap)
     except subprocess.TimeoutExpired:
-        capped = True
-        with contextlib.suppress(ProcessLookupError):
-            os.killpg(process.pid, signal.SIGKILL)
-        out, err = process.communicate()
+        wall = time.perf_counter() - start
+        _signal_group(process.pid, signal.SIGTERM)
+        try:  # communicate() again loses no output
+            out, err = process.communicate(timeout=STOP_GRACE)
+        except subprocess.TimeoutExpired:
+            _signal_group(process.pid, signal.SIGKILL)
+            out, err = process.communicate()
+        _signal_group(process.pid, signal.SIGKILL)  # anything the child left behind in its group
+        return Run(wall, _figures(out), True, None)
     wall = time.perf_counter() - start
+    error = None
+    if process.returncode != 0:
+        tail = (err.strip().splitlines() or ["no output"])[-1]
+        error = f"exit {process.returncode}: {tail[:200]}"
+    return Run(wall, _figures(out), False, error)
+
+
+def _signal_group(pgid: int, signum: int) -> None:
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        os.killpg(pgid, signum)
+
+
+def _figures(out: str) -> dict[str, float]:
+    """The JSON lines a child printed, merged."""
     figures: dict[str, float] = {}
     for line in out.splitlines():
         if line.startswith("{"):
             with contextlib.suppress(json.JSONDecodeError):
                 figures.update(json.loads(line))
-    error = None
-    if not capped and process.returncode != 0:
-        tail = (err.strip().splitlines() or ["no output"])[-1]
-        error = f"exit {process.returncode}: {tail[:200]}"
-    return Run(wall, figures, capped, error)
+    return figures
 
 
 def _lagsolve_command() -> list[str]:
@@ -296,7 +341,7 @@ MEASUREMENTS = (
 
 
 def _empty_cell() -> dict[str, Any]:
-    return {"seconds": None, "capped": False, "skipped": False, "error": None, "runs": 0}
+    return {"seconds": None, "capped": False, "at_least": None, "skipped": False, "error": None, "runs": 0}
 
 
 def measure(measurement: Measurement, n: int, path: Path, tmp: Path, repeat: int, cap: float,
@@ -315,7 +360,10 @@ def measure(measurement: Measurement, n: int, path: Path, tmp: Path, repeat: int
             if isinstance(value, (int, float)):
                 cell["seconds"] = value if cell["seconds"] is None else min(cell["seconds"], value)
             elif run.capped and cell["seconds"] is None:
+                # how long it had run when stopped: the wall time, or the CPU time the child reported
+                spent = run.wall if key == measurement.wall_cell else figures.get(f"{key}_at_least")
                 cell["capped"] = True
+                cell["at_least"] = spent if isinstance(spent, (int, float)) else None
             elif run.error and cell["seconds"] is None:
                 cell["error"] = run.error
         if run.capped or run.error or run.wall > SLOW_RUN:
@@ -323,45 +371,49 @@ def measure(measurement: Measurement, n: int, path: Path, tmp: Path, repeat: int
     for cell in cells.values():
         if cell["seconds"] is not None:
             cell["capped"] = False
+            cell["at_least"] = None
             cell["error"] = None
     return cells
 
 
-def _ratio(slow: dict[str, Any], fast: dict[str, Any], cap: float) -> dict[str, Any]:
-    """slow / fast, with bounds when a side was capped (a capped side took more than ``cap``)."""
+def _ratio(slow: dict[str, Any], fast: dict[str, Any]) -> dict[str, Any]:
+    """slow / fast; a bound when one side was capped, from the time it had run when it was stopped."""
     a, b = slow["seconds"], fast["seconds"]
     if a is not None and b is not None:
         return {"value": a / b, "bound": "exact"}
-    if slow["capped"] and b is not None:
-        return {"value": cap / b, "bound": "lower"}
-    if fast["capped"] and a is not None:
-        return {"value": a / cap, "bound": "upper"}
+    if slow["capped"] and slow["at_least"] and b is not None:
+        return {"value": slow["at_least"] / b, "bound": "lower"}
+    if fast["capped"] and fast["at_least"] and a is not None:
+        return {"value": a / fast["at_least"], "bound": "upper"}
     return {"value": None, "bound": None}
 
 
 def bench_sizes(sizes: list[int], repeat: int, cap: float, tmp: Path,
                 progress: Callable[[str], None]) -> list[dict[str, Any]]:
     rows: list[dict[str, Any]] = []
-    given_up: dict[str, int] = {}  # measurement -> the n at which it was capped
+    given_up: dict[str, tuple[int, dict[str, dict[str, Any]]]] = {}  # measurement -> n and cells when capped
     for n in sizes:
         path = tmp / f"pendulum{n}.yaml"
         path.write_text(pendulum_yaml(n), encoding="utf-8")
         cells: dict[str, dict[str, Any]] = {}
         for measurement in MEASUREMENTS:
             if measurement.name in given_up:
+                # a larger pendulum takes at least as long as the one that was stopped
+                stopped_at, stopped = given_up[measurement.name]
                 for key in measurement.cells:
                     cells[key] = {**_empty_cell(), "capped": True, "skipped": True,
-                                  "note": f"not tried: capped at n = {given_up[measurement.name]}"}
+                                  "at_least": stopped[key]["at_least"],
+                                  "note": f"not tried: capped at n = {stopped_at}"}
                 continue
             measured = measure(measurement, n, path, tmp, repeat, cap, progress, f"n = {n}")
             cells.update(measured)
             if all(cell["capped"] for cell in measured.values()):  # nothing left to learn at a larger n
-                given_up[measurement.name] = n
+                given_up[measurement.name] = (n, measured)
         rows.append({
             "n": n,
             "cells": cells,
-            "ratios": {"derive": _ratio(cells["lm_total"], cells["lib_derive"], cap),
-                       "core": _ratio(cells["kane_core"], cells["core"], cap)},
+            "ratios": {"derive": _ratio(cells["lm_total"], cells["lib_derive"]),
+                       "core": _ratio(cells["kane_core"], cells["core"])},
         })
     return rows
 
@@ -506,7 +558,8 @@ def _ratio_text(ratio: dict[str, Any]) -> str:
     if ratio["value"] is None:
         return "?"
     sign = {"exact": "", "lower": ">", "upper": "<"}[ratio["bound"]]
-    return f"{sign}{ratio['value']:.2g}x" if ratio["value"] < 10 else f"{sign}{ratio['value']:.0f}x"
+    value = ratio["value"]
+    return f"{sign}{value:.2g}x" if value < 1 else f"{sign}{value:.1f}x" if value < 100 else f"{sign}{value:.0f}x"
 
 
 def report(result: dict[str, Any]) -> str:

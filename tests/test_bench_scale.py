@@ -79,16 +79,20 @@ def test_bench_scale_shows_a_capped_measurement() -> None:
         assert cell["capped"] is True, key
         assert cell["seconds"] is None, key
         assert cell["runs"] == 1, key  # a capped measurement is not repeated
+        assert cell["at_least"] is None or cell["at_least"] >= 0, key
+    assert row["cells"]["cli_derive"]["at_least"] >= 0.05  # a wall column: the time until it was stopped
     assert row["ratios"]["derive"] == {"value": None, "bound": None}
     assert "> cap" in _bench_module().report(result)
 
 
 def test_ratio_bounds() -> None:
-    """A capped side turns the ratio into a bound: at least cap/fast, or at most slow/cap."""
+    """A capped side turns the ratio into a bound, from the time it had run when it was stopped."""
     ratio = _bench_module()._ratio
-    done = {"seconds": 2.0, "capped": False}
-    capped = {"seconds": None, "capped": True}
-    assert ratio(done, {"seconds": 1.0, "capped": False}, 60.0) == {"value": 2.0, "bound": "exact"}
-    assert ratio(capped, done, 60.0) == {"value": 30.0, "bound": "lower"}
-    assert ratio(done, capped, 60.0) == {"value": 2.0 / 60.0, "bound": "upper"}
-    assert ratio(capped, capped, 60.0) == {"value": None, "bound": None}
+    done = {"seconds": 2.0, "capped": False, "at_least": None}
+    capped = {"seconds": None, "capped": True, "at_least": 50.0}
+    unknown = {"seconds": None, "capped": True, "at_least": None}
+    assert ratio(done, {"seconds": 1.0, "capped": False, "at_least": None}) == {"value": 2.0, "bound": "exact"}
+    assert ratio(capped, done) == {"value": 25.0, "bound": "lower"}
+    assert ratio(done, capped) == {"value": 2.0 / 50.0, "bound": "upper"}
+    assert ratio(capped, capped) == {"value": None, "bound": None}
+    assert ratio(unknown, done) == {"value": None, "bound": None}
