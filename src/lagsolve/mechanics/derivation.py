@@ -26,7 +26,7 @@ from lagsolve.mechanics.matrix_form import MatrixForm, matrix_form
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.reactions import Reaction
 from lagsolve.mechanics.reduce import Elimination, eliminate
-from lagsolve.mechanics.simplify import compound_angles, norm, root_of_sum_of_squares, tidy, tidy_sum
+from lagsolve.mechanics.simplify import compound_angles, norm, root_of_sum_of_squares, tidy, tidy_sum, tidy_sum_light
 from lagsolve.mechanics.stages import DEFAULT_BUDGET, StageNote, Stages, StageTimeout, cpu_limit
 from lagsolve.problem.schema import Problem
 
@@ -116,6 +116,10 @@ class Derivation:
         return not any(n.kind in ("budget", "size") for n in self.notes)
 
 
+#: above this many coordinates the equation pieces get the light display simplification
+LARGE_SYSTEM = 4
+
+
 def derive(problem: Problem, *, budget: float | None = None, analysis: bool = True,
            on_core: Callable[[Derivation], None] | None = None) -> Derivation:
     """Derive the equations of motion, multipliers and forces of constraint of ``problem``.
@@ -160,7 +164,9 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
         raw_lam = tuple(lam.xreplace(substituted) for lam in raw_lam)
         raw_acc = tuple(a.xreplace(substituted) for a in raw_acc)
 
-    shown = stages.run("display simplification", _display, form, elimination, raw_acc, raw_lam, tidy, tidy_sum)
+    # a large system gets a lighter display simplification of its many equation pieces (one rewriting each)
+    show_sum = tidy_sum if len(model.coordinates) <= LARGE_SYSTEM else tidy_sum_light
+    shown = stages.run("display simplification", _display, form, elimination, raw_acc, raw_lam, tidy, show_sum)
     if shown is None:
         shown = _display(form, elimination, raw_acc, raw_lam, _plain, _plain)
     multipliers = shown["multipliers"]
