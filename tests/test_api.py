@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import doctest
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -192,3 +193,25 @@ def test_check_accepts_a_derivation() -> None:
     report = lagsolve.check(lagsolve.derive(BEAD))
     assert report.passed
     assert report.count("ok") == 3
+
+
+@pytest.mark.parametrize(("option", "value", "message"), [
+    ("t_end", -1.0, "t_end: expected a positive finite number, found -1.0"),
+    ("t_end", float("nan"), "t_end: expected a positive finite number, found nan"),
+    ("rtol", 0.0, "rtol: expected a positive finite number, found 0.0"),
+    ("samples", 1, "samples: expected a whole number from 2 to 1000000, found 1"),
+])
+def test_simulate_rejects_bad_numbers(option: str, value: float, message: str) -> None:
+    """A non-positive or non-finite end time or tolerance, or too few samples, is a SpecError naming it."""
+    options = {"t_end": 1.0, "values": {"m": 1.0, "g": 1.0}, "initial": {"y": 0.0, "y_dot": 0.0}, option: value}
+    with pytest.raises(SpecError, match=re.escape(message)):
+        lagsolve.simulate(FALLING, **options)
+
+
+def test_simulate_a_derivation_without_analysis() -> None:
+    """A derivation made with analysis=False is simulated with the cheap analysis of its matrix form."""
+    derivation = lagsolve.derive(BEAD, analysis=False)
+    assert derivation.analysis is None
+    run = lagsolve.simulate(derivation, t_end=1.0, samples=11)
+    reference = lagsolve.simulate(BEAD, t_end=1.0, samples=11)
+    np.testing.assert_allclose(run.q, reference.q, rtol=1e-7, atol=1e-9)

@@ -17,6 +17,7 @@ Nothing here prints, exits or writes files; every error is a :class:`~lagsolve.e
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -300,6 +301,12 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
                "coordinates": (coordinates, ("minimal", "full"))}
     bad = [Issue("<argument>", 0, key, f"expected one of {', '.join(allowed)}, found {given!r}")
            for key, (given, allowed) in choices.items() if given is not None and given not in allowed]
+    for key, value in (("t_end", t_end), ("rtol", rtol), ("atol", atol), ("max_step", max_step), ("budget", budget)):
+        if value is not None and not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
+            bad.append(Issue("<argument>", 0, key, f"expected a positive finite number, found {value!r}"))
+    if samples is not None and (isinstance(samples, bool) or not isinstance(samples, int)
+                                or not 2 <= samples <= 1_000_000):
+        bad.append(Issue("<argument>", 0, "samples", f"expected a whole number from 2 to 1000000, found {samples!r}"))
     if bad:
         raise SpecError(bad)
     options = SimulationOptions(values=dict(values or {}), initial=dict(initial or {}), t_end=t_end, samples=samples,
