@@ -39,6 +39,7 @@ __all__ = ["Trajectory", "check", "derive", "load_problem", "simulate"]
 #: CPU seconds a derivation gets when the caller gives no budget (the command line's default)
 DEFAULT_BUDGET = 120.0
 
+#: a small problem (a mass falling under gravity) that the examples here use
 FALLING = """\
 name: falling mass
 parameters: {m: mass, g: gravity}
