@@ -37,7 +37,6 @@ def _kernel_starts() -> str:
 
 
 @pytest.mark.slow
-@pytest.mark.filterwarnings("ignore::DeprecationWarning")  # jupyter_client's own deprecations, not ours
 def test_quickstart_notebook_executes(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """Every cell runs without error; the derivation shows as LaTeX, Markdown and HTML, the run as HTML."""
     nbformat = pytest.importorskip("nbformat")
