@@ -32,6 +32,15 @@ def _fail(error: LagsolveError) -> int:
     return 1
 
 
+def _note(text: str, *, err: bool = False, level: int = 1, nl: bool = True) -> None:
+    """Show ``text`` unless --quiet (level 1), or only with --verbose (level 2)."""
+    context = click.get_current_context(silent=True)
+    root = context.find_root() if context is not None else None
+    verbosity = root.obj.get("verbosity", 1) if root is not None and isinstance(root.obj, dict) else 1
+    if verbosity >= level:
+        click.echo(text, err=err, nl=nl)
+
+
 def _golden(reports: Reports, folder: Path, update: bool) -> int:
     from lagsolve.pipeline import golden_differences
 
@@ -40,47 +49,66 @@ def _golden(reports: Reports, folder: Path, update: bool) -> int:
         for fmt, text in reports.outputs.items():
             target = folder / f"{reports.slug}.{fmt}"
             target.write_text(text, encoding="utf-8")
-            click.echo(f"  wrote {target}")
+            _note(f"  wrote {target}")
         return 0
     diffs = golden_differences(reports, folder)
     for diff in diffs:
         click.echo(diff, nl=False)
     verdict = "differs from" if diffs else "matches"
-    click.echo(f"{reports.source}: {verdict} the golden files in {folder}")
+    _note(f"{reports.source}: {verdict} the golden files in {folder}")
     return 1 if diffs else 0
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="lagsolve")
-def main() -> None:
+@click.option("-q", "--quiet", is_flag=True, help="Show only errors and the output asked for (no summaries, "
+                                                  "'wrote' lines or warnings).")
+@click.option("-v", "--verbose", is_flag=True, help="Also say on stderr what is done, file by file.")
+@click.pass_context
+def main(context: click.Context, quiet: bool, verbose: bool) -> None:
     """Lagrangian mechanics from a YAML problem file: equations of motion,
     multipliers, forces of constraint, and worked-solution reports."""
+    if quiet and verbose:
+        raise click.UsageError("--quiet and --verbose exclude each other")
+    context.obj = {"verbosity": 0 if quiet else 2 if verbose else 1}
 
 
 @main.command()
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,
               help="CPU seconds allowed for each derivation and check.")
-def check(files: tuple[Path, ...], timeout: float) -> None:
+@click.option("--format", "fmt", type=click.Choice(["text", "json", "junit"]), default="text", show_default=True,
+              help="json: one array of verdicts per file; junit: JUnit XML for CI (a mismatch is a failure).")
+def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
     """Compare the expected answers in each problem FILE with the derivation.
 
     ✓ ok, ! holds only in part (warning), ✗ mismatch (exit 1), – not checked.
 
     \b
     lagsolve check problems/*.yaml
+    lagsolve check problems/*.yaml --format junit > check.xml
     """
     from lagsolve.pipeline import check_file
+    from lagsolve.render.machine import Unchecked, checks_json, checks_junit
 
     status = 0
+    results: list[object] = []
     for path in files:
+        _note(f"lagsolve: checking {path}", err=True, level=2)
         try:
             checked = check_file(path, timeout=timeout)
         except LagsolveError as error:
-            status = max(status, _fail(error))
+            code = _fail(error)
+            status = max(status, code)
+            results.append(Unchecked(str(path), str(error), code))
             continue
-        click.echo(checked.table, nl=False)
+        results.append(checked)
+        if fmt == "text":
+            click.echo(checked.table, nl=False)
         if not checked.passed:
             status = max(status, 1)
+    if fmt != "text":
+        click.echo((checks_json if fmt == "json" else checks_junit)(results), nl=False)
     sys.exit(status)
 
 
@@ -88,8 +116,9 @@ def check(files: tuple[Path, ...], timeout: float) -> None:
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("-o", "--output", type=click.Path(path_type=Path),
               help="Output folder (default out/), or a file name when one file and one --format are given.")
-@click.option("--format", "fmt", type=click.Choice(["md", "tex", "json"]),
-              help="Only this format; printed to stdout unless -o is given.")
+@click.option("--format", "fmt", type=click.Choice(["md", "tex", "json", "jsonl"]),
+              help="Only this format; printed to stdout unless -o is given. json with several files prints one "
+                   "array; jsonl prints one result per line.")
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,
               help="CPU seconds allowed for each derivation; a stage that runs out of its share is named "
                    "and the rest is still given.")
@@ -108,6 +137,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     lagsolve derive problems/bead.yaml                 # summary here, reports in out/bead/
     lagsolve derive problems/*.yaml -o reports/        # several problems at once
     lagsolve derive problems/bead.yaml --format json   # the result contract on stdout
+    lagsolve derive problems/*.yaml --format jsonl     # one JSON result per line
     lagsolve derive problems/bead.yaml --format tex -o bead.tex
     lagsolve derive problems/bead.yaml --simulate      # the report with the simulation's figures
     """
@@ -116,7 +146,11 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     if update_golden and golden is None:
         raise click.UsageError("--update-golden needs --golden DIR")
 
-    formats = (fmt,) if fmt else ("md", "tex", "json")
+    if fmt == "jsonl" and (output is not None or golden is not None):
+        raise click.UsageError("--format jsonl prints to stdout; redirect it, or use --format json with -o")
+    formats = ("json",) if fmt == "jsonl" else (fmt,) if fmt else ("md", "tex", "json")
+    stream = fmt == "jsonl" or (fmt == "json" and output is None and golden is None and len(files) > 1)
+    texts: list[str] = []
     slugs = [safe_slug(f) for f in files]
     if len(set(slugs)) != len(slugs):
         raise click.UsageError("two problem files have the same name; their reports would overwrite each other")
@@ -127,6 +161,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
         raise click.UsageError(f"-o {output} names one file, but {len(files)} problems were given; give a folder")
     status = 0
     for path in files:
+        _note(f"lagsolve: deriving {path}", err=True, level=2)
         try:
             simulate = SimulationOptions(values={}, initial={}, plots=True) if with_simulation else None
             reports = derive_file(path, formats, templates=templates, timeout=timeout, simulate=simulate)
@@ -134,9 +169,12 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
             status = max(status, _fail(error))
             continue
         for warning in reports.warnings:
-            click.echo(f"warning: {reports.source}: not completed: {warning}", err=True)
+            _note(f"warning: {reports.source}: not completed: {warning}", err=True)
         if golden is not None:
             status = max(status, _golden(reports, golden, update_golden))
+            continue
+        if stream:
+            texts.append(reports.outputs["json"])
             continue
         if fmt and output is None:
             click.echo(reports.outputs[fmt], nl=False)
@@ -148,11 +186,15 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
         else:
             folder = (output or Path("out")) / reports.slug
             targets = {f: folder / f"{reports.slug}{EXTENSIONS[f]}" for f in formats}
-            click.echo(reports.summary, nl=False)
+            _note(reports.summary, nl=False)
         for f, target in targets.items():
-            click.echo(f"  wrote {_write(target, reports.outputs[f])}")
+            _note(f"  wrote {_write(target, reports.outputs[f])}")
         for name, data in reports.files.items():
-            click.echo(f"  wrote {_write(next(iter(targets.values())).parent / name, data)}")
+            _note(f"  wrote {_write(next(iter(targets.values())).parent / name, data)}")
+    if stream:
+        from lagsolve.render.machine import json_stream
+
+        click.echo(json_stream(texts, lines=fmt == "jsonl"), nl=False)
     sys.exit(status)
 
 
@@ -239,6 +281,7 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
         raise click.UsageError(f"-o {output} names one file, but {len(files)} problems were given; give a folder")
     status = 0
     for path in files:
+        _note(f"lagsolve: simulating {path}", err=True, level=2)
         try:
             result = simulate_file(path, options, timeout=timeout, progress=_progress_bar)
         except LagsolveError as error:
@@ -246,7 +289,7 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
             continue
         folder = (output if output is not None and not single else Path("out")) / safe_slug(path)
         to_stdout = fmt == "csv" and output is None
-        click.echo(result.summary, nl=False, err=to_stdout)
+        _note(result.summary, nl=False, err=to_stdout)
         written = []
         for kind, data in result.tables.items():
             if to_stdout:
@@ -257,12 +300,25 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
         for key, data in result.figures.items():
             written.append(_write(folder / f"{result.slug}_{key}.{'gif' if key == 'animation' else 'png'}", data))
         for target in written:
-            click.echo(f"  wrote {target}", err=to_stdout)
+            _note(f"  wrote {target}", err=to_stdout)
         if show:
             for target in written:
                 if target.suffix in (".png", ".gif"):
                     click.launch(str(target))
     sys.exit(status)
+
+
+@main.command()
+@click.argument("kind", type=click.Choice(["input", "output"]))
+def schema(kind: str) -> None:
+    """Print the JSON Schema (draft 2020-12) of the problem file (input) or of the JSON result (output).
+
+    \b
+    lagsolve schema input > problem.schema.json
+    """
+    from lagsolve.schemas import schema_json
+
+    click.echo(schema_json(kind), nl=False)
 
 
 def _write(target: Path, data: str | bytes) -> Path:

@@ -168,6 +168,7 @@ class Checked:
     name: str
     table: str
     counts: dict[str, int]
+    rows: tuple[dict[str, str], ...] = ()  # one per verdict (:func:`lagsolve.render.machine.verdict_rows`)
 
     @property
     def passed(self) -> bool:
@@ -175,13 +176,16 @@ class Checked:
         return self.counts.get("mismatch", 0) == 0
 
 
-def _derive_and_check(problem: object, budget: float = DEFAULT_TIMEOUT) -> tuple[str, dict[str, int]]:
+def _derive_and_check(problem: object, budget: float = DEFAULT_TIMEOUT
+                      ) -> tuple[str, dict[str, int], tuple[dict[str, str], ...]]:
     from lagsolve.check import MISMATCH, OK, UNCHECKED, WARNING, check
     from lagsolve.mechanics.derivation import derive
     from lagsolve.render.checks import check_table
+    from lagsolve.render.machine import verdict_rows
 
     report = check(derive(problem, budget=budget * STAGE_SHARE))  # type: ignore[arg-type]
-    return check_table(report), {s: report.count(s) for s in (OK, WARNING, MISMATCH, UNCHECKED)}
+    return (check_table(report), {s: report.count(s) for s in (OK, WARNING, MISMATCH, UNCHECKED)},
+            verdict_rows(report))
 
 
 def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked:
@@ -200,8 +204,8 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
-    table, counts = run_with_budget(_derive_and_check, (problem, timeout), timeout, f"the check of {path}")
-    return Checked(str(path), problem.name, table, counts)
+    table, counts, rows = run_with_budget(_derive_and_check, (problem, timeout), timeout, f"the check of {path}")
+    return Checked(str(path), problem.name, table, counts, rows)
 
 
 def golden_differences(reports: Reports, folder: Path) -> list[str]:

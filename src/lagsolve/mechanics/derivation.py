@@ -115,6 +115,23 @@ class Derivation:
         """True when every stage that applies gave its result (no stage ran out of budget or size)."""
         return not any(n.kind in ("budget", "size") for n in self.notes)
 
+    # notebook display (IPython calls these); the renderers are imported only when a result is shown
+
+    def _repr_latex_(self) -> str:
+        from lagsolve.render.display import derivation_latex
+
+        return derivation_latex(self)
+
+    def _repr_markdown_(self) -> str:
+        from lagsolve.render.display import derivation_markdown
+
+        return derivation_markdown(self)
+
+    def _repr_html_(self) -> str:
+        from lagsolve.render.display import derivation_html
+
+        return derivation_html(self)
+
 
 #: above this many coordinates the equation pieces get the light display simplification
 LARGE_SYSTEM = 4
