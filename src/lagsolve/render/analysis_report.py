@@ -87,7 +87,8 @@ def analysis_context(derivation: Derivation, note: Notation) -> dict[str, Any] |
             "forces": [{"coordinate": tex(q), "value": tex(f)} for q, f in zip(r.independent, r.generalized_forces,
                                                                                 strict=True) if f != 0],
             "equations": [{"coordinate": tex(q), "lhs": tex(lhs), "rhs": tex(rhs)}
-                          for q, (lhs, rhs) in zip(r.independent, r.equation_sides, strict=True)],
+                          for q, (lhs, rhs) in zip(r.independent, r.equation_sides, strict=True)]
+            if r.equation_sides else [],
             "accelerations": [{"symbol": tex(c.acceleration), "tex": tex(r.accelerations[c.name])}
                               for c in derivation.problem.coordinates if c.name in r.accelerations],
             "agreement": r.agreement,
