@@ -151,3 +151,19 @@ def test_hostile_latex_compiles(hostile: Derivation, tmp_path: Path) -> None:
     run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "h.tex"],
                          cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stdout[-2000:]
+
+
+def test_simulation_summary_cannot_end_its_block_in_latex(hostile: Derivation) -> None:
+    """A name in the simulation summary cannot close the block around it and run \\input."""
+    summary_text = "\\end{verbatim}\\input{/etc/hostname}: simulated to t = 1\n  final state: x = 1\n"
+    tex = render(hostile, "tex", simulation={"summary": summary_text, "figures": []})
+    assert r"\input{/etc/hostname}" not in tex and r"\end{verbatim}\input" not in tex
+    assert r"\textbackslash{}end\{verbatim\}\textbackslash{}input\{/etc/hostname\}" in tex
+    assert r"~~final~state:~x~=~1" in tex
+
+
+def test_simulation_summary_cannot_end_its_block_in_markdown(hostile: Derivation) -> None:
+    """A name with a code fence cannot close the simulation summary's code block in Markdown."""
+    summary_text = "Name ``` # heading\n  final state: x = 1\n"
+    md = render(hostile, "md", simulation={"summary": summary_text, "figures": []})
+    assert "````text\nName ``` # heading\n  final state: x = 1\n````" in md

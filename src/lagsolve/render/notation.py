@@ -11,6 +11,7 @@ environment in :mod:`lagsolve.render.report`.
 
 from __future__ import annotations
 
+import re
 import unicodedata
 from collections.abc import Callable
 from typing import Any
@@ -192,8 +193,37 @@ def md_prose(text: str) -> str:
     return str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace("$", "\\$")
 
 
+def tex_lines(text: str) -> str:
+    r"""Preformatted user text (a simulation summary) as TeX lines: every character escaped, spaces kept
+    as ties so columns line up in ``	tfamily``, each line ended by ``\``. Unlike ``verbatim``, no
+    text can end the environment.
+
+    >>> print(tex_lines("a  b\n\\end{verbatim}\\input{x}"))
+    a~~b\\
+    \textbackslash{}end\{verbatim\}\textbackslash{}input\{x\}
+    """
+    lines = [tex_escape(line).replace(" ", "~") or "~" for line in str(text).rstrip("\n").split("\n")]
+    return "\\\\\n".join(lines)
+
+
+def md_code(text: str) -> str:
+    """Preformatted user text as a fenced Markdown code block whose fence no backtick run in it can close.
+
+    >>> print(md_code("a ``` b"))
+    ````text
+    a ``` b
+    ````
+    """
+    body = str(text).rstrip("\n")
+    longest = max((len(run) for run in re.findall(r"`+", body)), default=0)
+    fence = "`" * max(3, longest + 1)
+    return f"{fence}text\n{body}\n{fence}"
+
+
 FILTERS: dict[str, Callable[[str], str]] = {
     "tex": tex_escape,
+    "tex_lines": tex_lines,
     "md": md_escape,
     "md_prose": md_prose,
+    "md_code": md_code,
 }
