@@ -134,3 +134,10 @@ def test_a_simulation_in_names_like_temporaries_matches_a_hand_written_integrati
               + m * (hand.y[2 + len(_CHAIN):] ** 2).sum(axis=0) / 2 - k * np.cos(z).sum(axis=0)
               + c * ((z[:-1] - z[1:]) ** 2).sum(axis=0) / 2)
     assert trajectory.energy == pytest.approx(energy, abs=1e-7)
+
+
+def test_a_python_backend_domain_error_is_nan_like_llvm() -> None:
+    """With the pure-Python backend, log of a negative number gives NaN (as LLVM does), not a ValueError."""
+    fn = compile_state_function([sympy.log(x), x], time=t, coordinates=[x], velocities=[xd], parameters=[],
+                                backend="python")
+    assert np.isnan(fn(0.0, np.array([-1.0]), np.zeros(1), np.zeros(0))).all()

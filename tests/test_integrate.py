@@ -144,3 +144,30 @@ simulation: {values: {k: 1}, initial: {x: 0}, t_end: 1}
     system, _ = system_of(text)
     with pytest.raises(SimulationError, match="singular at t = 0"):
         integrate_motion(system, np.array([0.0]), np.zeros(1), 1.0)
+
+
+LOG_WIRE = """
+name: Bead on y = log(x)
+parameters: {m: mass, g: gravity}
+coordinates: [x, y]
+particles: {bead: {mass: m, position: [x, y]}}
+gravity: [0, -g]
+constraints: {wire: {holonomic: y - log(x)}}
+simulation:
+  values: {m: 1.0, g: 9.81}
+  initial: {x: 0.5, x_dot: -1.0}
+  t_end: 5.0
+"""
+
+
+@pytest.mark.parametrize("minimal", [True, False])
+def test_a_state_that_stops_being_finite_stops_the_run(minimal: bool) -> None:
+    """A bead on y = log(x) reaching x <= 0 stops with an error saying when, at which state and why, not NaN rows."""
+    with pytest.raises(SimulationError) as caught:
+        run(LOG_WIRE, 5.0, minimal=minimal)
+    message = str(caught.value)
+    assert "the state is no longer finite at t = 2.6" in message
+    assert "is not a finite number" in message or "are not finite numbers" in message
+    assert "the last finite state was at t = " in message
+    assert "outside its domain (log or sqrt of a number <= 0" in message
+

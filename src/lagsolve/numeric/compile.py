@@ -92,7 +92,10 @@ def compile_state_function(expressions: Sequence[Any], *, time: Any, coordinates
     raw = sympy.lambdify(arguments, list(expressions), modules=_MODULES, cse=True)
 
     def evaluate(t: float, q: np.ndarray, qd: np.ndarray, p: np.ndarray) -> np.ndarray:
-        return np.asarray(raw(t, *q, *qd, *p), dtype=float)
+        try:
+            return np.asarray(raw(t, *q, *qd, *p), dtype=float)
+        except (ValueError, ZeroDivisionError, OverflowError):  # outside a domain: NaN, as the LLVM backend gives
+            return np.full(len(expressions), np.nan)
 
     evaluate.__doc__ = f"{len(expressions)} expressions of {n} coordinates, {n} velocities and {k} parameters"
     return evaluate
