@@ -529,3 +529,33 @@ def test_endless_file_is_refused_quickly() -> None:
         load_problem("/dev/zero")
     assert time.perf_counter() - start < 2.0
     assert "bytes; the limit is 262144" in str(caught.value)
+
+
+def test_values_contradicting_a_positive_assumption_are_refused() -> None:
+    """A simulation value or default <= 0 for a positive parameter, or an initial value <= 0 for a positive
+    coordinate, is refused with its line, field and the fix: the derivation assumed the opposite."""
+    text = """\
+name: Spring
+parameters:
+  m: mass
+  k: {description: stiffness, positive: true, value: -2}
+  F: {description: force, positive: false}
+coordinates: {r: {description: distance, positive: true}, z: height}
+kinetic: m*(r_dot**2 + z_dot**2)/2
+potential: k*r**2/2 - F*z
+simulation:
+  values: {m: 0, F: -3}
+  initial: {r: -0.5, z: -1}
+"""
+    issues = [str(i) for i in issues_of(text)]
+    assert issues == [
+        "p.yaml:4: parameters.k.value: -2 contradicts the assumption that parameter 'k' is positive (parameters "
+        "are, unless declared with positive: false), which the derivation relies on; give a positive value, or "
+        "declare it as k: {description: ..., positive: false} under parameters",
+        "p.yaml:10: simulation.values.m: 0 contradicts the assumption that parameter 'm' is positive (parameters "
+        "are, unless declared with positive: false), which the derivation relies on; give a positive value, or "
+        "declare it as m: {description: ..., positive: false} under parameters",
+        "p.yaml:11: simulation.initial.r: -0.5 contradicts the assumption that coordinate 'r' is positive "
+        "(declared positive: true), which the derivation relies on; give a positive value, or remove "
+        "positive: true from coordinate 'r'",
+    ]

@@ -147,6 +147,22 @@ class _Loader:
             return None
         return value
 
+    def assumption_holds(self, path: tuple, name: str, value: float, positive: bool,
+                         kind: str = "parameter") -> bool:
+        """Whether ``value`` agrees with ``name`` being positive (the derivation relies on it); if not, an issue."""
+        if not positive or value > 0:
+            return True
+        if kind == "parameter":
+            why = "(parameters are, unless declared with positive: false)"
+            fix = (f"give a positive value, or declare it as {name}: {{description: ..., positive: false}} "
+                   "under parameters")
+        else:
+            why = "(declared positive: true)"
+            fix = f"give a positive value, or remove positive: true from coordinate {name!r}"
+        self.issue(path, f"{value:g} contradicts the assumption that {kind} {name!r} is positive {why}, "
+                   "which the derivation relies on", fix)
+        return False
+
     def flag(self, path: tuple, value: Any) -> bool | None:
         if isinstance(value, bool):
             return value
@@ -295,6 +311,8 @@ class _Loader:
                     real = bool(self.flag((*path, "real"), detail["real"]))
                 if "value" in detail:
                     default = self.number((*path, "value"), detail["value"])
+                    if default is not None and not self.assumption_holds((*path, "value"), name, default, positive):
+                        default = None
             elif detail is not None:
                 self.issue(path, f"expected a description or a mapping, found {_kind(detail)}")
             if not self.declare(path, name, "a parameter"):
@@ -702,15 +720,17 @@ class _Loader:
             return None
         self.keys(path, spec, _SIMULATION_KEYS)
         parameter_names = [p.name for p in parameters]
+        positive = {p.name: p.positive for p in parameters}
         values: dict[str, float] = {}
         for k, v in (self.mapping((*path, "values"), spec.get("values", {})) or {}).items():
             if k not in parameter_names:
                 self.issue((*path, "values", k), f"unknown parameter {k!r}", _known("parameters", parameter_names))
                 continue
             number = self.number((*path, "values", k), v)
-            if number is not None:
+            if number is not None and self.assumption_holds((*path, "values", k), k, number, positive[k]):
                 values[k] = number
         state_names = [c.name for c in coordinates] + [f"{c.name}_dot" for c in coordinates]
+        positive_coordinates = {c.name for c in coordinates if c.symbol.is_positive}
         initial: dict[str, float] = {}
         for k, v in (self.mapping((*path, "initial"), spec.get("initial", {})) or {}).items():
             if k not in state_names:
@@ -718,7 +738,8 @@ class _Loader:
                            _known("names", state_names))
                 continue
             number = self.number((*path, "initial", k), v)
-            if number is not None:
+            if number is not None and self.assumption_holds((*path, "initial", k), k, number,
+                                                            k in positive_coordinates, "coordinate"):
                 initial[k] = number
         functions = self.concrete_functions((*path, "functions"), spec.get("functions", {}), parameters)
         t_end = self.number((*path, "t_end"), spec["t_end"], positive=True) if "t_end" in spec else None
