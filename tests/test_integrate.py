@@ -171,3 +171,12 @@ def test_a_state_that_stops_being_finite_stops_the_run(minimal: bool) -> None:
     assert "the last finite state was at t = " in message
     assert "outside its domain (log or sqrt of a number <= 0" in message
 
+
+
+def test_stop_after_release_holds_when_contact_pulls_at_the_start() -> None:
+    """A unilateral constraint that would have to pull at t = 0 ends a run with after_release="stop" right there."""
+    trajectory = run(SPHERE, 5.0, initial={"x": 0.8, "y": 0.6, "x_dot": 3.0})
+    assert trajectory.t.tolist() == [0.0]
+    assert [(e.time, e.kind, e.name, e.action) for e in trajectory.events] == [(0.0, "release", "sphere", "stopped")]
+    going_on = run(SPHERE, 1.0, initial={"x": 0.8, "y": 0.6, "x_dot": 3.0}, after_release="continue")
+    assert going_on.t[-1] == 1.0 and going_on.events[0].action == "released"

@@ -227,9 +227,14 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
     while not finished:
         pulling = [j for j in system.unilateral if run.active[j] and run.solve(t0, y0)[1][j] < 0]
         if pulling:  # a unilateral constraint that would have to pull: contact is lost at once
-            _release(run, pulling[0])
+            stop = after_release == "stop"
             events.append(Event(float(t0), "release", system.constraints[pulling[0]], _state(system, y0),
-                                "released"))
+                                "stopped" if stop else "released"))
+            if stop:
+                rows.append(_sample(run, t0, y0))
+                stopped = True
+                break
+            _release(run, pulling[0])
             continue
         solver = getattr(integrate, method)(run.rhs, t0, run.local(y0), t_end, rtol=rtol, atol=atol,
                                             max_step=max_step)
