@@ -382,3 +382,13 @@ def test_names_that_cannot_be_declared(name: Any, fragment: str) -> None:
 def test_ordinary_names_can_be_declared(name: str) -> None:
     """Single capital letters such as I (a moment of inertia) and Greek names are ordinary names."""
     assert name_problem(name) is None
+
+
+def test_number_bounds_are_inclusive_as_the_message_says() -> None:
+    """1e-300 and 1e100, the bounds the message states, are accepted; numbers just outside them are not."""
+    assert read("1e-300*x") == x / sympy.Integer(10) ** 300
+    assert read("0.001e-297") == sympy.Integer(1) / sympy.Integer(10) ** 300
+    assert read("1e100") == sympy.Integer(10) ** 100
+    assert read(1e-300) == sympy.Integer(1) / sympy.Integer(10) ** 300
+    for text in ("0.999e-300", "1.0000001e100"):
+        assert "numbers must lie between 1e-300 and 1e+100 in size" in rejection(text)

@@ -52,6 +52,8 @@ MAX_LITERAL = 40
 MAX_DECIMAL_EXPONENT = 300
 MAX_POWER = 1000
 MAX_CONSTANT = 1e100
+#: the range of a number's size in the text, both ends included (exact: "1e-300" itself is allowed)
+_SMALLEST, _LARGEST = Fraction(1, 10**300), Fraction(10**100)
 MAX_DERIVATIVE_ORDER = 8
 #: Exact numbers (integers, numerators, denominators) are limited to this many bits
 #: (about 1200 digits), far above anything a problem needs, far below what makes
@@ -376,7 +378,8 @@ def _number(tok: _Token) -> Fraction:
             f"decimal exponents are limited to ±{MAX_DECIMAL_EXPONENT}",
         )
     value = Fraction(mantissa) * Fraction(10) ** power
-    if value != 0 and not (1e-300 <= abs(value) <= MAX_CONSTANT):
+    # compared exactly: the float 1e-300 is a little above 10**-300, which the message says is allowed
+    if value != 0 and not (_SMALLEST <= abs(value) <= _LARGEST):
         raise ExpressionError(
             f"number {text[:30]!r} at column {tok.column} is out of range",
             f"numbers must lie between 1e-300 and {MAX_CONSTANT:g} in size",
