@@ -167,3 +167,13 @@ def test_simulation_summary_cannot_end_its_block_in_markdown(hostile: Derivation
     summary_text = "Name ``` # heading\n  final state: x = 1\n"
     md = render(hostile, "md", simulation={"summary": summary_text, "figures": []})
     assert "````text\nName ``` # heading\n  final state: x = 1\n````" in md
+
+
+def test_code_fence_in_a_description_cannot_swallow_the_report() -> None:
+    """A ``` or ~~~ line in a description is shown as text: every fence left in the report is lagsolve's own."""
+    text = HOSTILE.replace("description: 'See \\input{/etc/passwd} and \\write18{rm -rf /}; $x$ & # _ ^ ~ <b>bold</b>'",
+                           "description: |\n  Before\n  ```python\n  code\n   ~~~\n  after")
+    md = render(derive(load_text(text, "fence.yaml")), "md")
+    assert "Before\n\\```python\ncode\n \\~~~\nafter" in md
+    fences = [line for line in md.splitlines() if line.lstrip().startswith(("```", "~~~"))]
+    assert len(fences) % 2 == 0 and all(f in ("```", "```math") for f in fences)

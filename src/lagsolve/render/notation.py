@@ -188,19 +188,28 @@ def md_escape(text: str) -> str:
     return "".join(out)
 
 
+_FENCE_RE = re.compile(r"^( {0,3})([`~])(?=\2\2)", re.MULTILINE)
+
+
 def md_prose(text: str) -> str:
-    """A description for the Markdown report: Markdown is kept, raw HTML and math delimiters are not."""
-    return str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace("$", "\\$")
+    r"""A description for the Markdown report: Markdown is kept, raw HTML, math delimiters and code
+    fences are not (a fence would turn the rest of the report into code).
+
+    >>> md_prose("See <b> $x$\n```python")
+    'See &lt;b&gt; \\$x\\$\n\\```python'
+    """
+    text = str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace("$", "\\$")
+    return _FENCE_RE.sub(r"\1\\\2", text)
 
 
 def tex_lines(text: str) -> str:
     r"""Preformatted user text (a simulation summary) as TeX lines: every character escaped, spaces kept
-    as ties so columns line up in ``	tfamily``, each line ended by ``\``. Unlike ``verbatim``, no
+    as ties so columns line up in ``\ttfamily``, each line ended by ``\\``. Unlike ``verbatim``, no
     text can end the environment.
 
-    >>> print(tex_lines("a  b\n\\end{verbatim}\\input{x}"))
+    >>> print(tex_lines("a  b\n\\end{verbatim}"))
     a~~b\\
-    \textbackslash{}end\{verbatim\}\textbackslash{}input\{x\}
+    \textbackslash{}end\{verbatim\}
     """
     lines = [tex_escape(line).replace(" ", "~") or "~" for line in str(text).rstrip("\n").split("\n")]
     return "\\\\\n".join(lines)
