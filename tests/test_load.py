@@ -559,3 +559,22 @@ simulation:
         "(declared positive: true), which the derivation relies on; give a positive value, or remove "
         "positive: true from coordinate 'r'",
     ]
+
+
+def test_free_text_and_names_are_bounded() -> None:
+    """A 200,000-character name, over-long descriptions and names are refused at once with the limit,
+    instead of slowing every figure and report down."""
+    text = BEAD.replace("name: Bead", "name: " + "A" * 200_000).replace(
+        "m: mass", "m: " + "b" * 1001 + "\n  k: {description: " + "c" * 1001 + "}\n  " + "q" * 65 + ": long")
+    issues = [str(i) for i in issues_of(text + "description: " + "d" * 20_001 + "\n")]
+    assert issues == [
+        "p.yaml:1: name: text of 200000 characters is too long; the limit here is 200; shorten it; "
+        "put details in description",
+        "p.yaml:3: parameters.m: text of 1001 characters is too long; the limit here is 1000; shorten it",
+        "p.yaml:4: parameters.k.description: text of 1001 characters is too long; the limit here is 1000; "
+        "shorten it",
+        f"p.yaml:5: parameters.{'q' * 65}: a name of 65 characters ('qqqqqqqqqqqqqqqqqqqq'...) is too long; "
+        "names are limited to 64 characters",
+        "p.yaml:15: description: text of 20001 characters is too long; the limit here is 20000; shorten it",
+    ]
+    assert load(BEAD.replace("name: Bead", "name: " + "A" * 200)).name == "A" * 200

@@ -52,6 +52,8 @@ MAX_LITERAL = 40
 MAX_DECIMAL_EXPONENT = 300
 MAX_POWER = 1000
 MAX_CONSTANT = 1e100
+#: longest declared name (a coordinate, parameter, particle, constraint, ...)
+MAX_NAME_LENGTH = 64
 #: the range of a number's size in the text, both ends included (exact: "1e-300" itself is allowed)
 _SMALLEST, _LARGEST = Fraction(1, 10**300), Fraction(10**100)
 MAX_DERIVATIVE_ORDER = 8
@@ -137,6 +139,9 @@ def name_problem(name: str) -> str | None:
     """Why ``name`` cannot be declared (a parameter, coordinate, ...), or ``None`` if it can."""
     if not isinstance(name, str) or not name:
         return "a name must be a non-empty string"
+    if len(name) > MAX_NAME_LENGTH:
+        return (f"a name of {len(name)} characters ({name[:20]!r}...) is too long; "
+                f"names are limited to {MAX_NAME_LENGTH} characters")
     for ch in name:
         if not ch.isascii():
             return (f"non-ASCII character {describe_char(ch)} in name {name!r}; "

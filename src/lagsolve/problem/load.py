@@ -42,6 +42,11 @@ _SIMULATION_KEYS = ("values", "functions", "initial", "t_end", "samples", "metho
 _EXPECTED_KEYS = ("accelerations", "multipliers", "constraint_forces", "reduced", "conserved",
                   "effective_potential")
 _METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA")
+#: longest free text, in characters: the name (a title, drawn on every figure), the problem's
+#: description, and a parameter's, coordinate's or function's description
+MAX_TITLE_LENGTH = 200
+MAX_PROBLEM_DESCRIPTION_LENGTH = 20_000
+MAX_DESCRIPTION_LENGTH = 1_000
 
 
 def load_problem(path: str | Path) -> Problem:
@@ -125,14 +130,25 @@ class _Loader:
                 ok = False
         return ok
 
-    def text(self, path: tuple, value: Any, *, one_line: bool = False) -> str | None:
+    def text(self, path: tuple, value: Any, *, one_line: bool = False,
+             limit: int = MAX_DESCRIPTION_LENGTH) -> str | None:
         if isinstance(value, str):
             if one_line and ("\n" in value.strip() or not value.strip()):
                 self.issue(path, "expected one non-empty line of text")
                 return None
+            if not self.short_enough(path, value, limit):
+                return None
             return value.strip() if one_line else value
         self.issue(path, f"expected text, found {_kind(value)}")
         return None
+
+    def short_enough(self, path: tuple, value: str, limit: int) -> bool:
+        """Whether the free text ``value`` has at most ``limit`` characters; if not, an issue."""
+        if len(value) <= limit:
+            return True
+        self.issue(path, f"text of {len(value)} characters is too long; the limit here is {limit}",
+                   "shorten it" + ("; put details in description" if path == ("name",) else ""))
+        return False
 
     def number(self, path: tuple, value: Any, *, positive: bool = False) -> float | None:
         if isinstance(value, bool) or not isinstance(value, int | float):
@@ -215,7 +231,8 @@ class _Loader:
                     self.issue((*path, i), f"expected a name, found {_kind(item)}")
             return out
         if isinstance(value, dict):
-            return [(k, v, (*path, k)) for k, v in value.items()]
+            return [(k, v if not isinstance(v, str) or self.short_enough((*path, k), v, MAX_DESCRIPTION_LENGTH)
+                     else "", (*path, k)) for k, v in value.items()]
         self.issue(path, f"expected a list of names or a mapping name: description, found {_kind(value)}")
         return []
 
@@ -224,10 +241,10 @@ class _Loader:
     def problem(self) -> Problem:
         data = self.data
         self.keys((), data, TOP_LEVEL, required=("name", "coordinates"))
-        name = self.text(("name",), data["name"], one_line=True) if "name" in data else None
+        name = self.text(("name",), data["name"], one_line=True, limit=MAX_TITLE_LENGTH) if "name" in data else None
         description = ""
         if "description" in data:
-            description = self.text(("description",), data["description"]) or ""
+            description = self.text(("description",), data["description"], limit=MAX_PROBLEM_DESCRIPTION_LENGTH) or ""
 
         time_name = data.get("time", "t")
         if not isinstance(time_name, str) or not self.declare(("time",), time_name, "the time"):
