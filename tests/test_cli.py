@@ -219,3 +219,17 @@ def test_json_output_writes_no_figure(runner: CliRunner, tmp_path: Path) -> None
     result = runner.invoke(main, ["derive", HOLE, "--format", "json", "-o", str(tmp_path / "x.json")])
     assert result.exit_code == 0, result.output
     assert sorted(p.name for p in tmp_path.iterdir()) == ["x.json"]
+
+
+def test_terminal_without_unicode_gets_ascii_notation(tmp_path: Path) -> None:
+    """With stdout in cp1252 the summary and the check table fall back to ASCII (x_ddot, lambda, +),
+    with exit 0 instead of a UnicodeEncodeError traceback."""
+    env = {**os.environ, "PYTHONIOENCODING": "cp1252"}
+    derive = subprocess.run([sys.executable, "-m", "lagsolve", "derive", BEAD, "-o", str(tmp_path)],
+                            env=env, capture_output=True)
+    assert derive.returncode == 0, derive.stderr.decode("cp1252")
+    text = derive.stdout.decode("cp1252")
+    assert "x_ddot = -(g + x_dot" in text and "lambda_wire = m*(g + x_dot" in text
+    check = subprocess.run([sys.executable, "-m", "lagsolve", "check", BEAD], env=env, capture_output=True)
+    assert check.returncode == 0, check.stderr.decode("cp1252")
+    assert "+ lambda_wire" in check.stdout.decode("cp1252")

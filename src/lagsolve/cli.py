@@ -8,6 +8,7 @@ Heavy libraries (SymPy, matplotlib) are imported only inside commands, so
 
 from __future__ import annotations
 
+import codecs
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -48,11 +49,28 @@ def _golden(reports: Reports, folder: Path, update: bool) -> int:
     return 1 if diffs else 0
 
 
+def _ascii_fallback(error: UnicodeError) -> tuple[str, int]:
+    from lagsolve.render.notation import ascii_fallback  # imported only when needed: it loads SymPy
+
+    return ascii_fallback(error)
+
+
+def _ascii_where_needed() -> None:
+    """A terminal whose encoding cannot show ẍ, λ or ✓ (cp1252, ASCII) gets x_ddot, lambda and +
+    instead of a UnicodeEncodeError."""
+    codecs.register_error("lagsolve-ascii", _ascii_fallback)
+    for stream in (sys.stdout, sys.stderr):
+        encoding = (getattr(stream, "encoding", None) or "").lower().replace("-", "").replace("_", "")
+        if encoding != "utf8" and hasattr(stream, "reconfigure"):
+            stream.reconfigure(errors="lagsolve-ascii")
+
+
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="lagsolve")
 def main() -> None:
     """Lagrangian mechanics from a YAML problem file: equations of motion,
     multipliers, forces of constraint, and worked-solution reports."""
+    _ascii_where_needed()
 
 
 @main.command()

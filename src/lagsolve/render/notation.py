@@ -229,6 +229,55 @@ def md_code(text: str) -> str:
     return f"{fence}text\n{body}\n{fence}"
 
 
+_ASCII = {
+    _DOT: "_dot", _DDOT: "_ddot", "\u2212": "-", "\u2013": "-", "\u2014": "--", "\u2192": "->",
+    "\u00b7": "*", "\u2202": "d", "\u2264": "<=", "\u2265": ">=", "\u2260": "!=", "\u2026": "...",
+    "\u2713": "+", "\u2717": "X", "\u25cb": "o", "\u25a1": "[]", "\u1d40": "^T", "\u221a": "sqrt",
+    "\u00d7": "*", "\u00b1": "+/-",
+    "\u2248": "~", "\u221e": "oo", "\u2227": "^", "\u00a0": " ",
+}
+
+
+def ascii_text(text: str) -> str:
+    """Text in ASCII for a terminal that cannot show Unicode: ẍ → x_ddot, θ̇ → theta_dot, λ → lambda,
+    ² → **2, ✓ → +, ✗ → X; other accents are dropped and anything else unknown becomes '?'.
+
+    >>> ascii_text("λ_wire = m*(g + ẋ²*f''(x)) ✓ θ̇₀ −1 → é")
+    "lambda_wire = m*(g + x_dot**2*f''(x)) + theta_dot0 -1 -> e"
+    """
+    out: list[str] = []
+    exponent = False  # inside a run of superscripts: ⁻¹⁰ → **-10
+    for ch in unicodedata.normalize("NFD", str(text)):
+        name = "" if ch.isascii() else unicodedata.name(ch, "")
+        if name.startswith("SUPERSCRIPT ") and (name.endswith("MINUS") or unicodedata.digit(ch, None) is not None):
+            out.append(("" if exponent else "**") + ("-" if name.endswith("MINUS") else str(unicodedata.digit(ch))))
+            exponent = True
+            continue
+        exponent = False
+        if ch.isascii():
+            out.append(ch)
+        elif ch in _ASCII:
+            out.append(_ASCII[ch])
+        elif unicodedata.combining(ch):
+            continue
+        elif name.startswith("GREEK ") and " LETTER " in name:
+            letter = name.rsplit(" ", 1)[-1].lower().replace("lamda", "lambda")
+            out.append(letter.capitalize() if "CAPITAL" in name else letter)
+        elif name.startswith("SUBSCRIPT ") and unicodedata.digit(ch, None) is not None:
+            out.append(str(unicodedata.digit(ch)))
+        else:
+            out.append("?")
+    return "".join(out)
+
+
+def ascii_fallback(error: UnicodeError) -> tuple[str, int]:
+    """A codec error handler (``codecs.register_error``) writing :func:`ascii_text` for what the
+    stream's encoding cannot hold."""
+    if not isinstance(error, UnicodeEncodeError):
+        raise error
+    return ascii_text(error.object[error.start: error.end]), error.end
+
+
 FILTERS: dict[str, Callable[[str], str]] = {
     "tex": tex_escape,
     "tex_lines": tex_lines,
