@@ -64,7 +64,7 @@ def potential_figure(q: Sequence[float], v: Sequence[float],
     axes.set_xlabel(f"${coordinate}$")
     axes.set_ylabel(r"$V_{\mathrm{eff}}$")
     if title:
-        axes.set_title(title)
+        axes.set_title(title, parse_math=False)  # user text: a "$" in a name is not mathtext
     axes.grid(True, alpha=0.3)
     axes.legend()
     return figure
