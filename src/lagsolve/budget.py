@@ -1,15 +1,29 @@
-"""Run a computation in a child process with a wall-clock budget.
+"""Run a computation in a child process with a CPU-time budget, and leave nothing behind.
 
-SymPy can spend minutes in loops that a signal alarm cannot interrupt (long
-integer arithmetic, C-level polynomial code), so the only budget that really
-holds is a separate process that is killed when time is up. The child also gets
-an address-space limit so that a runaway expression cannot exhaust memory.
+SymPy can spend minutes in loops that a signal cannot interrupt (long integer arithmetic,
+C-level polynomial code), so the budget that really holds is a separate process. Its limit is
+CPU time (``RLIMIT_CPU``), not wall time, so a loaded machine does not cut it short; a very
+generous wall-clock backstop only catches a child that sleeps. The child also gets an
+address-space limit so that a runaway expression cannot exhaust memory.
+
+Every child runs in a process group of its own and dies with its parent
+(``PR_SET_PDEATHSIG``); the parent kills the whole group when the budget runs out, when the
+result is in, and on any exception (a signal included), so no worker outlives the command.
+
+A child may send a partial result first (:func:`report_partial`): when it is then stopped at
+its limit, the caller turns that partial result into the answer (``on_partial``), so the core
+of a derivation always comes out.
 """
 
 from __future__ import annotations
 
+import contextlib
+import math
 import multiprocessing
+import os
+import signal
 import sys
+import time
 import traceback
 from collections.abc import Callable
 from typing import Any
@@ -17,15 +31,48 @@ from typing import Any
 from lagsolve.errors import DerivationError, LagsolveError
 
 MEMORY_LIMIT = 8 * 1024**3
+#: a child that has used little CPU but has run for this many times its budget (plus a minute) is stopped
+WALL_BACKSTOP = 20.0
+
+_channel: list[Any] = []
 
 
-def _child(conn: Any, fn: Callable[..., Any], args: tuple) -> None:
+def report_partial(payload: Any) -> None:
+    """Send a partial result to the parent (inside a child of :func:`run_with_budget`; no-op elsewhere)."""
+    if _channel:
+        with contextlib.suppress(Exception):
+            _channel[0].send(("partial", payload))
+
+
+def _die_with_parent(parent: int) -> None:
+    """Ask the kernel to kill this process when its parent dies (Linux), and start a process group."""
+    with contextlib.suppress(OSError):
+        os.setpgid(0, 0)
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            libc = ctypes.CDLL(None, use_errno=True)
+            libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+        except (OSError, AttributeError):  # pragma: no cover - no libc
+            pass
+    if os.getppid() != parent:  # the parent died before the request took effect
+        os._exit(1)
+
+
+def _child(conn: Any, fn: Callable[..., Any], args: tuple, seconds: float, parent: int) -> None:
+    _die_with_parent(parent)
     try:
         import resource
 
         resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
+        cpu = max(1, math.ceil(seconds))
+        resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 2))
     except (ImportError, ValueError, OSError):  # pragma: no cover - not on every platform
         pass
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    _channel[:] = [conn]
     try:
         result = ("ok", fn(*args))
     except LagsolveError as exc:
@@ -42,8 +89,18 @@ def _child(conn: Any, fn: Callable[..., Any], args: tuple) -> None:
         conn.close()
 
 
-def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: str) -> Any:
-    """``fn(*args)`` in a child process, killed after ``seconds``.
+def _kill_group(pid: int) -> None:
+    for kill in (lambda: os.killpg(pid, signal.SIGKILL), lambda: os.kill(pid, signal.SIGKILL)):
+        with contextlib.suppress(ProcessLookupError, PermissionError, OSError):
+            kill()
+
+
+def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: str, *,
+                    on_partial: Callable[[Any, str], Any] | None = None) -> Any:
+    """``fn(*args)`` in a child process with ``seconds`` of CPU time.
+
+    When the child is stopped at its limit after sending a partial result, ``on_partial(payload,
+    reason)`` gives the answer instead of an error.
 
     Raises
     ------
@@ -56,24 +113,46 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
     ctx = multiprocessing.get_context(method)
     receiver, sender = ctx.Pipe(duplex=False)
     # not a daemon: a simulation runs its analysis in a child of its own
-    process = ctx.Process(target=_child, args=(sender, fn, args), daemon=False)
+    process = ctx.Process(target=_child, args=(sender, fn, args, seconds, os.getpid()), daemon=False)
     process.start()
+    with contextlib.suppress(OSError):
+        os.setpgid(process.pid, process.pid)
     sender.close()
+    partial: list[Any] = []
+    final: tuple[str, Any] | None = None
+    out_of_time = False
+    started = time.monotonic()
     try:
-        if not receiver.poll(seconds):
-            raise DerivationError(
-                f"{what} did not finish within the {seconds:g} s budget; raise it with --timeout "
-                "or simplify the problem"
-            )
-        try:
-            status, payload = receiver.recv()
-        except EOFError:
-            raise DerivationError(f"{what} stopped unexpectedly (exit code {process.exitcode})") from None
+        while final is None:
+            if time.monotonic() - started > WALL_BACKSTOP * seconds + 60:
+                out_of_time = True
+                break
+            if not receiver.poll(0.25):
+                continue
+            try:
+                message = receiver.recv()
+            except EOFError:
+                process.join(5)
+                code = process.exitcode
+                out_of_time = code is not None and code in (-signal.SIGXCPU, -signal.SIGKILL)
+                if not out_of_time:
+                    raise DerivationError(f"{what} stopped unexpectedly (exit code {code})") from None
+                break
+            if message[0] == "partial":
+                partial[:] = [message[1]]
+            else:
+                final = message
     finally:
-        if process.is_alive():
-            process.kill()
+        if process.pid is not None:
+            _kill_group(process.pid)
         process.join()
         receiver.close()
+    if final is None:
+        reason = (f"{what} used up its {seconds:g} s CPU budget; raise it with --timeout or simplify the problem")
+        if partial and on_partial is not None:
+            return on_partial(partial[0], reason)
+        raise DerivationError(reason)
+    status, payload = final
     if status == "ok":
         return payload
     if status == "error":

@@ -193,11 +193,20 @@ def check(derivation: Derivation, *, states: int = STATES, seed: int = 0) -> Che
 def _items(derivation: Derivation) -> list[_Item]:
     expected = derivation.problem.expected
     items: list[_Item] = []
+    missing = "; ".join(n.sentence() for n in derivation.notes) or "not derived"
+    accelerations, multipliers = derivation.accelerations, derivation.multipliers
     for q, e in expected.accelerations.items():
-        items.append(_Item("accelerations", q, (e,), (derivation.accelerations[q],)))
+        items.append(_Item("accelerations", q, (e,), None if accelerations is None else (accelerations[q],),
+                           missing))
     for c, e in expected.multipliers.items():
-        items.append(_Item("multipliers", c, (e,), (derivation.multipliers[c],)))
+        items.append(_Item("multipliers", c, (e,), None if multipliers is None else (multipliers[c],), missing))
     for c, spec in expected.constraint_forces.items():
+        if derivation.constraint_forces is None:
+            for key in ("magnitude", "vector"):
+                if key in spec:
+                    items.append(_Item("constraint_forces", c if key == "magnitude" else f"{c}.vector",
+                                       tuple(spec[key]) if key == "vector" else (spec[key],), None, missing))
+            continue
         force = derivation.constraint_forces[c]
         note = force.note or "lagsolve gives no single force for this constraint"
         if "magnitude" in spec:
@@ -313,7 +322,8 @@ class _Checker:
         """``expr`` with the derived multipliers and friction normal forces put in (results of coupled
         friction keep the symbol ``N_<contact>``) and the constraints used as the derivation does."""
         derivation = self.derivation
-        known = {c.multiplier: derivation.multipliers[c.name] for c in derivation.constraints}
+        known = {c.multiplier: derivation.multipliers[c.name] for c in derivation.constraints
+                 if derivation.multipliers is not None}
         known |= {f.term.normal: f.normal_force for f in derivation.friction}
         expr = self._unify(expr)
         for _ in range(3):  # a multiplier may hold N, and N the multipliers' pieces

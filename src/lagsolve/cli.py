@@ -76,7 +76,7 @@ def main() -> None:
 @main.command()
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,
-              help="Seconds allowed for each derivation and check.")
+              help="CPU seconds allowed for each derivation and check.")
 def check(files: tuple[Path, ...], timeout: float) -> None:
     """Compare the expected answers in each problem FILE with the derivation.
 
@@ -107,7 +107,8 @@ def check(files: tuple[Path, ...], timeout: float) -> None:
 @click.option("--format", "fmt", type=click.Choice(["md", "tex", "json"]),
               help="Only this format; printed to stdout unless -o is given.")
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,
-              help="Seconds allowed for each derivation.")
+              help="CPU seconds allowed for each derivation; a stage that runs out of its share is named "
+                   "and the rest is still given.")
 @click.option("--templates", type=click.Path(file_okay=False, exists=True, path_type=Path),
               help="Folder with markdown/ and latex/ templates that override the packaged ones.")
 @click.option("--golden", type=click.Path(file_okay=False, path_type=Path),
@@ -149,6 +150,8 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
         except LagsolveError as error:
             status = max(status, _fail(error))
             continue
+        for warning in reports.warnings:
+            click.echo(f"warning: {reports.source}: not completed: {warning}", err=True)
         if fmt and output is None and golden is None:
             click.echo(reports.outputs[fmt], nl=False)
             continue
@@ -232,7 +235,7 @@ def _progress_bar(t_end: float) -> object:
 @click.option("--show", is_flag=True, help="Also open the figures in the system's viewer.")
 @click.option("--animate", is_flag=True, help="Write an animated GIF of the particles.")
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=600.0, show_default=True,
-              help="Seconds allowed for derivation and integration of each file.")
+              help="CPU seconds allowed for derivation and integration of each file.")
 def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ...], initial: tuple[str, ...],
              samples: int | None, method: str | None, rtol: float | None, atol: float | None,
              max_step: float | None, after_release: str, coordinates: str, fmt: str, output: Path | None,

@@ -6,8 +6,10 @@ Nothing here prints, exits or writes files; results come back as data.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from lagsolve.simulation import SimulationOptions, SimulationResult, run_simulation
 
@@ -25,6 +27,7 @@ class Reports:
     summary: str
     outputs: dict[str, str]
     files: dict[str, bytes] = field(default_factory=dict)
+    warnings: tuple[str, ...] = ()
 
 
 def safe_slug(path: str | Path) -> str:
@@ -44,12 +47,36 @@ FIGURE_CAPTIONS = {
 }
 
 
+#: the share of a derivation's CPU budget its stages get; the rest is left for rendering the reports
+STAGE_SHARE = 0.8
+
+
 def _derive_and_render(problem: object, formats: tuple[str, ...], templates: Path | None,
-                       simulate: SimulationOptions | None = None) -> tuple[str, dict[str, str], dict[str, bytes]]:
+                       simulate: SimulationOptions | None = None,
+                       budget: float = DEFAULT_TIMEOUT) -> tuple[str, dict[str, str], dict[str, bytes]]:
+    from lagsolve.budget import report_partial
     from lagsolve.mechanics.derivation import derive
+
+    derivation = derive(problem, budget=budget * STAGE_SHARE, on_core=report_partial)  # type: ignore[arg-type]
+    return _render(derivation, formats, templates, simulate)
+
+
+def _render_core(formats: tuple[str, ...], templates: Path | None) -> Callable[[Any, str], tuple]:
+    """What the parent answers with when a derivation is stopped at its CPU limit: the core it sent."""
+
+    def answer(core: Any, reason: str) -> tuple[str, dict[str, str], dict[str, bytes]]:
+        from lagsolve.mechanics.derivation import core as core_of
+
+        return _render(core_of(core.form, reason + "; the matrix form above is what was derived"), formats,
+                       templates, None)
+
+    return answer
+
+
+def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
+            simulate: SimulationOptions | None) -> tuple[str, dict[str, str], dict[str, bytes]]:
     from lagsolve.render.report import render, summary
 
-    derivation = derive(problem)  # type: ignore[arg-type]
     files: dict[str, bytes] = {}
     simulation = None
     # figures are made only for a format that shows them (JSON does not)
@@ -76,6 +103,14 @@ def _derive_and_render(problem: object, formats: tuple[str, ...], templates: Pat
     if not figures_shown:
         files = {}
     return text, {fmt: render(derivation, fmt, templates, simulation, potential) for fmt in formats}, files
+
+
+def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
+    """The stages a derivation did not complete, as read from its terminal summary (one per line)."""
+    lines = summary_text.splitlines()
+    if "  not completed:" not in lines:
+        return ()
+    return tuple(line.strip() for line in lines[lines.index("  not completed:") + 1:] if line.startswith("    "))
 
 
 def _potential_figure(derivation: object) -> dict | None:
@@ -120,9 +155,10 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
-    text, outputs, files = run_with_budget(_derive_and_render, (problem, formats, templates, simulate), timeout,
-                                           f"the derivation of {path}")
-    return Reports(str(path), safe_slug(path), problem.name, text, outputs, files)
+    text, outputs, files = run_with_budget(_derive_and_render, (problem, formats, templates, simulate, timeout),
+                                           timeout, f"the derivation of {path}",
+                                           on_partial=_render_core(formats, templates))
+    return Reports(str(path), safe_slug(path), problem.name, text, outputs, files, _warnings(outputs, text))
 
 
 @dataclass(frozen=True)
@@ -140,12 +176,12 @@ class Checked:
         return self.counts.get("mismatch", 0) == 0
 
 
-def _derive_and_check(problem: object) -> tuple[str, dict[str, int]]:
+def _derive_and_check(problem: object, budget: float = DEFAULT_TIMEOUT) -> tuple[str, dict[str, int]]:
     from lagsolve.check import MISMATCH, OK, UNCHECKED, WARNING, check
     from lagsolve.mechanics.derivation import derive
     from lagsolve.render.checks import check_table
 
-    report = check(derive(problem))  # type: ignore[arg-type]
+    report = check(derive(problem, budget=budget * STAGE_SHARE))  # type: ignore[arg-type]
     return check_table(report), {s: report.count(s) for s in (OK, WARNING, MISMATCH, UNCHECKED)}
 
 
@@ -165,7 +201,7 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
-    table, counts = run_with_budget(_derive_and_check, (problem,), timeout, f"the check of {path}")
+    table, counts = run_with_budget(_derive_and_check, (problem, timeout), timeout, f"the check of {path}")
     return Checked(str(path), problem.name, table, counts)
 
 
@@ -198,32 +234,14 @@ def golden_differences(reports: Reports, folder: Path) -> list[str]:
 
 
 def _simulate(problem: object, options: SimulationOptions, progress: object) -> SimulationResult:
-    from lagsolve.budget import run_with_budget
-    from lagsolve.errors import LagsolveError
+    from lagsolve.mechanics.analysis import monitored
     from lagsolve.mechanics.matrix_form import matrix_form
 
     form = matrix_form(problem, display=False)  # type: ignore[arg-type]
-    # conserved quantities and minimal coordinates come from the full derivation (analysis); it gets a
-    # budget of its own, so that a system too large to solve symbolically can still be simulated from its
-    # matrix form (in all coordinates)
-    conserved, chart, chart_note, note = None, None, "", ""
-    try:
-        conserved, chart, chart_note = run_with_budget(_analysed, (form.problem,), options.analysis_timeout,
-                                                       "the analysis")
-    except LagsolveError as error:
-        note = f"  conserved quantities not checked: {error}\n"
-        chart_note = "the analysis did not finish"
-    return run_simulation(form, conserved, options, progress, note, chart, chart_note)
-
-
-def _analysed(problem: object) -> tuple[dict | None, object, str]:
-    """What a simulation takes from the derivation: the conserved quantities and the minimal chart."""
-    from lagsolve.mechanics.chart import minimal_chart
-    from lagsolve.mechanics.derivation import derive
-
-    derivation = derive(problem)  # type: ignore[arg-type]
-    chart, note = minimal_chart(derivation.analysis, derivation.model)
-    return derivation.conserved, chart, note
+    # the conserved quantities to monitor and the minimal coordinates come from cheap criteria on the matrix
+    # form (the same functions derive uses), never from the symbolic solve or the analysis of equilibria
+    conserved, chart, chart_note = monitored(form, options.analysis_timeout)
+    return run_simulation(form, conserved, options, progress, "", chart, chart_note)
 
 
 def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: float = 600.0,

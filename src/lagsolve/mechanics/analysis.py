@@ -25,15 +25,19 @@ import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from lagsolve.mechanics.chart import MinimalChart, minimal_chart
 from lagsolve.mechanics.conserved import Conservation, MotionSystem, conserved_quantities, constraint_surface
 from lagsolve.mechanics.constraints import constraint_terms
 from lagsolve.mechanics.equilibria import EffectivePotential, effective_potential
 from lagsolve.mechanics.integrability import Classification, classify_all
-from lagsolve.mechanics.linearize import Linearization, linearize
+from lagsolve.mechanics.linearize import Linearization, applies, linearize, numeric_linearization
 from lagsolve.mechanics.minimal import ReducedSystem, reduce_system
+from lagsolve.mechanics.names import momentum_name
+from lagsolve.mechanics.stages import Stages
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.derivation import Derivation
+    from lagsolve.mechanics.matrix_form import MatrixForm
 
 
 @dataclass(frozen=True)
@@ -51,31 +55,72 @@ class Analysis:
     linearization_note: str
 
 
-def analyse(derivation: Derivation) -> Analysis:
-    """The analysis of a finished derivation (see the module docstring)."""
+def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
+    """The analysis of a finished derivation (see the module docstring), each part a stage of ``stages``
+    (a fresh budget when None): a part that runs out of its share, or does not apply, says why in its note."""
+    stages = stages if stages is not None else Stages()
     problem, model, lagrange = derivation.problem, derivation.model, derivation.lagrange
-    constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
-    taken = set(problem.symbols) | {f.name for f in problem.functions} | {f"p_{c.name}" for c in problem.coordinates}
-    classes = classify_all(constraints, model, problem.constraints, taken)
+    constraints = derivation.form.constraints if derivation.form is not None else \
+        tuple(constraint_terms(c, model) for c in problem.constraints)
+    taken = set(problem.symbols) | {f.name for f in problem.functions} | {momentum_name(c.symbol)
+                                                                          for c in problem.coordinates}
+    classes = stages.run("constraint classification", classify_all, constraints, model, problem.constraints, taken)
     # a normal force the multiplier route keeps as a symbol N (coupled friction) stays a symbol here too
+    raw = derivation.raw_accelerations
     normals = {f.term.normal: f.normal_force for f in derivation.friction
-               if not any(a.has(f.term.normal) for a in derivation.raw_accelerations)}
-    reduced, reduced_note = reduce_system(model, constraints, classes, lagrange.generalized_forces, normals,
-                                          derivation.raw_accelerations, problem.independent)
+               if raw is not None and not any(a.has(f.term.normal) for a in raw)}
+    reduced, reduced_note = None, ""
+    if classes is None:
+        reduced_note = _stage_reason(stages, "constraint classification")
+        stages.skip("minimal coordinates", "needs the constraint classification, which did not finish")
+        classes = ()
+    else:
+        found = stages.run("minimal coordinates", reduce_system, model, constraints, classes,
+                           lagrange.generalized_forces, normals, raw, problem.independent)
+        reduced, reduced_note = found if found is not None else (None, _stage_reason(stages, "minimal coordinates"))
     if reduced is not None:
         system = MotionSystem(reduced.model, reduced.generalized_forces, reduced.acceleration_map(), kind="reduced")
     else:
         forces = tuple(f.xreplace(normals) for f in lagrange.generalized_forces)
-        system = MotionSystem(model, forces, dict(zip(model.accelerations, derivation.raw_accelerations, strict=True)),
-                              constraints, constraint_surface(constraints, model), kind="full")
+        accelerations = dict(zip(model.accelerations, raw, strict=True)) if raw is not None else {}
+        system = MotionSystem(model, forces, accelerations, constraints, constraint_surface(constraints, model),
+                              kind="full")
     friction = bool(problem.friction)
-    conservation = conserved_quantities(system, friction=friction)
-    effective, effective_note = effective_potential(system, conservation, friction)
+    conservation = stages.run("conserved quantities", conserved_quantities, system, friction=friction)
+    if conservation is None:
+        conservation = Conservation((), (), (_stage_reason(stages, "conserved quantities"),))
+    effective, effective_note = None, ""
+    if friction:
+        stages.skip("effective potential", "Coulomb friction acts: equilibria are not isolated points")
+        effective_note = "Coulomb friction acts"
+    else:
+        found_v = stages.run("effective potential", effective_potential, system, conservation, friction)
+        effective, effective_note = (found_v if found_v is not None
+                                     else (None, _stage_reason(stages, "effective potential")))
     linear, linear_note = None, "the effective potential covers this system"
-    if effective is None:
-        linear, linear_note = linearize(system, conservation.cyclic, friction)
+    if effective is None and applies(system, conservation.cyclic, friction):
+        linear_note = applies(system, conservation.cyclic, friction)
+        stages.skip("equilibria and normal modes", linear_note, "n/a")
+    elif effective is None:
+        values = dict(problem.simulation.values) if problem.simulation is not None else None
+        found_l = stages.run("equilibria and normal modes", linearize, system, conservation.cyclic, friction, values)
+        linear, linear_note = (found_l if found_l is not None
+                               else (None, _stage_reason(stages, "equilibria and normal modes")))
+        spec = problem.simulation
+        if linear is None and spec is not None and not problem.functions:
+            numeric = stages.run("numeric equilibria", numeric_linearization, system, dict(spec.values),
+                                 dict(spec.initial))
+            if numeric is not None:
+                linear, linear_note = numeric, f"numeric: {linear_note}"
+    else:
+        stages.skip("equilibria and normal modes", "the effective potential covers this system", "n/a")
     return Analysis(classes, reduced, reduced_note, system, conservation, effective, effective_note,
                     linear, linear_note)
+
+
+def _stage_reason(stages: Stages, stage: str) -> str:
+    note = stages.note_for(stage)
+    return note.reason if note is not None else "did not finish"
 
 
 def contract_forms(analysis: Analysis) -> dict[str, Any]:
@@ -106,7 +151,35 @@ def contract_forms(analysis: Analysis) -> dict[str, Any]:
     return {"reduced": reduced, "conserved": conserved, "effective_potential": effective}
 
 
-def with_analysis(derivation: Derivation) -> Derivation:
+def with_analysis(derivation: Derivation, stages: Stages | None = None) -> Derivation:
     """``derivation`` with ``analysis`` and the contract forms filled in."""
-    analysis = analyse(derivation)
+    analysis = analyse(derivation, stages)
     return dataclasses.replace(derivation, analysis=analysis, **contract_forms(analysis))
+
+
+def monitored(form: MatrixForm, budget: float = 30.0) -> tuple[dict[str, Any], MinimalChart | None, str]:
+    """What a simulation needs from the analysis, decided cheaply from the matrix form: the conserved
+    quantities to monitor (by the same criteria :func:`analyse` uses, without verifying them along
+    explicit accelerations) and the chart of minimal coordinates (or the reason there is none).
+    Nothing is solved or simplified for display, so a simulation never waits for symbolic analysis."""
+    stages = Stages(budget)
+    problem, model, constraints = form.problem, form.model, form.constraints
+    taken = set(problem.symbols) | {f.name for f in problem.functions} | {momentum_name(c.symbol)
+                                                                          for c in problem.coordinates}
+    classes = stages.run("constraint classification", classify_all, constraints, model, problem.constraints, taken)
+    reduced, note = None, "the constraint classification did not finish"
+    if classes is not None:
+        found = stages.run("minimal coordinates", reduce_system, model, constraints, classes,
+                           form.generalized_forces, {}, None, problem.independent, solve=False)
+        reduced, note = found if found is not None else (None, _stage_reason(stages, "minimal coordinates"))
+    if reduced is not None:
+        system = MotionSystem(reduced.model, reduced.generalized_forces, {}, kind="reduced")
+    else:
+        system = MotionSystem(model, form.generalized_forces, {}, constraints, constraint_surface(constraints, model),
+                              kind="full")
+    conservation = stages.run("conserved quantities", conserved_quantities, system, friction=bool(problem.friction))
+    if conservation is None:
+        conservation = Conservation((), (), ())
+    analysis = Analysis(classes or (), reduced, note, system, conservation, None, "", None, "")
+    chart, chart_note = minimal_chart(analysis, model)
+    return contract_forms(analysis)["conserved"], chart, chart_note

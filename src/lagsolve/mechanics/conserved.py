@@ -125,18 +125,25 @@ def conserved_quantities(system: MotionSystem, *, friction: bool = False) -> Con
         if momentum == 0:
             continue
         cyclic.append(q)
-        if not proved_zero(system.rate(momentum)):
+        if system.accelerations and not proved_zero(system.rate(momentum)):
             notes.append(f"p_{q.name}: {q.name} is cyclic but dp/dt did not simplify to 0; not claimed")
             continue
         quantities.append(Conserved(
             f"p_{q.name}", "momentum", tidy(momentum), q,
             f"{q.name} is cyclic: dL/d{q.name} = 0, Q_{q.name} = 0"
-            + (" and no constraint involves it" if system.constraints else ""),
+            + (" and no constraint involves it" if system.constraints else "") + _unverified(system),
         ))
     energy = _jacobi(system, friction, notes)
     if energy is not None:
         quantities.append(energy)
     return Conservation(tuple(quantities), tuple(cyclic), tuple(notes))
+
+
+def _unverified(system: MotionSystem) -> str:
+    """The caveat of a quantity claimed by its criteria alone (no explicit accelerations to verify it with)."""
+    if system.accelerations:
+        return ""
+    return " (by these conditions alone: the explicit accelerations are not available to verify it)"
 
 
 def _jacobi(system: MotionSystem, friction: bool, notes: list[str]) -> Conserved | None:
@@ -156,7 +163,7 @@ def _jacobi(system: MotionSystem, friction: bool, notes: list[str]) -> Conserved
         notes.append(f"energy: not conserved, constraint {', '.join(moving)} has b != 0, so its force does work")
         return None
     h = sum((v * sympy.diff(L, v) for v in model.velocities), sympy.Integer(0)) - L
-    if not proved_zero(system.rate(h)):
+    if system.accelerations and not proved_zero(system.rate(h)):
         notes.append("energy: the conditions hold but dh/dt did not simplify to 0; not claimed")
         return None
     forces_zero = all(proved_zero(f) for f in system.generalized_forces)
@@ -171,4 +178,5 @@ def _jacobi(system: MotionSystem, friction: bool, notes: list[str]) -> Conserved
     reason += {"eliminated": ", the constraints are built into the coordinates",
                "workless": ", every constraint has b = 0 (workless)", "unconstrained": ""}[flags[2]]
     reason += "; h = T + V" if equals else "; h = T2 - T0 + V, not T + V (a constraint moves)"
+    reason += _unverified(system)
     return Conserved("energy", "jacobi", tidy_sum(h), None, reason, equals, moving_t0, tuple(flags))

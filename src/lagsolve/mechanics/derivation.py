@@ -9,6 +9,8 @@ simplified once, in :mod:`lagsolve.mechanics.simplify`.
 
 from __future__ import annotations
 
+import dataclasses
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -19,11 +21,13 @@ from lagsolve.mechanics.analysis import with_analysis
 from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.forces import ForceTerm, FrictionTerm
 from lagsolve.mechanics.lagrange import LagrangeTerms, solve_augmented
+from lagsolve.mechanics.linsolve import SIZE_LIMIT
 from lagsolve.mechanics.matrix_form import MatrixForm, matrix_form
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.reactions import Reaction
 from lagsolve.mechanics.reduce import Elimination, eliminate
-from lagsolve.mechanics.simplify import norm, root_of_sum_of_squares, tidy, tidy_sum
+from lagsolve.mechanics.simplify import compound_angles, norm, root_of_sum_of_squares, tidy, tidy_sum
+from lagsolve.mechanics.stages import DEFAULT_BUDGET, StageNote, Stages, StageTimeout, cpu_limit
 from lagsolve.problem.schema import Problem
 
 
@@ -58,11 +62,16 @@ class Derivation:
     Display forms (simplified): ``kinetic``, ``potential``, ``lagrangian``, ``constraints``
     (coefficients), ``momenta``, ``momenta_rates``, ``gradients``, ``generalized_forces``,
     ``equations`` (left minus right side), ``equation_sides`` and ``constrained_sides``
-    (each equation as (left, right), before and after using the constraints), ``accelerations``, ``multipliers``,
+    (each equation as (left, right), before and after using the constraints), ``mass_matrix``
+    and ``forcing`` (the matrix form), ``accelerations``, ``multipliers``,
     ``constraint_forces``. Raw forms: ``model``, ``lagrange`` (matrix form) and
     ``raw_accelerations``/``raw_multipliers`` (the augmented solve, unsimplified).
     Analysis (:mod:`lagsolve.mechanics.analysis`): ``analysis`` with every step, and the
     contract forms ``reduced``, ``conserved``, ``effective_potential`` (format section 2).
+
+    The matrix form is always there. A later stage that ran out of its share of the budget,
+    or did not apply, leaves its results ``None`` and says why in ``notes``
+    (:mod:`lagsolve.mechanics.stages`).
     """
 
     problem: Problem
@@ -82,95 +91,172 @@ class Derivation:
     elimination: Elimination
     eliminated_accelerations: dict[Any, Any]
     constrained_sides: tuple[tuple[Any, Any], ...]
-    raw_accelerations: tuple[Any, ...]
-    raw_multipliers: tuple[Any, ...]
-    accelerations: dict[str, Any]
-    multipliers: dict[str, Any]
-    constraint_forces: dict[str, ConstraintForce]
+    raw_accelerations: tuple[Any, ...] | None
+    raw_multipliers: tuple[Any, ...] | None
+    accelerations: dict[str, Any] | None
+    multipliers: dict[str, Any] | None
+    constraint_forces: dict[str, ConstraintForce] | None
     friction: tuple[FrictionResult, ...] = ()
     reduced: dict[str, Any] | None = None
     conserved: dict[str, Any] | None = None
     effective_potential: dict[str, Any] | None = None
     analysis: Any = None  # lagsolve.mechanics.analysis.Analysis: classification, reduction, conservation, ...
     form: MatrixForm | None = None  # the unsolved matrix form the numeric stage compiles
+    mass_matrix: Any = None  # display form of M
+    forcing: Any = None  # display form of F
+    notes: tuple[StageNote, ...] = ()
 
     @property
     def multiplier_symbols(self) -> tuple[Any, ...]:
         return tuple(c.multiplier for c in self.constraints)
 
+    @property
+    def complete(self) -> bool:
+        """True when every stage that applies gave its result (no stage ran out of budget or size)."""
+        return not any(n.kind in ("budget", "size") for n in self.notes)
 
-def derive(problem: Problem) -> Derivation:
+
+def derive(problem: Problem, *, budget: float | None = None, analysis: bool = True,
+           on_core: Callable[[Derivation], None] | None = None) -> Derivation:
     """Derive the equations of motion, multipliers and forces of constraint of ``problem``.
+
+    The core, the matrix form, always comes out; each later stage runs with its share of
+    ``budget`` CPU seconds (default :data:`~lagsolve.mechanics.stages.DEFAULT_BUDGET`) and
+    leaves a note instead of a result when it cannot finish (:class:`Derivation`). With
+    ``analysis=False`` the analysis after the equations is left out. ``on_core``, when given, is
+    called with the core alone (the matrix form, nothing solved or simplified) as soon as it is
+    built, so that a caller can still answer if a later stage is stopped from outside.
 
     Raises
     ------
     DerivationError
         When the accelerations and multipliers are not determined (singular system).
     """
-    form = matrix_form(problem)
-    model, constraints, loads, frictions = form.model, form.constraints, form.loads, form.frictions
-    q_forces, lagrange, reactions = form.generalized_forces, form.lagrange, form.reactions
-    raw_acc, raw_lam = solve_augmented(lagrange)
-
+    stages = Stages(DEFAULT_BUDGET if budget is None else budget)
+    form = matrix_form(problem, display=False)
+    model, constraints, frictions = form.model, form.constraints, form.frictions
+    lagrange, reactions = form.lagrange, form.reactions
+    if on_core is not None:
+        on_core(core(form))
+    solved = stages.run("explicit solve", _solve, lagrange)
+    raw_acc, raw_lam = solved if solved is not None else (None, None)
     elimination = eliminate(constraints, model)
-    eliminated_acc = _eliminated_accelerations(constraints, model, elimination)
 
-    def result(expr: Any) -> Any:
-        return tidy(elimination.apply(expr))
-
-    normals, cases = _normal_forces(frictions, raw_lam, constraints, reactions, elimination)
+    normals: dict[Any, Any] = {}
+    cases: dict[str, tuple[str, Any]] = {}
+    if frictions and raw_lam is None:
+        stages.skip("normal forces", "needs the explicit multipliers, which were not found (see above)")
+    elif frictions:
+        found = stages.run("normal forces", _normal_forces, frictions, raw_lam, constraints, reactions, elimination)
+        if found is not None:
+            normals, cases = found
+    else:
+        stages.skip("normal forces", "no friction acts", "n/a")
     # decoupled normal forces are substituted; coupled ones stay symbols N in the results (as a worked
     # solution writes them), with their closed form given once, in the friction results
     substituted = {f.normal: normals[f.normal] for f in frictions
                    if f.normal in normals and cases[f.name][1] is None}
-    raw_lam = tuple(lam.xreplace(substituted) for lam in raw_lam)
-    multipliers = {c.name: result(lam) for c, lam in zip(constraints, raw_lam, strict=True)}
-    forces = {c.name: _constraint_force(reactions[c.name], multipliers[c.name], c, elimination)
-              for c in constraints}
-    raw_acc = tuple(a.xreplace(substituted) for a in raw_acc)
-    accelerations = {c.name: result(a) for c, a in zip(problem.coordinates, raw_acc, strict=True)}
+    if raw_lam is not None and raw_acc is not None:
+        raw_lam = tuple(lam.xreplace(substituted) for lam in raw_lam)
+        raw_acc = tuple(a.xreplace(substituted) for a in raw_acc)
 
-    lhs = tuple(r - g for r, g in zip(lagrange.momenta_rates, lagrange.gradients, strict=True))
-    rhs = tuple(q + c for q, c in zip(q_forces, lagrange.constraint_forces, strict=True))
-    sides = tuple((tidy_sum(a), tidy_sum(b)) for a, b in zip(lhs, rhs, strict=True))
-    constrained = tuple(
-        (tidy_sum(elimination.apply(a.xreplace(eliminated_acc))), tidy_sum(elimination.apply(b)))
-        for a, b in zip(lhs, rhs, strict=True)
-    )
-    display_constraints = tuple(
-        ConstraintTerms(c.name, c.kind, c.expression, c.on, tuple(tidy(a) for a in c.coefficients),
-                        tidy(c.offset), tidy(c.acceleration_rhs), c.multiplier)
-        for c in constraints
-    )
+    shown = stages.run("display simplification", _display, form, elimination, raw_acc, raw_lam, tidy, tidy_sum)
+    if shown is None:
+        shown = _display(form, elimination, raw_acc, raw_lam, _plain, _plain)
+    multipliers = shown["multipliers"]
+    forces = None
+    if not constraints:
+        forces = {}
+        stages.skip("forces of constraint", "there are no constraints", "n/a")
+    elif multipliers is None:
+        stages.skip("forces of constraint", "needs the explicit multipliers, which were not found (see above)")
+    else:
+        forces = stages.run("forces of constraint", lambda: {
+            c.name: _constraint_force(reactions[c.name], multipliers[c.name], c, elimination) for c in constraints})
+    friction = tuple(FrictionResult(f, _shown_normal(normals.get(f.normal, f.normal), elimination),
+                                    *cases.get(f.name, ("", None))) for f in frictions)
     derivation = Derivation(
-        problem=problem,
-        model=model,
-        kinetic=tidy_sum(model.kinetic),
-        potential=tidy_sum(model.potential),
-        lagrangian=model.kinetic - model.potential,
-        constraints=display_constraints,
-        force_terms=tuple(ForceTerm(t.label, tuple(tidy(x) for x in t.generalized)) for t in loads),
-        lagrange=lagrange,
-        momenta=tuple(tidy_sum(p) for p in lagrange.momenta),
-        momenta_rates=tuple(tidy_sum(p) for p in lagrange.momenta_rates),
-        gradients=tuple(tidy_sum(g) for g in lagrange.gradients),
-        generalized_forces=tuple(tidy(x) for x in q_forces),
-        equations=tuple(tidy_sum(e) for e in lagrange.equations),
-        equation_sides=sides,
-        elimination=elimination,
-        eliminated_accelerations=eliminated_acc,
-        constrained_sides=constrained,
-        raw_accelerations=raw_acc,
-        raw_multipliers=raw_lam,
-        accelerations=accelerations,
-        multipliers=multipliers,
-        constraint_forces=forces,
-        friction=tuple(FrictionResult(f, tidy(elimination.apply(normals.get(f.normal, f.normal))), *cases[f.name])
-                       for f in frictions),
-        form=form,
+        problem=problem, model=model, constraints=shown["constraints"], force_terms=shown["force_terms"],
+        lagrange=lagrange, elimination=elimination, raw_accelerations=raw_acc, raw_multipliers=raw_lam,
+        constraint_forces=forces, friction=friction, form=form, **{k: v for k, v in shown.items()
+                                                                    if k not in ("constraints", "force_terms")},
     )
     _check_free_symbols(derivation)
-    return with_analysis(derivation)
+    if analysis:
+        derivation = with_analysis(derivation, stages)
+    return dataclasses.replace(derivation, notes=stages.shown())
+
+
+def core(form: MatrixForm, note: str = "") -> Derivation:
+    """The derivation's core alone: the matrix form with nothing solved or simplified (``note``, when
+    given, says why the later stages are missing)."""
+    elimination = eliminate(form.constraints, form.model)
+    shown = _display(form, elimination, None, None, _plain, _plain)
+    notes = (StageNote("later stages", note, "budget"),) if note else ()
+    return Derivation(problem=form.problem, model=form.model, lagrange=form.lagrange, elimination=elimination,
+                      raw_accelerations=None, raw_multipliers=None, constraint_forces=None, form=form,
+                      notes=notes, **shown)
+
+
+def _solve(lagrange: LagrangeTerms) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
+    """The explicit accelerations and multipliers, solved from M and F with products of sines and cosines
+    contracted to functions of sums (``cos(θ1 − θ2)``), which keeps the solution in textbook form."""
+    contracted = dataclasses.replace(
+        lagrange, mass_matrix=sympy.ImmutableMatrix(lagrange.mass_matrix.applyfunc(compound_angles)),
+        forcing=sympy.ImmutableMatrix(lagrange.forcing.applyfunc(compound_angles)))
+    return solve_augmented(contracted, SIZE_LIMIT)
+
+
+def _plain(expr: Any) -> Any:
+    """The display form when display simplification ran out of budget: the expression as derived."""
+    return expr if isinstance(expr, sympy.Basic) else sympy.Integer(expr)
+
+
+def _shown_normal(value: Any, elimination: Elimination) -> Any:
+    try:
+        with cpu_limit(5.0):
+            return tidy(elimination.apply(value))
+    except StageTimeout:
+        return elimination.apply(value)
+
+
+def _display(form: MatrixForm, elimination: Elimination, raw_acc: tuple[Any, ...] | None,
+             raw_lam: tuple[Any, ...] | None, show: Any, show_sum: Any) -> dict[str, Any]:
+    """The display forms of the derivation's steps and results (``show``/``show_sum``: :func:`tidy` and
+    :func:`tidy_sum`, or the identity when display simplification ran out of budget)."""
+    problem, model, constraints, lagrange = form.problem, form.model, form.constraints, form.lagrange
+    eliminated_acc = _eliminated_accelerations(constraints, model, elimination)
+    multipliers = None if raw_lam is None else {
+        c.name: show(elimination.apply(lam)) for c, lam in zip(constraints, raw_lam, strict=True)}
+    accelerations = None if raw_acc is None else {
+        c.name: show(elimination.apply(a)) for c, a in zip(problem.coordinates, raw_acc, strict=True)}
+    lhs = tuple(r - g for r, g in zip(lagrange.momenta_rates, lagrange.gradients, strict=True))
+    rhs = tuple(q + c for q, c in zip(form.generalized_forces, lagrange.constraint_forces, strict=True))
+    kinetic, potential = show_sum(model.kinetic), show_sum(model.potential)
+    return {
+        "kinetic": kinetic,
+        "potential": potential,
+        "lagrangian": kinetic - potential,
+        "constraints": tuple(
+            ConstraintTerms(c.name, c.kind, c.expression, c.on, tuple(show(a) for a in c.coefficients),
+                            show(c.offset), show(c.acceleration_rhs), c.multiplier)
+            for c in constraints),
+        "force_terms": tuple(ForceTerm(t.label, tuple(show(x) for x in t.generalized)) for t in form.loads),
+        "momenta": tuple(show_sum(p) for p in lagrange.momenta),
+        "momenta_rates": tuple(show_sum(p) for p in lagrange.momenta_rates),
+        "gradients": tuple(show_sum(g) for g in lagrange.gradients),
+        "generalized_forces": tuple(show(x) for x in form.generalized_forces),
+        "equations": tuple(show_sum(e) for e in lagrange.equations),
+        "equation_sides": tuple((show_sum(a), show_sum(b)) for a, b in zip(lhs, rhs, strict=True)),
+        "eliminated_accelerations": eliminated_acc,
+        "constrained_sides": tuple(
+            (show_sum(elimination.apply(a.xreplace(eliminated_acc))), show_sum(elimination.apply(b)))
+            for a, b in zip(lhs, rhs, strict=True)),
+        "mass_matrix": sympy.ImmutableMatrix(lagrange.mass_matrix.applyfunc(show_sum)),
+        "forcing": sympy.ImmutableMatrix(lagrange.forcing.applyfunc(show_sum)),
+        "accelerations": accelerations,
+        "multipliers": multipliers,
+    }
 
 
 def _normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, ...],
@@ -280,7 +366,7 @@ def _check_free_symbols(derivation: Derivation) -> None:
     allowed = set(problem.symbols.values()) | set(derivation.multiplier_symbols)
     allowed |= set(derivation.model.accelerations)
     allowed |= {f.term.normal for f in derivation.friction}  # coupled normal forces stay symbols
-    for name, expr in {**derivation.accelerations, **derivation.multipliers}.items():
+    for name, expr in {**(derivation.accelerations or {}), **(derivation.multipliers or {})}.items():
         stray = expr.free_symbols - allowed
         if stray:
             raise DerivationError(

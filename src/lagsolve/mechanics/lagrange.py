@@ -27,6 +27,8 @@ import sympy
 
 from lagsolve.errors import DerivationError
 from lagsolve.mechanics.constraints import ConstraintTerms
+from lagsolve.mechanics.linsolve import solve_linear as linear_solve
+from lagsolve.mechanics.linsolve import solve_structured
 from lagsolve.mechanics.model import Model
 
 
@@ -121,8 +123,9 @@ def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
         return None
 
 
-def solve_augmented(terms: LagrangeTerms) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
-    """Solve the augmented system for (accelerations, multipliers), unsimplified.
+def solve_augmented(terms: LagrangeTerms, limit: int | None = None) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
+    """Solve the augmented system for (accelerations, multipliers), unsimplified, by its structure
+    (:func:`~lagsolve.mechanics.linsolve.solve_structured`; ``limit`` bounds the size of the result).
 
     Raises
     ------
@@ -130,53 +133,21 @@ def solve_augmented(terms: LagrangeTerms) -> tuple[tuple[Any, ...], tuple[Any, .
         When the system is singular (a coordinate without inertia that no
         constraint fixes, or redundant constraints).
     """
-    M, F, A, beta = terms.mass_matrix, terms.forcing, terms.constraint_jacobian, terms.constraint_rhs
-    n, m = M.rows, A.rows
-    if m == 0:
-        system, rhs = sympy.Matrix(M), sympy.Matrix(F)
-    else:
-        system = sympy.Matrix(sympy.BlockMatrix([[M, -A.T], [A, sympy.zeros(m, m)]]))
-        rhs = sympy.Matrix.vstack(sympy.Matrix(F), sympy.Matrix(beta))
     try:
-        solution = solve_linear(system, rhs)
+        acc, lam = solve_structured(terms.mass_matrix, terms.forcing, terms.constraint_jacobian,
+                                    terms.constraint_rhs, limit)
     except (ValueError, ZeroDivisionError) as exc:
         raise DerivationError(
             "the augmented system [[M, -A^T], [A, 0]] is singular, so the accelerations and multipliers "
             "are not determined: a coordinate has no inertia and no constraint fixes it, or two "
             f"constraints are redundant ({exc})"
         ) from None
-    return tuple(solution[:n]), tuple(solution[n:])
+    return tuple(acc), tuple(lam)
 
 
 def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix) -> list[Any]:
-    """Solve a square symbolic system by Gaussian elimination that cancels as it goes.
+    """Solve a square symbolic system with one right-hand side (:func:`~lagsolve.mechanics.linsolve.solve_linear`).
 
     Raises ``ValueError`` when no non-zero pivot is found (a singular system).
     """
-    size = system.rows
-    work = [list(system.row(i)) + [rhs[i]] for i in range(size)]
-    for col in range(size):
-        pivot = next((r for r in range(col, size) if _nonzero(work[r][col])), None)
-        if pivot is None:
-            raise ValueError(f"no pivot in column {col + 1}")
-        work[col], work[pivot] = work[pivot], work[col]
-        p = work[col][col]
-        for r in range(col + 1, size):
-            factor = work[r][col]
-            if factor == 0:
-                continue
-            ratio = sympy.cancel(factor / p)
-            work[r] = [sympy.cancel(work[r][k] - ratio * work[col][k]) if k >= col else work[r][k]
-                       for k in range(size + 1)]
-    solution: list[Any] = [sympy.Integer(0)] * size
-    for r in reversed(range(size)):
-        acc = work[r][size] - sum((work[r][k] * solution[k] for k in range(r + 1, size)), sympy.Integer(0))
-        solution[r] = sympy.cancel(acc / work[r][r])
-    return solution
-
-
-def _nonzero(value: Any) -> bool:
-    if value == 0:
-        return False
-    simplified = sympy.cancel(value)
-    return simplified != 0
+    return list(linear_solve(sympy.Matrix(system), sympy.Matrix(rhs)))

@@ -69,20 +69,37 @@ class Linearization:
     modes: tuple[Mode, ...]
 
 
-def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool) -> tuple[Linearization | None, str]:
-    """Equilibria and normal modes of ``system`` (module docstring), or None and the reason."""
+def applies(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool) -> str:
+    """Why equilibria and normal modes do not apply to ``system`` ("" when they do); cheap, so that a
+    part that cannot apply is skipped before anything is spent on it."""
+    model = system.model
+    if system.kind != "reduced":
+        return "needs minimal coordinates (no constraint left)"
+    if cyclic:
+        return "the system has cyclic coordinates: its relative equilibria are not analysed here"
+    if friction:
+        return "Coulomb friction acts: equilibria are not isolated points"
+    if len(model.coordinates) < 2:
+        return "one coordinate: see the effective potential"
+    if model.lagrangian.has(model.time) and not proved_zero(sympy.diff(model.lagrangian, model.time)):
+        return "L depends explicitly on the time"
+    if any(f.has(model.time) for f in system.generalized_forces):
+        return "the generalized forces depend on the time"
+    return ""
+
+
+def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
+              values: dict[str, float] | None = None) -> tuple[Linearization | None, str]:
+    """Equilibria and normal modes of ``system`` (module docstring), solved symbolically, or None and the reason.
+    Where the characteristic polynomial does not split, the squared frequencies are numeric at the
+    parameter ``values`` (when given)."""
     model = system.model
     n = len(model.coordinates)
-    if system.kind != "reduced":
-        return None, "needs minimal coordinates (no constraint left)"
-    if cyclic:
-        return None, "the system has cyclic coordinates: its relative equilibria are not analysed here"
-    if friction:
-        return None, "Coulomb friction acts: equilibria are not isolated points"
-    if not 2 <= n <= MAX_COORDINATES:
-        return None, f"{n} coordinates (equilibria are solved for 2 to {MAX_COORDINATES})"
-    if not proved_zero(sympy.diff(model.lagrangian, model.time)):
-        return None, "L depends explicitly on the time"
+    reason = applies(system, cyclic, friction)
+    if reason:
+        return None, reason
+    if n > MAX_COORDINATES:
+        return None, f"{n} coordinates (equilibria are solved symbolically for 2 to {MAX_COORDINATES})"
     terms = lagrange_terms(model, (), system.generalized_forces)
     rest = {v: 0 for v in model.velocities}
     static = [tidy(f.xreplace(rest)) for f in terms.forcing]
@@ -104,7 +121,7 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool) -> 
     F = sympy.Matrix(terms.forcing)
     K_all = -F.jacobian(list(model.coordinates))
     C_all = -F.jacobian(list(model.velocities))
-    modes = tuple(_mode(point, terms.mass_matrix, K_all, C_all, rest) for point in points[:MAX_EQUILIBRIA])
+    modes = tuple(_mode(point, terms.mass_matrix, K_all, C_all, rest, values) for point in points[:MAX_EQUILIBRIA])
     return Linearization(model.coordinates, modes), ""
 
 
@@ -115,7 +132,8 @@ def _principal(value: Any) -> Any:
     return value
 
 
-def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any, rest: dict[Any, Any]) -> Mode:
+def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any, rest: dict[Any, Any],
+          values: dict[str, float] | None = None) -> Mode:
     at = {**dict(point), **rest}
     M0 = sympy.Matrix(mass).xreplace(at).applyfunc(tidy)
     K = K_all.xreplace(at).applyfunc(tidy)
@@ -130,9 +148,15 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
     else:
         s = sympy.Dummy("s")
         polynomial = sympy.Poly(sympy.factor((K - s * M0).det()), s)
-        roots = sympy.roots(polynomial)
-        if sum(roots.values()) != polynomial.degree():
-            note = "the characteristic polynomial has no closed-form roots"
+        _, factors = sympy.factor_list(polynomial)
+        roots = sympy.roots(polynomial) if all(f.degree() <= 2 for f, _ in factors) else {}
+        if sum(roots.values()) != polynomial.degree() or any(r.has(sympy.I) for r in roots):
+            # Cardano's radicals of a real frequency carry complex numbers: a numeric ω² says more
+            note = "the characteristic polynomial does not split into real factors of degree 2 or less"
+            numeric = _numeric_squares(M0, K, values)
+            if numeric is not None:
+                squares, stable, frequencies = numeric
+                note += "; ω² are numeric, at the simulation values"
         else:
             ordered = sorted((tidy(r) for r, k in roots.items() for _ in range(k)), key=sympy.default_sort_key)
             squares = tuple(ordered)
@@ -141,3 +165,106 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
             frequencies = tuple(tidy(sympy.sqrt(r)) if x == 1 else None for r, x in zip(squares, signs, strict=True))
     return Mode(point, sympy.ImmutableMatrix(M0), sympy.ImmutableMatrix(G), sympy.ImmutableMatrix(D),
                 sympy.ImmutableMatrix(K), squares, frequencies, stable, note)
+
+
+def _numeric_squares(M0: Any, K: Any, values: dict[str, float] | None) -> tuple[Any, bool | None, Any] | None:
+    """The eigenvalues of :math:`M_0^{-1}K` at the parameter ``values``, their stability and square roots."""
+    import numpy as np
+
+    if not values:
+        return None
+    at = {s: sympy.Float(values[s.name]) for s in (M0.free_symbols | K.free_symbols) if s.name in values}
+    m0, k0 = M0.xreplace(at), K.xreplace(at)
+    if m0.free_symbols or k0.free_symbols:
+        return None
+    eig = np.sort(np.linalg.eigvals(np.linalg.solve(np.array(m0.tolist(), dtype=float),
+                                                    np.array(k0.tolist(), dtype=float))).real)
+    squares = tuple(sympy.Float(float(e), 8) for e in eig)
+    stable = bool(np.all(eig > 1e-12)) if np.all(np.abs(eig) > 1e-12) else None
+    return squares, stable, tuple(sympy.Float(float(np.sqrt(e)), 8) if e > 1e-12 else None for e in eig)
+
+
+#: how many starting points the numeric search for equilibria tries
+STARTS = 64
+
+
+def numeric_linearization(system: MotionSystem, values: dict[str, float], initial: dict[str, float]) -> Linearization:
+    r"""Equilibria and normal modes of ``system`` at the parameter ``values``, found numerically.
+
+    The equilibria solve :math:`F(q_0, 0) = 0` by Newton's method (``scipy.optimize.root``) from
+    :data:`STARTS` starting points around the ``initial`` state (angles anywhere in
+    :math:`(-\pi, \pi]`, the same points on every run); the squared frequencies are the eigenvalues
+    of :math:`M_0^{-1}K`. Every result is a floating-point number, and the note says so.
+
+    Raises
+    ------
+    StageSkipped
+        When a parameter has no value, or no equilibrium is found.
+    """
+    import numpy as np
+    from scipy.optimize import root
+
+    from lagsolve.mechanics.stages import StageSkipped
+
+    model = system.model
+    q, qd = list(model.coordinates), list(model.velocities)
+    terms = lagrange_terms(model, (), system.generalized_forces, engine="symengine")
+    params = {s: sympy.Float(values[s.name]) for s in model.lagrangian.free_symbols | set().union(
+        *(f.free_symbols for f in system.generalized_forces)) if s.name in values}
+    rest = {v: 0 for v in qd}
+    static = sympy.Matrix(terms.forcing).xreplace(rest).xreplace(params)
+    stiffness = -static.jacobian(q)
+    mass = sympy.Matrix(terms.mass_matrix).xreplace(params)
+    damping_all = (-sympy.Matrix(terms.forcing).jacobian(qd)).xreplace(rest).xreplace(params)
+    missing = (static.free_symbols | mass.free_symbols) - set(q)
+    if missing:
+        raise StageSkipped(f"needs values for {', '.join(sorted(s.name for s in missing))} (simulation.values)")
+    f_static = sympy.lambdify([q], list(static), "numpy")
+    f_jac = sympy.lambdify([q], stiffness * -1, "numpy")
+    f_mass = sympy.lambdify([q], mass, "numpy")
+    f_damp = sympy.lambdify([q], damping_all, "numpy")
+    # an angle-like coordinate appears only inside sines and cosines: its equilibria are the same mod 2π
+    hidden = {a: sympy.Dummy() for e in (*static, *mass) for a in e.atoms(sympy.sin, sympy.cos)}
+    periodic = [not any(c in e.xreplace(hidden).free_symbols for e in (*static, *mass)) for c in q]
+    rng = np.random.default_rng(0)
+    centre = np.array([float(initial.get(c.name, 0.0)) for c in q])
+    found: list[np.ndarray] = []
+    for k in range(STARTS):
+        start = centre if k == 0 else centre + rng.uniform(-np.pi, np.pi, len(q))
+        with np.errstate(all="ignore"):
+            sol = root(lambda x: np.asarray(f_static(x), dtype=float), start,
+                       jac=lambda x: np.asarray(f_jac(x), dtype=float), method="hybr")
+        if not sol.success or not np.all(np.isfinite(sol.x)):
+            continue
+        point = np.array([(x + np.pi) % (2 * np.pi) - np.pi if periodic[i] else x for i, x in enumerate(sol.x)])
+        point = np.where(np.isclose(point, -np.pi, atol=1e-9), np.pi, point)
+        point = np.where(np.abs(point) < 1e-12, 0.0, point)
+        if np.max(np.abs(np.asarray(f_static(point), dtype=float))) > 1e-9:
+            continue
+        if any(np.allclose(point, p, atol=1e-7) for p in found):
+            continue
+        found.append(point)
+    if not found:
+        raise StageSkipped(f"no equilibrium found numerically from {STARTS} starting points")
+    found.sort(key=lambda p: (float(np.sum(p**2)), tuple(p)))
+    modes = []
+    for point in found[:MAX_EQUILIBRIA]:
+        m0 = np.asarray(f_mass(point), dtype=float)
+        k0 = -np.asarray(f_jac(point), dtype=float)
+        c0 = np.asarray(f_damp(point), dtype=float)
+        squares = frequencies = None
+        stable = None
+        note = "numeric, at the simulation values"
+        if np.max(np.abs(c0)) > 1e-12:
+            note += "; gyroscopic or damping terms: normal modes are not computed"
+        else:
+            eig = np.sort(np.linalg.eigvals(np.linalg.solve(m0, k0)).real)
+            squares = tuple(sympy.Float(float(e), 8) for e in eig)
+            stable = bool(np.all(eig > 1e-12)) if np.all(np.abs(eig) > 1e-12) else None
+            frequencies = tuple(sympy.Float(float(np.sqrt(e)), 8) if e > 1e-12 else None for e in eig)
+        modes.append(Mode(tuple((c, sympy.Float(float(v), 8)) for c, v in zip(q, point, strict=True)),
+                          sympy.ImmutableMatrix(m0.tolist()).applyfunc(lambda e: sympy.Float(e, 8)),
+                          sympy.ImmutableMatrix(sympy.zeros(len(q))), sympy.ImmutableMatrix(sympy.zeros(len(q))),
+                          sympy.ImmutableMatrix(k0.tolist()).applyfunc(lambda e: sympy.Float(e, 8)),
+                          squares, frequencies, stable, note))
+    return Linearization(model.coordinates, tuple(modes))

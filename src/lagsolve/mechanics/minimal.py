@@ -36,9 +36,11 @@ from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.identities import Zero, zero_status
 from lagsolve.mechanics.integrability import HOLONOMIC, INTEGRABLE, Classification
 from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms, solve_augmented
+from lagsolve.mechanics.linsolve import SIZE_LIMIT
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.reduce import Elimination, eliminate
 from lagsolve.mechanics.simplify import tidy, tidy_sum
+from lagsolve.mechanics.stages import StageSkipped
 
 
 @dataclass(frozen=True)
@@ -76,6 +78,8 @@ class ReducedSystem:
 
     def acceleration_map(self) -> dict[Any, Any]:
         """:math:`\\ddot q_k \\to` its raw expression, for substitution."""
+        if not self.raw_accelerations:
+            return {}
         return dict(zip(self.model.accelerations, self.raw_accelerations, strict=True))
 
 
@@ -153,13 +157,14 @@ def _eliminate_for(constraints: tuple[ConstraintTerms, ...], model: Model, indep
 
 def reduce_system(model: Model, constraints: tuple[ConstraintTerms, ...], classes: tuple[Classification, ...],
                   generalized_forces: tuple[Any, ...], normal_forces: dict[Any, Any],
-                  full_accelerations: tuple[Any, ...],
-                  independent: tuple[str, ...] = ()) -> tuple[ReducedSystem | None, str]:
+                  full_accelerations: tuple[Any, ...] | None,
+                  independent: tuple[str, ...] = (), *, solve: bool = True) -> tuple[ReducedSystem | None, str]:
     """The reduced system (see the module docstring), or None and the reason it is not formed.
 
     ``generalized_forces`` are the full :math:`Q_i` (friction with its normal-force symbols,
     replaced by ``normal_forces``); ``full_accelerations`` the multiplier route's raw
-    :math:`\\ddot q` for the agreement check.
+    :math:`\\ddot q` for the agreement check. ``solve=False`` stops after the reduced energies and
+    forces (no equations, no accelerations): what a simulation needs, cheaply.
     """
     holonomic, reason = holonomic_set(constraints, classes)
     if reason:
@@ -177,15 +182,27 @@ def reduce_system(model: Model, constraints: tuple[ConstraintTerms, ...], classe
     forces = [elimination.apply(f.xreplace(normal_forces)) for f in generalized_forces]
     q_red = tuple(tidy(sum((forces[i] * sympy.diff(path[i], q) for i in range(len(path))), sympy.Integer(0)))
                   for q in q_ind)
-    terms = lagrange_terms(reduced_model, (), q_red)
-    try:
-        raw, _ = solve_augmented(terms)
-    except DerivationError as exc:
-        return None, f"the reduced equations are singular ({exc})"
+    terms = lagrange_terms(reduced_model, (), q_red, engine="symengine")
+    if not solve:
+        constants = tuple(k.constant for k in classes if k.constant is not None)
+        return ReducedSystem(independent=q_ind, substitution=elimination, constants=constants, model=reduced_model,
+                             generalized_forces=q_red, lagrange=terms, raw_accelerations=(), kinetic=kinetic,
+                             potential=potential, lagrangian=kinetic - potential, equation_sides=(),
+                             accelerations={}, agreement="unchecked"), ""
+    if not elimination.positions and full_accelerations is not None:
+        raw = tuple(full_accelerations)  # nothing eliminated: the reduced system is the full one
+    elif not elimination.positions:
+        raise StageSkipped("too large: with nothing to eliminate the reduced system is the full one, whose "
+                           "explicit accelerations are too large (see the explicit solve)")
+    else:
+        try:
+            raw, _ = solve_augmented(terms, SIZE_LIMIT)
+        except DerivationError as exc:
+            return None, f"the reduced equations are singular ({exc})"
     sides = tuple((tidy_sum(r - g), tidy_sum(f))
                   for r, g, f in zip(terms.momenta_rates, terms.gradients, q_red, strict=True))
-    agreement = "symbolic"
-    for k, i in enumerate(kept):
+    agreement = "symbolic" if full_accelerations is not None else "unchecked"
+    for k, i in enumerate(kept if full_accelerations is not None else ()):
         status = zero_status(elimination.apply(full_accelerations[i]) - raw[k])
         if status is Zero.NONZERO:
             agreement = "differ"

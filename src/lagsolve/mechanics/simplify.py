@@ -38,6 +38,8 @@ def measure(expr: Any) -> tuple[int, int, str]:
 #: above this many operations SymPy's general ``simplify`` and ``trigsimp`` are skipped
 #: (they dominate run time on large expressions; the Pythagorean reduction below is cheap)
 SIMPLIFY_LIMIT = 60
+#: above this many operations :func:`tidy` only pulls out common factors (no factor, cancel or trig rewriting)
+TIDY_LIMIT = 400
 TRIGSIMP_LIMIT = 0
 _ERRORS = (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError)
 
@@ -95,6 +97,9 @@ def tidy(expr: Any) -> Any:
         return _number(expr)
     if expr.is_Number or expr.is_Symbol:
         return expr
+    if sympy.count_ops(expr) > TIDY_LIMIT:
+        # a governor: factor and cancel on a large expression cost far more than they gain
+        return min([expr, sympy.factor_terms(expr)], key=measure)
     candidates: list[Any] = [expr]
     for step in (sympy.cancel, sympy.factor_terms, lambda e: sympy.factor(sympy.cancel(e))):
         try:
@@ -103,6 +108,9 @@ def tidy(expr: Any) -> Any:
             continue
     if expr.has(*_TRIG):
         candidates += pythagoras(expr)
+        numerator, denominator = sympy.fraction(candidates[1])
+        contracted = compound_angles(sympy.expand(numerator)) / compound_angles(sympy.expand(denominator))
+        candidates += [contracted, sympy.factor_terms(contracted)]
         if sympy.count_ops(expr) <= TRIGSIMP_LIMIT:
             reduced = sympy.trigsimp(candidates[1])
             for step in (sympy.factor, lambda e: sympy.factor(sympy.expand_trig(e))):
@@ -131,8 +139,28 @@ def tidy_sum(expr: Any) -> Any:
         if sympy.count_ops(expanded) <= TRIGSIMP_LIMIT:
             reduced = sympy.trigsimp(expanded)
             candidates += [reduced, sympy.expand(sympy.expand_trig(reduced))]
+        candidates.append(compound_angles(expanded))
     candidates += [sympy.factor_terms(c) for c in candidates]
     return min(candidates, key=measure)
+
+
+def compound_angles(expr: Any) -> Any:
+    """``sin a sin b + cos a cos b`` → ``cos(a − b)`` and the like (sums of products to a function of a
+    sum), term by term of the expanded ``expr``: the textbook form of chains of pendulums.
+
+    >>> import sympy
+    >>> a, b = sympy.symbols("a b")
+    >>> compound_angles(sympy.sin(a)*sympy.sin(b) + sympy.cos(a)*sympy.cos(b))
+    cos(a - b)
+    """
+    from sympy.simplify.fu import TR10i
+
+    if not isinstance(expr, sympy.Basic) or not expr.has(sympy.sin, sympy.cos):
+        return expr
+    try:
+        return TR10i(sympy.expand(expr))
+    except _ERRORS:
+        return expr
 
 
 def tidy_abs(expr: Any) -> Any:

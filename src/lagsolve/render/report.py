@@ -23,6 +23,8 @@ from lagsolve.render.analysis_report import analysis_context, analysis_json, ana
 from lagsolve.render.notation import FILTERS, Notation, to_json
 
 FORMAT_VERSION = 1
+#: above this many coordinates the matrix form is written one equation per row instead of as matrices
+LARGE = 3
 FORMATS = {"md": ("markdown", "report.md.j2"), "tex": ("latex", "report.tex.j2"), "json": (None, None)}
 
 
@@ -83,20 +85,20 @@ def context(derivation: Derivation) -> dict[str, Any]:
         for i, (lhs, rhs) in enumerate(derivation.constrained_sides)
     ]
     lagrange = derivation.lagrange
-    accelerations = [
+    accelerations = None if derivation.accelerations is None else [
         {"coordinate": c.name, "symbol": tex(c.acceleration), "symbol_text": text(c.acceleration),
          **both(derivation.accelerations[c.name])}
         for c in problem.coordinates
     ]
-    multipliers = [
+    multipliers = None if derivation.multipliers is None else [
         {"name": c.name, "symbol": tex(c.multiplier), "symbol_text": text(c.multiplier),
          **both(derivation.multipliers[c.name])}
         for c in derivation.constraints
     ]
-    forces = []
-    for c in derivation.constraints:
-        result = derivation.constraint_forces[c.name]
-        forces.append({
+    forces = None if derivation.constraint_forces is None else []
+    for c in derivation.constraints if forces is not None else ():
+        result = derivation.constraint_forces[c.name]  # type: ignore[index]
+        forces.append({  # type: ignore[union-attr]
             "name": c.name,
             "vector": [tex(v) for v in result.vector] if result.vector is not None else None,
             "magnitude": both(result.magnitude) if result.magnitude is not None else None,
@@ -144,17 +146,25 @@ def context(derivation: Derivation) -> dict[str, Any]:
         "substitutions": substitutions,
         "constrained": constrained if substitutions else [],
         "matrices": {
-            "mass": tex(lagrange.mass_matrix.applyfunc(sympy.factor_terms)),
-            "forcing": tex(lagrange.forcing.applyfunc(sympy.factor_terms)),
+            "mass": tex(derivation.mass_matrix.applyfunc(sympy.factor_terms)),
+            "forcing": tex(derivation.forcing.applyfunc(sympy.factor_terms)),
             "jacobian": tex(lagrange.constraint_jacobian) if derivation.constraints else "",
             "rhs": tex(lagrange.constraint_rhs.applyfunc(sympy.factor_terms)) if derivation.constraints else "",
             "unknowns": tex(sympy.Matrix(list(model.accelerations) + list(derivation.multiplier_symbols))),
         },
+        "matrix_equations": [
+            {"coordinate": coords[i]["tex"],
+             "lhs": tex(sum((derivation.mass_matrix[i, k] * a for k, a in enumerate(model.accelerations)),
+                            sympy.Integer(0))),
+             "rhs": tex(derivation.forcing[i] + lagrange.constraint_forces[i])}
+            for i in range(len(coords))] if len(coords) > LARGE else [],
         "accelerations": accelerations,
         "multipliers": multipliers,
         "forces": forces,
         "friction": friction,
         "analysis": analysis_context(derivation, note),
+        "notes": [n.sentence() for n in derivation.notes],
+        "stage_notes": {n.stage: n.reason for n in derivation.notes},
     }
 
 
@@ -217,8 +227,8 @@ def render(derivation: Derivation, fmt: str, templates: Path | None = None,
 def result_dict(derivation: Derivation) -> dict[str, Any]:
     """The result contract (format section 2) as a dict of strings."""
     problem = derivation.problem
-    forces: dict[str, Any] = {}
-    for name, result in derivation.constraint_forces.items():
+    forces: dict[str, Any] | None = None if derivation.constraint_forces is None else {}
+    for name, result in (derivation.constraint_forces or {}).items():
         entry: dict[str, Any] = {}
         if result.vector is not None:
             entry["vector"] = [to_json(v) for v in result.vector]
@@ -228,7 +238,7 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
                                   for p, vec, mag in result.particles}
         if result.note:
             entry["note"] = result.note
-        forces[name] = entry
+        forces[name] = entry  # type: ignore[index]
     return {
         "format_version": FORMAT_VERSION,
         "name": problem.name,
@@ -247,8 +257,12 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
             for c in derivation.constraints
         },
         "equations": [to_json(e) for e in derivation.equations],
-        "accelerations": {k: to_json(v) for k, v in derivation.accelerations.items()},
-        "multipliers": {k: to_json(v) for k, v in derivation.multipliers.items()},
+        "mass_matrix": [[to_json(e) for e in row] for row in derivation.mass_matrix.tolist()],
+        "forcing": [to_json(e) for e in derivation.forcing],
+        "accelerations": (None if derivation.accelerations is None
+                          else {k: to_json(v) for k, v in derivation.accelerations.items()}),
+        "multipliers": (None if derivation.multipliers is None
+                        else {k: to_json(v) for k, v in derivation.multipliers.items()}),
         "constraint_forces": forces,
         "friction": {
             f.term.name: {
@@ -264,6 +278,7 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
         },
         **contract_json(derivation),
         "analysis": analysis_json(derivation),
+        "notes": [{"stage": n.stage, "kind": n.kind, "reason": n.reason} for n in derivation.notes],
     }
 
 
@@ -276,11 +291,22 @@ def summary(derivation: Derivation) -> str:
     """The key results, readable in a terminal."""
     ctx = context(derivation)
     lines = [f"{derivation.problem.name}"]
-    lines.append("  accelerations:")
-    lines += [f"    {a['symbol_text']} = {a['text']}" for a in ctx["accelerations"]]
+    if ctx["accelerations"] is not None:
+        lines.append("  accelerations:")
+        lines += [f"    {a['symbol_text']} = {a['text']}" for a in ctx["accelerations"]]
+    else:
+        lines.append("  equations of motion in matrix form M q̈ = F + Aᵀλ (the explicit accelerations are not given; "
+                     "see the report):")
+        note = Notation([c.name for c in derivation.problem.coordinates])
+        extra = " + Σ λ a" if derivation.constraints else ""
+        for i in range(derivation.mass_matrix.rows):
+            lhs = sum((derivation.mass_matrix[i, k] * a for k, a in enumerate(derivation.model.accelerations)),
+                      sympy.Integer(0))
+            lines.append(f"    ({i + 1}) {note.text(lhs)} = {note.text(derivation.forcing[i])}{extra}")
     if ctx["multipliers"]:
         lines.append("  multipliers:")
         lines += [f"    {m['symbol_text']} = {m['text']}" for m in ctx["multipliers"]]
+    if ctx["forces"]:
         lines.append("  forces of constraint (magnitude):")
         for f in ctx["forces"]:
             value = f["magnitude"]["text"] if f["magnitude"] else "— " + f["note"]
@@ -288,4 +314,7 @@ def summary(derivation: Derivation) -> str:
     for f in ctx["friction"]:
         lines.append(f"  friction {f['name']}: normal force {f['normal_text']} = {f['normal_force']['text']}")
     lines += analysis_summary(derivation, Notation([c.name for c in derivation.problem.coordinates]))
+    if ctx["notes"]:
+        lines.append("  not completed:")
+        lines += [f"    {n}" for n in ctx["notes"]]
     return "\n".join(lines) + "\n"

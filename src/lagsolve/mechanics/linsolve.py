@@ -1,0 +1,158 @@
+r"""Solving the augmented system by its structure, with a bound on the size of what comes out.
+
+The equations :math:`M\ddot q = F + A^T\lambda`, :math:`A\ddot q = \beta` are solved
+
+* block by block: :math:`M` is split into the diagonal blocks its sparsity pattern allows
+  (a diagonal :math:`M`, bodies that do not share coordinates), and each block is solved on
+  its own, a 1×1 block by a division;
+* for the multipliers through the Schur complement: with :math:`y = M^{-1}F` and
+  :math:`X = M^{-1}A^T`,
+
+  .. math:: (A X)\,\lambda = \beta - A y, \qquad \ddot q = y + X\lambda,
+
+  an :math:`m\times m` system however many coordinates there are;
+* by elimination that cancels as it goes in each small dense block; and by the whole
+  augmented matrix only when :math:`M` itself is singular (a coordinate without inertia).
+
+Explicit accelerations of a large coupled system (a 4-link pendulum) are far too long to
+read; as soon as an intermediate expression passes :data:`SIZE_LIMIT` operations the solve
+stops with :class:`~lagsolve.mechanics.stages.StageSkipped`, and the matrix form is the
+result, as textbooks write big systems.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import sympy
+
+from lagsolve.mechanics.stages import StageSkipped
+
+#: an explicit result (or an intermediate of the elimination) with more operations than this is not produced
+SIZE_LIMIT = 1500
+
+
+def _size(expr: Any) -> int:
+    return int(sympy.count_ops(expr)) if isinstance(expr, sympy.Basic) else 0
+
+
+def _guard(exprs: list[Any], limit: int | None) -> None:
+    if limit is None:
+        return
+    largest = max((_size(e) for e in exprs), default=0)
+    if largest > limit:
+        raise StageSkipped(f"too large: the explicit solution grows past {limit} operations per expression "
+                           f"(one has {largest}); the matrix form M q̈ = F + Aᵀλ above is the result")
+
+
+def blocks(matrix: sympy.Matrix) -> list[list[int]]:
+    """The index sets of the diagonal blocks of a symmetric ``matrix`` (connected components of its
+    non-zero pattern), each sorted, in order of their first index."""
+    n = matrix.rows
+    parent = list(range(n))
+
+    def find(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for i in range(n):
+        for k in range(i + 1, n):
+            if matrix[i, k] != 0 or matrix[k, i] != 0:
+                parent[find(i)] = find(k)
+    groups: dict[int, list[int]] = {}
+    for i in range(n):
+        groups.setdefault(find(i), []).append(i)
+    return sorted(groups.values(), key=lambda g: g[0])
+
+
+def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix, limit: int | None = None) -> sympy.Matrix:
+    """Solve a square symbolic system (``rhs`` may have several columns) by Gaussian elimination that
+    cancels as it goes.
+
+    Raises ``ValueError`` when no non-zero pivot is found (a singular system) and
+    :class:`StageSkipped` when an entry grows past ``limit`` operations.
+    """
+    size, columns = system.rows, rhs.cols
+    if size == 1:
+        if not _nonzero(system[0, 0]):
+            raise ValueError("no pivot in column 1")
+        out = sympy.Matrix(1, columns, [sympy.cancel(rhs[0, j] / system[0, 0]) for j in range(columns)])
+        _guard(list(out), limit)
+        return out
+    work = [list(system.row(i)) + list(rhs.row(i)) for i in range(size)]
+    width = size + columns
+    for col in range(size):
+        pivot = min((r for r in range(col, size) if _nonzero(work[r][col])),
+                    key=lambda r: (_size(work[r][col]), r), default=None)
+        if pivot is None:
+            raise ValueError(f"no pivot in column {col + 1}")
+        work[col], work[pivot] = work[pivot], work[col]
+        p = work[col][col]
+        for r in range(col + 1, size):
+            factor = work[r][col]
+            if factor == 0:
+                continue
+            ratio = sympy.cancel(factor / p)
+            work[r] = [sympy.cancel(work[r][k] - ratio * work[col][k]) if k >= col else work[r][k]
+                       for k in range(width)]
+            _guard(work[r][col:], limit)
+    solution = [[sympy.Integer(0)] * columns for _ in range(size)]
+    for r in reversed(range(size)):
+        for j in range(columns):
+            acc = work[r][size + j] - sum((work[r][k] * solution[k][j] for k in range(r + 1, size)), sympy.Integer(0))
+            solution[r][j] = sympy.cancel(acc / work[r][r])
+        _guard(solution[r], limit)
+    return sympy.Matrix(solution)
+
+
+def _nonzero(value: Any) -> bool:
+    if value == 0:
+        return False
+    return sympy.cancel(value) != 0
+
+
+def _solve_blocks(M: sympy.Matrix, rhs: sympy.Matrix, limit: int | None) -> sympy.Matrix:
+    """:math:`M^{-1}` applied to ``rhs`` block by block."""
+    out = sympy.zeros(M.rows, rhs.cols)
+    for group in blocks(M):
+        sub = M.extract(group, group)
+        part = solve_linear(sub, rhs.extract(group, list(range(rhs.cols))), limit)
+        for k, i in enumerate(group):
+            for j in range(rhs.cols):
+                out[i, j] = part[k, j]
+    return out
+
+
+def solve_structured(M: Any, F: Any, A: Any, beta: Any, limit: int | None = SIZE_LIMIT) -> tuple[list[Any], list[Any]]:
+    r"""(:math:`\ddot q`, :math:`\lambda`) of the augmented system, unsimplified (module docstring).
+
+    Raises ``ValueError`` when the system is singular and :class:`StageSkipped` when the result
+    would be larger than ``limit`` operations per expression (``None``: no bound).
+    """
+    M, F, A, beta = sympy.Matrix(M), sympy.Matrix(F), sympy.Matrix(A), sympy.Matrix(beta)
+    m = A.rows
+    try:
+        if m == 0:
+            return list(_solve_blocks(M, F, limit)), []
+        both = _solve_blocks(M, sympy.Matrix.hstack(F, A.T), limit)
+    except ValueError:
+        if m == 0:
+            raise
+        return _solve_full(M, F, A, beta, limit)  # M alone is singular; the augmented system may not be
+    y, X = both[:, 0], both[:, 1:]
+    schur = (A * X).applyfunc(sympy.cancel)
+    residual = (beta - A * y).applyfunc(sympy.cancel)
+    lam = solve_linear(schur, residual, limit)
+    acc = (y + X * lam).applyfunc(sympy.cancel)
+    _guard(list(acc), limit)
+    return list(acc), list(lam)
+
+
+def _solve_full(M: sympy.Matrix, F: sympy.Matrix, A: sympy.Matrix, beta: sympy.Matrix,
+                limit: int | None) -> tuple[list[Any], list[Any]]:
+    n, m = M.rows, A.rows
+    system = sympy.Matrix(sympy.BlockMatrix([[M, -A.T], [A, sympy.zeros(m, m)]]))
+    solution = list(solve_linear(system, sympy.Matrix.vstack(F, beta), limit))
+    return solution[:n], solution[n:]

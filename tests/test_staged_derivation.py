@@ -1,0 +1,158 @@
+"""The staged derivation: the matrix form always comes out, checked against SymPy's LagrangesMethod;
+a stage that cannot finish is named while the rest is still given; numeric equilibria and modes."""
+
+from __future__ import annotations
+
+import json
+import random
+
+import numpy as np
+import pytest
+import sympy
+from click.testing import CliRunner
+
+from lagsolve.cli import main
+from lagsolve.mechanics.derivation import derive
+from lagsolve.problem.load import load_text
+from lagsolve.render.report import result_json
+
+
+def chain(n: int) -> str:
+    """A planar n-link pendulum of equal masses m and rods l, as a problem file."""
+    lines = [f"name: Planar {n}-link pendulum", "parameters: {m: mass, g: gravity, l: length}", "coordinates:"]
+    lines += [f"  theta{i}: angle {i}" for i in range(1, n + 1)]
+    lines.append("particles:")
+    for i in range(1, n + 1):
+        x = " + ".join(f"l*sin(theta{k})" for k in range(1, i + 1))
+        y = " - ".join(f"l*cos(theta{k})" for k in range(1, i + 1))
+        lines.append(f"  p{i}: {{mass: m, position: [{x}, -{y}]}}")
+    lines.append("gravity: [0, -g]")
+    lines.append("simulation:\n  values: {m: 1.0, g: 9.81, l: 1.0}\n  initial: {"
+                 + ", ".join(f"theta{i}: 0.{i}" for i in range(1, n + 1)) + "}\n  t_end: 1.0")
+    return "\n".join(lines) + "\n"
+
+
+SPRING = """
+name: Two pendulums joined by a spring
+parameters: {m: mass, g: gravity, l: length, k: spring constant}
+coordinates: [theta1, theta2]
+kinetic: m*l**2*(theta1_dot**2 + theta2_dot**2)/2
+potential: -m*g*l*(cos(theta1) + cos(theta2)) + k*l**2*(sin(theta2) - sin(theta1))**2/2
+simulation:
+  values: {m: 1.0, g: 9.81, l: 1.0, k: 2.0}
+  initial: {theta1: 0.1, theta2: 0.0}
+  t_end: 1.0
+"""
+
+
+def _lagranges_method(n: int) -> tuple[sympy.Matrix, sympy.Matrix, list, list]:
+    """M and F of the n-link pendulum from SymPy's LagrangesMethod (an independent route)."""
+    from sympy.physics.mechanics import LagrangesMethod, dynamicsymbols
+
+    q = dynamicsymbols(f"q1:{n + 1}")
+    t = dynamicsymbols._t
+    m, g, length = sympy.symbols("m g l", positive=True)
+    kinetic = potential = 0
+    x = y = 0
+    for i in range(n):
+        x += length * sympy.sin(q[i])
+        y -= length * sympy.cos(q[i])
+        kinetic += m * (sympy.diff(x, t) ** 2 + sympy.diff(y, t) ** 2) / 2
+        potential += m * g * y
+    method = LagrangesMethod(kinetic - potential, q)
+    method.form_lagranges_equations()
+    return method.mass_matrix, method.forcing, q, [sympy.diff(c, t) for c in q]
+
+
+def test_four_link_pendulum_gives_the_matrix_form_of_lagranges_method() -> None:
+    """The 4-link pendulum's explicit solve is too large, so the result is M q̈ = F, equal to what
+    SymPy's LagrangesMethod derives at random states; the note names the stage."""
+    derivation = derive(load_text(chain(4), "chain4.yaml"))
+    assert derivation.accelerations is None
+    assert [n.stage for n in derivation.notes if n.kind == "size"][:1] == ["explicit solve"]
+    M_lm, F_lm, q, u = _lagranges_method(4)
+    model = derivation.model
+    rng = random.Random(1)
+    for _ in range(5):
+        state = [rng.uniform(-3, 3) for _ in range(8)]
+        values = {"m": rng.uniform(0.5, 2), "g": rng.uniform(5, 10), "l": rng.uniform(0.5, 2)}
+        ours_at = {**dict(zip(model.coordinates, state[:4], strict=True)),
+                   **dict(zip(model.velocities, state[4:], strict=True))}
+        ours_at |= {s: values[s.name] for s in derivation.form.lagrange.mass_matrix.free_symbols
+                    | derivation.form.lagrange.forcing.free_symbols if s.name in values}
+        theirs_at = {**dict(zip(u, state[4:], strict=True)), **dict(zip(q, state[:4], strict=True))}
+        # velocities first: xreplace of q(t) must not touch Derivative(q(t), t) before it is replaced
+        theirs_at |= {sympy.Symbol(k, positive=True): v for k, v in values.items()}
+        for ours, theirs in ((derivation.mass_matrix, M_lm), (derivation.forcing, F_lm)):
+            a = np.array(sympy.Matrix(ours).xreplace(ours_at).evalf().tolist(), dtype=float)
+            b = np.array(sympy.Matrix(theirs).subs(theirs_at).evalf().tolist(), dtype=float)
+            assert np.allclose(a, b, rtol=1e-9, atol=1e-9)
+
+
+def test_json_of_a_partial_result_keeps_its_keys_with_null_and_notes() -> None:
+    """A stage without a result keeps its JSON key as null, M and F are given, and a note names the stage."""
+    data = json.loads(result_json(derive(load_text(chain(4), "chain4.yaml"))))
+    assert data["accelerations"] is None and data["multipliers"] is None
+    assert len(data["mass_matrix"]) == 4 and len(data["forcing"]) == 4
+    assert any(n["stage"] == "explicit solve" and n["kind"] == "size" for n in data["notes"])
+
+
+def test_analysis_without_closed_form_still_gives_the_accelerations() -> None:
+    """Coupled pendulums: the symbolic equilibrium solve has no closed form within its share, yet the JSON
+    has the accelerations (Newton: m l θ̈1 = -m g sin θ1 + k l cos θ1 (sin θ2 - sin θ1)) and a note."""
+    derivation = derive(load_text(SPRING, "spring.yaml"), budget=6.0)
+    data = json.loads(result_json(derivation))
+    assert set(data["accelerations"]) == {"theta1", "theta2"}
+    s = {x.name: x for x in derivation.model.coordinates} | {p.name: p.symbol for p in derivation.problem.parameters}
+    t1, t2, m, g, rod, k = (s[n] for n in ("theta1", "theta2", "m", "g", "l", "k"))
+    newton = -g / rod * sympy.sin(t1) + k / m * sympy.cos(t1) * (sympy.sin(t2) - sympy.sin(t1))
+    assert sympy.simplify(derivation.accelerations["theta1"] - newton) == 0
+    assert any(n["stage"] == "equilibria and normal modes" for n in data["notes"])
+
+
+def test_numeric_normal_modes_of_coupled_pendulums() -> None:
+    """Where the equilibria have no closed form within budget, numeric ones at the simulation values are
+    given: hanging straight down, ω² = g/l and g/l + 2k/m (in phase and out of phase)."""
+    derivation = derive(load_text(SPRING, "spring.yaml"), budget=6.0)
+    modes = derivation.analysis.linearization.modes
+    down = modes[0]
+    assert [float(v) for _, v in down.point] == [0.0, 0.0]
+    assert [float(w) for w in down.squared_frequencies] == pytest.approx([9.81, 9.81 + 2 * 2.0], rel=1e-6)
+    assert down.stable is True and "numeric" in down.note
+    points = {tuple(round(float(v), 6) for _, v in mode.point) for mode in modes}
+    assert (round(np.pi, 6), round(np.pi, 6)) in points and len(points) == len(modes)
+
+
+def test_triple_pendulum_frequencies_are_numeric_not_radicals() -> None:
+    """The triple pendulum's characteristic cubic does not split: its ω² are given numerically at the
+    simulation values (equal to the eigenvalues of M0⁻¹K built by hand), never as complex radicals."""
+    derivation = derive(load_text(chain(3), "chain3.yaml"))
+    down = derivation.analysis.linearization.modes[0]
+    assert all(v == 0 for _, v in down.point)
+    mass = np.array([[3, 2, 1], [2, 2, 1], [1, 1, 1]], dtype=float)
+    stiffness = 9.81 * np.diag([3.0, 2.0, 1.0])
+    expected = np.sort(np.linalg.eigvals(np.linalg.solve(mass, stiffness)).real)
+    assert [float(w) for w in down.squared_frequencies] == pytest.approx(list(expected), rel=1e-6)
+    assert not any(w.has(sympy.I) for w in down.squared_frequencies)
+
+
+def test_cli_partial_result_exits_zero_with_a_warning(tmp_path) -> None:  # noqa: ANN001
+    """A derivation with a stage left out exits 0, names the stage on stderr, and writes every report."""
+    path = tmp_path / "chain4.yaml"
+    path.write_text(chain(4), encoding="utf-8")
+    result = CliRunner().invoke(main, ["derive", str(path), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    assert "warning:" in result.stderr and "Explicit solve: too large" in result.stderr
+    report = (tmp_path / "out" / "chain4" / "chain4.md").read_text(encoding="utf-8")
+    assert "The explicit solution is not written out" in report and "Not completed in this derivation" in report
+
+
+def test_simulate_does_not_wait_for_the_analysis(tmp_path) -> None:  # noqa: ANN001
+    """Simulating the 4-link pendulum compiles from the matrix form and monitors the energy, which
+    stays conserved (an independent check of the equations: energy conservation)."""
+    path = tmp_path / "chain4.yaml"
+    path.write_text(chain(4), encoding="utf-8")
+    result = CliRunner().invoke(main, ["simulate", str(path), "--t-end", "2"])
+    assert result.exit_code == 0, result.output
+    drift = float(result.output.split("relative drift ")[1].split()[0])
+    assert drift < 1e-7
