@@ -180,3 +180,19 @@ def test_stop_after_release_holds_when_contact_pulls_at_the_start() -> None:
     assert [(e.time, e.kind, e.name, e.action) for e in trajectory.events] == [(0.0, "release", "sphere", "stopped")]
     going_on = run(SPHERE, 1.0, initial={"x": 0.8, "y": 0.6, "x_dot": 3.0}, after_release="continue")
     assert going_on.t[-1] == 1.0 and going_on.events[0].action == "released"
+
+
+def test_accelerations_that_are_not_finite_at_the_start_stop_at_once() -> None:
+    """V = k x log(x) at x = -1 has no finite force: the run stops at t = 0 with the reason (SciPy would
+    otherwise loop for ever on a NaN step size)."""
+    text = """
+name: Bad start
+parameters: {m: mass, k: stiffness}
+coordinates: [x]
+kinetic: m*x_dot**2/2
+potential: k*x*log(x)
+simulation: {values: {m: 1.0, k: 1.0}, initial: {x: -1.0, x_dot: 0}, t_end: 1}
+"""
+    with pytest.raises(SimulationError, match=r"no longer finite at t = 0 \(x = -1, x_dot = 0\): x_ddot is not a "
+                                              r"finite number"):
+        run(text, 1.0)

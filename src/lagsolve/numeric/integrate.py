@@ -258,7 +258,7 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
                 rows.append(_sample(run, times[next_sample], y_sample))
                 last = (float(times[next_sample]), y_sample)
                 next_sample += 1
-            _check_finite(run, t_stop, y_new if event is None else dense(t_stop), last, rhs=event is None)
+            _check_finite(run, t_stop, y_new if event is None else dense(t_stop), last)
             last = (float(t_stop), y_new if event is None else dense(t_stop))
             if event is not None:
                 t0, y0, stopped = _handle(run, event, dense, events, after_release)
@@ -306,9 +306,12 @@ def _check_finite(run: _Run, t: float, y: np.ndarray, last: tuple[float, np.ndar
     ≤ 0, a division by zero) or the motion diverged; nothing computed from there on would mean
     anything, so the run stops at the first such state and says where.
     """
+    finite = bool(np.all(np.isfinite(y)))
+    if finite and not rhs:
+        return  # the common case, at every step: nothing more to do
     system = run.system
     names = [*system.coordinates, *(f"{c}_dot" for c in system.coordinates)]
-    bad = [name for name, v in zip(names, y, strict=True) if not np.isfinite(v)]
+    bad = [] if finite else [name for name, v in zip(names, y, strict=True) if not np.isfinite(v)]
     if not bad and rhs:
         with np.errstate(all="ignore"):
             try:
