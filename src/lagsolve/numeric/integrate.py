@@ -219,8 +219,6 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
     max_residual = run.residual(0.0, q0, qd0)
     t0, y0 = 0.0, np.concatenate([q0, qd0])  # the whole state at each (re)start
     last: tuple[float, np.ndarray] | None = None  # the last state found finite, for a message
-    _check_finite(run, t0, y0, last, rhs=True)
-    last = (t0, y0)
     _start_contacts(run, t0, y0, events)
     next_sample = 0
     finished = stopped = False
@@ -236,6 +234,8 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
                 break
             _release(run, pulling[0])
             continue
+        _check_finite(run, t0, y0, last, rhs=True)  # at a (re)start: a NaN step size would make SciPy loop
+        last = (float(t0), y0)
         solver = getattr(integrate, method)(run.rhs, t0, run.local(y0), t_end, rtol=rtol, atol=atol,
                                             max_step=max_step)
         watch_old = _watch(run, t0, y0)
