@@ -532,8 +532,9 @@ def test_endless_file_is_refused_quickly() -> None:
 
 
 def test_values_contradicting_a_positive_assumption_are_refused() -> None:
-    """A simulation value or default <= 0 for a positive parameter, or an initial value <= 0 for a positive
-    coordinate, is refused with its line, field and the fix: the derivation assumed the opposite."""
+    """A negative simulation value or default for a positive parameter, or a negative initial value for a
+    positive coordinate, is refused with its line, field and the fix: the derivation assumed the opposite.
+    Zero, the limit case (mu = 0: no friction), is allowed."""
     text = """\
 name: Spring
 parameters:
@@ -544,19 +545,19 @@ coordinates: {r: {description: distance, positive: true}, z: height}
 kinetic: m*(r_dot**2 + z_dot**2)/2
 potential: k*r**2/2 - F*z
 simulation:
-  values: {m: 0, F: -3}
+  values: {m: -0.5, F: -3, k: 0}
   initial: {r: -0.5, z: -1}
 """
     issues = [str(i) for i in issues_of(text)]
     assert issues == [
         "p.yaml:4: parameters.k.value: -2 contradicts the assumption that parameter 'k' is positive (parameters "
-        "are, unless declared with positive: false), which the derivation relies on; give a positive value, or "
+        "are, unless declared with positive: false), which the derivation relies on; give a value >= 0, or "
         "declare it as k: {description: ..., positive: false} under parameters",
-        "p.yaml:10: simulation.values.m: 0 contradicts the assumption that parameter 'm' is positive (parameters "
-        "are, unless declared with positive: false), which the derivation relies on; give a positive value, or "
+        "p.yaml:10: simulation.values.m: -0.5 contradicts the assumption that parameter 'm' is positive (parameters "
+        "are, unless declared with positive: false), which the derivation relies on; give a value >= 0, or "
         "declare it as m: {description: ..., positive: false} under parameters",
         "p.yaml:11: simulation.initial.r: -0.5 contradicts the assumption that coordinate 'r' is positive "
-        "(declared positive: true), which the derivation relies on; give a positive value, or remove "
+        "(declared positive: true), which the derivation relies on; give a value >= 0, or remove "
         "positive: true from coordinate 'r'",
     ]
 

@@ -152,5 +152,5 @@ def test_set_contradicting_a_positive_parameter_is_refused() -> None:
         bind(matrix_form(load_text(BEAD, "bead.yaml")), {"g": -9.81})
     assert [str(i) for i in caught.value.issues] == [
         "bead.yaml: --set: g=-9.81 contradicts the assumption that parameter 'g' is positive (parameters are, "
-        "unless declared with positive: false), which the derivation relies on; give a positive value, or "
+        "unless declared with positive: false), which the derivation relies on; give a value >= 0, or "
         "declare g with positive: false in bead.yaml"]

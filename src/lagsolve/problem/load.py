@@ -166,15 +166,15 @@ class _Loader:
     def assumption_holds(self, path: tuple, name: str, value: float, positive: bool,
                          kind: str = "parameter") -> bool:
         """Whether ``value`` agrees with ``name`` being positive (the derivation relies on it); if not, an issue."""
-        if not positive or value > 0:
+        if not positive or value >= 0:  # 0 is the limit case (mu = 0: no friction)
             return True
         if kind == "parameter":
             why = "(parameters are, unless declared with positive: false)"
-            fix = (f"give a positive value, or declare it as {name}: {{description: ..., positive: false}} "
+            fix = (f"give a value >= 0, or declare it as {name}: {{description: ..., positive: false}} "
                    "under parameters")
         else:
             why = "(declared positive: true)"
-            fix = f"give a positive value, or remove positive: true from coordinate {name!r}"
+            fix = f"give a value >= 0, or remove positive: true from coordinate {name!r}"
         self.issue(path, f"{value:g} contradicts the assumption that {kind} {name!r} is positive {why}, "
                    "which the derivation relies on", fix)
         return False
