@@ -22,6 +22,21 @@ from lagsolve.problem.schema import Problem
 
 PROBLEMS = Path(__file__).resolve().parents[1] / "problems"
 
+#: problems the derive-everything tests leave out for now: coupled_pendulums (its equilibrium analysis, sympy.solve
+#: in mechanics/linearize.py, does not finish), triple_pendulum and rolling_disc (about 10 s each to derive here;
+#: to be added to the end-to-end tests with golden reports once derivation is fast). tests/test_new_problems.py
+#: checks their answers by independent routes.
+AWAITING_DERIVATION = frozenset({"coupled_pendulums", "rolling_disc", "triple_pendulum"})
+#: problems derived by the suite whose reports are not reviewed golden files yet (tests/golden/ has none for them)
+AWAITING_GOLDEN = AWAITING_DERIVATION | {"block_two_pendulums", "bowl", "cart_two_wheels"}
+
+
+def shipped(*, golden: bool = False) -> list[str]:
+    """Stems of ``problems/*.yaml`` that the derive-everything tests cover, sorted; with ``golden``, only those with
+    reviewed golden reports."""
+    left_out = AWAITING_GOLDEN if golden else AWAITING_DERIVATION
+    return sorted(p.stem for p in PROBLEMS.glob("*.yaml") if p.stem not in left_out)
+
 #: the particle in a frictionless rotating tube (ESM 3124 HW6, problem 2, with mu = 0)
 TUBE = """
 name: Particle in a smooth rotating tube

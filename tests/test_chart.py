@@ -7,7 +7,7 @@ import sympy
 
 from lagsolve.mechanics.chart import minimal_chart
 from lagsolve.mechanics.constraints import constraint_terms
-from mechanics_support import PROBLEMS, TUBE, derived_file, derived_text, exactly_equal, names
+from mechanics_support import TUBE, derived_file, derived_text, exactly_equal, names, shipped
 
 
 def chart_of(derivation):
@@ -54,7 +54,7 @@ def test_no_chart_says_why(name, reason):
 
 
 def _holonomic():
-    return sorted(p.stem for p in PROBLEMS.glob("*.yaml") if p.stem not in ("knife_edge", "rolling_coin"))
+    return [name for name in shipped() if name not in ("knife_edge", "rolling_coin")]
 
 
 @pytest.mark.parametrize("name", _holonomic())

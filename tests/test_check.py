@@ -11,10 +11,12 @@ import sympy
 
 from lagsolve.check import (
     ABSENT,
+    CONSERVED,
     CONVENTION,
     DIFFERS,
     FACTOR,
     MISMATCH,
+    NOT_CONSERVED,
     NOT_DERIVED,
     NUMERIC,
     OFFSET,
@@ -32,10 +34,10 @@ from lagsolve.check import (
 )
 from lagsolve.mechanics.derivation import Derivation, derive
 from lagsolve.problem.load import load_text
-from mechanics_support import derived_file
+from mechanics_support import derived_file, shipped
 
 ROOT = Path(__file__).resolve().parents[1]
-PROBLEMS = sorted((ROOT / "problems").glob("*.yaml"))
+PROBLEMS = [ROOT / "problems" / f"{name}.yaml" for name in shipped()]
 
 
 @functools.cache
@@ -245,13 +247,55 @@ def test_unknown_conserved_quantity_is_a_mismatch() -> None:
 
 
 def test_analysis_not_derived_yet_is_unchecked() -> None:
-    """Without analysis results the expected reduced, conserved and V_eff answers are 'not derived', not failures."""
+    """Without analysis results the expected reduced and V_eff answers are 'not derived', not failures; a claimed
+    conserved quantity is still checked by its rate along the equations of motion."""
     bare = dataclasses.replace(variant("hole_table", HOLE_ANALYSIS), reduced=None, conserved=None,
                                effective_potential=None)
     report = check(bare)
-    assert {v.status for v in report.verdicts} == {UNCHECKED}
-    assert all(v.reason == NOT_DERIVED and "not derived yet" in v.note for v in report.verdicts)
+    conserved = [v for v in report.verdicts if v.quantity == "conserved"]
+    rest = [v for v in report.verdicts if v.quantity != "conserved"]
+    assert {v.status for v in rest} == {UNCHECKED}
+    assert all(v.reason == NOT_DERIVED and "not derived yet" in v.note for v in rest)
+    assert [(v.name, v.status, v.reason) for v in conserved] == [("p_theta", OK, CONSERVED), ("energy", OK, CONSERVED)]
     assert report.passed
+
+
+BOWL_CLAIMS = """  conserved:
+    angular_momentum: "m*(x*y_dot - y*x_dot)"
+    half: "m*x*y_dot"
+"""
+
+
+def test_claimed_constant_that_lagsolve_does_not_find_is_confirmed_by_its_rate() -> None:
+    """The bowl's m(x ẏ − y ẋ) is no cyclic momentum of (x, y, z), yet check confirms it: dC/dt = 0 on the bowl."""
+    derivation = variant("bowl", BOWL_CLAIMS)
+    assert "angular_momentum" not in (derivation.conserved or {})
+    verdict = verdicts("bowl", BOWL_CLAIMS)["conserved.angular_momentum"]
+    assert (verdict.status, verdict.reason) == (OK, CONSERVED)
+    assert "does not find" in verdict.note
+
+
+def test_claimed_constant_that_changes_is_a_mismatch_with_a_state() -> None:
+    """m x ẏ on the bowl is not conserved: a mismatch whose witness lies on the bowl and has dC/dt ≠ 0 there."""
+    verdict = verdicts("bowl", BOWL_CLAIMS)["conserved.half"]
+    assert (verdict.status, verdict.reason) == (MISMATCH, NOT_CONSERVED)
+    assert verdict.witness is not None and verdict.agreeing == 0
+    values = dict(verdict.witness.values)
+    assert values["z"] == pytest.approx((values["x"] ** 2 + values["y"] ** 2) / (2 * values["a"]))
+    (rate,) = verdict.witness.expected
+    assert rate is not None and abs(rate) > 1e-6
+    # independently, Newton on the bowl (normal force along (-x/a, -y/a, 1)): d(m x y')/dt = m(x' y' + x y'')
+    x, y, xd, yd, m, g, a = (values[k] for k in ("x", "y", "x_dot", "y_dot", "m", "g", "a"))
+    n_over_m = (g + (xd**2 + yd**2) / a) / (1 + (x**2 + y**2) / a**2)  # N/m along the unnormalized normal
+    ydd = -n_over_m * y / a
+    assert rate.real == pytest.approx(m * (xd * yd + x * ydd), rel=1e-9)
+
+
+def test_claimed_constant_is_checked_numerically_on_a_surface_no_coordinate_solves() -> None:
+    """On the Cartesian pendulum x² + y² is constant only on the constraint surface: ok, by numeric states."""
+    verdict = verdicts("pendulum_cartesian", '  conserved: {radius: "x**2 + y**2"}\n')["conserved.radius"]
+    assert (verdict.status, verdict.reason) == (OK, CONSERVED)
+    assert verdict.states >= 8
 
 
 def test_analysis_given_as_text_is_read_safely() -> None:

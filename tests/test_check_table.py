@@ -4,7 +4,18 @@ from __future__ import annotations
 
 import sympy
 
-from lagsolve.check import CONVENTION, FACTOR, NOT_DERIVED, NUMERIC, OFFSET, CheckReport, Verdict, Witness
+from lagsolve.check import (
+    CONSERVED,
+    CONVENTION,
+    FACTOR,
+    NOT_CONSERVED,
+    NOT_DERIVED,
+    NUMERIC,
+    OFFSET,
+    CheckReport,
+    Verdict,
+    Witness,
+)
 from lagsolve.render.checks import check_table, describe, label
 from lagsolve.render.notation import Notation
 
@@ -74,3 +85,19 @@ def test_columns_align_despite_combining_dots() -> None:
     first, second = table.splitlines()[1:3]
     strip = "\u0307\u0308"
     assert first.translate({ord(c): None for c in strip}).index("ok") == second.index("ok")
+
+
+def test_table_shows_the_rate_of_a_claimed_constant_that_changes() -> None:
+    """A claimed conserved quantity that is not conserved shows the claim and dC/dt at a state on the surface."""
+    theta, theta_dot = sympy.symbols("theta theta_dot")
+    witness = Witness((("theta", 0.5), ("theta_dot", -1.25), ("g", 9.81)), (), (2.5,), (0.0,))
+    verdict = _verdict(quantity="conserved", name="spin", status="mismatch", reason=NOT_CONSERVED,
+                       expected=(m * theta_dot,), derived=None, states=24, agreeing=0, witness=witness)
+    report = CheckReport("Pendulum", "p.yaml", ("x", "theta"), (verdict,))
+    lines = check_table(report).splitlines()
+    assert "not conserved, dC/dt ≠ 0 along the equations of motion at 24 of 24 states" in lines[1]
+    assert lines[2].strip() == "claimed: m*θ̇"
+    assert lines[3].strip() == "dC/dt ≠ 0 at θ = 0.5, θ̇ = -1.25, g = 9.81: dC/dt = 2.5"
+    ok = _verdict(quantity="conserved", name="spin", reason=CONSERVED, derived=None, states=24, agreeing=24)
+    assert describe(ok, NOTE) == "ok (conserved: dC/dt = 0 along the equations of motion, at 24 states on the " \
+                                 "constraint surface)"

@@ -12,6 +12,7 @@ import pytest
 from click.testing import CliRunner
 
 from lagsolve.cli import main
+from mechanics_support import shipped
 
 ROOT = Path(__file__).resolve().parents[1]
 BEAD = str(ROOT / "problems" / "bead.yaml")
@@ -92,12 +93,17 @@ def test_update_golden_needs_golden(runner: CliRunner) -> None:
     assert result.exit_code == 2 and "--update-golden needs --golden" in result.stderr
 
 
-def test_timeout_stops_the_derivation(runner: CliRunner) -> None:
-    """A derivation past --timeout stops with exit 1 and says how to raise the budget."""
+def test_timeout_still_gives_the_core(runner: CliRunner) -> None:
+    """A derivation past its --timeout CPU budget still answers with its core: exit 0, a warning names what
+    was not completed and how to raise the budget, and the JSON has the matrix form."""
+    import json
+
     result = runner.invoke(main, ["derive", str(ROOT / "problems" / "rotating_tube.yaml"), "--timeout", "0.2",
                                   "--format", "json"])
-    assert result.exit_code == 1
-    assert "did not finish within the 0.2 s budget; raise it with --timeout" in result.stderr
+    assert result.exit_code == 0, result.output
+    assert "warning:" in result.stderr and "--timeout" in result.stderr
+    data = json.loads(result.stdout)
+    assert len(data["mass_matrix"]) == 3 and len(data["forcing"]) == 3 and data["notes"]
 
 
 def test_help_does_not_import_sympy() -> None:
@@ -112,7 +118,7 @@ def test_help_does_not_import_sympy() -> None:
 @pytest.mark.slow
 def test_reports_do_not_depend_on_hash_seed(tmp_path: Path) -> None:
     """Two runs with different PYTHONHASHSEED give byte-identical reports for every problem."""
-    problems = sorted(str(p) for p in (ROOT / "problems").glob("*.yaml"))
+    problems = [str(ROOT / "problems" / f"{name}.yaml") for name in shipped()]
     outputs = []
     for seed in ("0", "4242"):
         target = tmp_path / seed

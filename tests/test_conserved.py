@@ -3,6 +3,9 @@ each verified along the equations, and never claimed when a force or a moving co
 
 from __future__ import annotations
 
+import math
+import random
+
 import sympy
 
 from lagsolve.mechanics.conserved import MotionSystem, conserved_quantities, constraint_surface
@@ -77,3 +80,34 @@ def test_a_candidate_that_fails_verification_is_dropped():
     found = conserved_quantities(system)
     assert found.quantities == ()
     assert any("did not simplify to 0" in n for n in found.notes)
+
+
+def test_momentum_of_a_coordinate_only_in_other_coefficients_is_conserved():
+    """The upright rolling coin's heading φ enters the rolling constraints only through cos φ, sin φ (coefficients of
+    θ̇): p_φ = Id φ̇ is still conserved, and SymPy's LagrangesMethod confirms dp_φ/dt = 0 at random rolling states."""
+    from sympy.physics.mechanics import LagrangesMethod, dynamicsymbols
+
+    coin = derived_file("rolling_coin")
+    s = names(coin.problem)
+    assert exactly_equal(coin.conserved["p_phi"], s["Id"] * s["phi_dot"])
+    assert s["phi"] in coin.analysis.conservation.cyclic
+    assert set(coin.conserved) == {"p_phi", "energy"}  # x, y, theta are absent from L but their velocities constrained
+    # independent route: Lagrange's equations with multipliers by SymPy, the coin written out by hand
+    x, y, phi, theta = dynamicsymbols("x y phi theta")
+    m, R, Ia, Id = sympy.symbols("m R Ia Id", positive=True)
+    t = dynamicsymbols._t
+    lagrangian = (m * (x.diff(t) ** 2 + y.diff(t) ** 2) + Ia * theta.diff(t) ** 2 + Id * phi.diff(t) ** 2) / 2
+    rolling = [x.diff(t) - R * theta.diff(t) * sympy.cos(phi), y.diff(t) - R * theta.diff(t) * sympy.sin(phi)]
+    method = LagrangesMethod(lagrangian, [x, y, phi, theta], nonhol_coneqs=rolling)
+    method.form_lagranges_equations()
+    rhs = method.rhs()
+    state = [x, y, phi, theta, *(q.diff(t) for q in (x, y, phi, theta))]
+    plain = sympy.symbols("x y phi theta x_d y_d phi_d theta_d")
+    rate = Id * rhs[6].xreplace(dict(zip(state[::-1], plain[::-1], strict=True)))  # Id * phi_ddot
+    rng = random.Random(5)
+    for _ in range(20):
+        values = {sym: rng.uniform(-2, 2) for sym in plain}
+        values |= {m: rng.uniform(0.5, 2), R: rng.uniform(0.5, 2), Ia: rng.uniform(0.5, 2), Id: rng.uniform(0.5, 2)}
+        values[plain[4]] = values[R] * values[plain[7]] * math.cos(values[plain[2]])  # on the rolling surface
+        values[plain[5]] = values[R] * values[plain[7]] * math.sin(values[plain[2]])
+        assert abs(float(rate.xreplace(values))) < 1e-12

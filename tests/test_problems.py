@@ -12,16 +12,19 @@ import sympy
 from lagsolve.mechanics.derivation import Derivation, derive
 from lagsolve.pipeline import Reports, derive_file, golden_differences
 from lagsolve.problem.load import load_problem
+from mechanics_support import shipped
 
 ROOT = Path(__file__).resolve().parents[1]
-PROBLEMS = sorted((ROOT / "problems").glob("*.yaml"))
+ALL_PROBLEMS = sorted((ROOT / "problems").glob("*.yaml"))
+PROBLEMS = [ROOT / "problems" / f"{name}.yaml" for name in shipped()]  # derived (see AWAITING_DERIVATION)
+REVIEWED = [ROOT / "problems" / f"{name}.yaml" for name in shipped(golden=True)]  # with golden reports
 GOLDEN = ROOT / "tests" / "golden"
 
 # concrete smooth functions that stand in for declared functions in numeric checks
 CONCRETE = [lambda u: sympy.sin(u) + u**2 / 3, lambda u: sympy.exp(u / 2) - u, lambda u: u**3 / 5 + sympy.cos(u)]
 
 
-@pytest.fixture(scope="module", params=PROBLEMS, ids=[p.stem for p in PROBLEMS])
+@pytest.fixture(scope="module", params=REVIEWED, ids=[p.stem for p in REVIEWED])
 def reports(request: pytest.FixtureRequest) -> Reports:
     return derive_file(request.param, ("md", "tex", "json"))
 
@@ -123,7 +126,7 @@ def test_expected_answers_hold(derivations: dict[str, Derivation], name: str) ->
 
 def test_every_problem_states_expected_answers_or_simulation() -> None:
     """Each shipped problem documents itself: a description, and answers or simulation defaults."""
-    for path in PROBLEMS:
+    for path in ALL_PROBLEMS:
         problem = load_problem(path)
         assert problem.description, path
         assert problem.simulation is not None, path

@@ -15,6 +15,7 @@ from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation, derive
 from lagsolve.problem.load import load_problem, load_text
 from lagsolve.render.report import context, render, result_dict, summary, template_dirs
+from mechanics_support import shipped
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -125,7 +126,7 @@ def test_templates_are_packaged() -> None:
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "problems").glob("*.yaml")))
+@pytest.mark.parametrize("name", shipped())
 def test_latex_compiles(name: str, tmp_path: Path) -> None:
     """Each problem's LaTeX report compiles with pdflatex (skipped where pdflatex is not installed)."""
     if shutil.which("pdflatex") is None:

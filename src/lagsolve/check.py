@@ -26,6 +26,18 @@ derived D:
      whose zero level is free (the verdict says so); a mismatch elsewhere;
    * otherwise the two simply *differ*; a state where they do is reported.
 
+A claimed **conserved quantity** C that lagsolve's analysis does not give under the same name is
+checked on its own: its rate along the equations of motion,
+
+.. math:: \frac{dC}{dt} = \frac{\partial C}{\partial t} + \sum_i \frac{\partial C}{\partial q_i}\dot q_i
+          + \sum_i \frac{\partial C}{\partial \dot q_i}\ddot q_i,
+
+with :math:`\ddot q` the derived accelerations, must vanish: symbolically (*conserved, symbolic*)
+or at every random state on the constraint surface (*conserved, numeric*); otherwise the claim is a
+mismatch (*not conserved*) with a state where :math:`dC/dt \ne 0` (the witness holds that rate as
+``expected`` and 0 as ``derived``). A quantity lagsolve does give under that name (``energy``, a
+cyclic momentum ``p_<q>``) is compared with it as above.
+
 Agreement only off the constraint surface does not count: every state satisfies every
 constraint. The result is a frozen :class:`CheckReport`; nothing is printed here.
 """
@@ -59,6 +71,7 @@ OPPOSITE_SIGN, CONVENTION = "opposite sign", "multiplier convention"
 FACTOR, OFFSET, SIGN_DEPENDENT = "constant factor", "constant offset", "holds only where"
 UNDEFINED, DIFFERS, ABSENT, SHAPE = "undefined", "differs", "absent", "shape"
 RELEASED = "constraints released"
+CONSERVED, NOT_CONSERVED = "conserved", "not conserved"
 NOT_DERIVED, TOO_FEW_STATES, SAME = "not derived", "too few states", "same"
 
 STATES = 24
@@ -143,6 +156,7 @@ class _Item:
     shifts: bool = False  # an additive constant is harmless (conserved quantities, potentials)
     real: bool = True  # values must be real (not so for equilibria, which may not exist everywhere)
     missing: str = UNCHECKED  # status when there is nothing derived to compare with
+    rate: bool = False  # a claimed constant of the motion, checked by its rate dC/dt along the equations
     extra: dict[str, Any] = field(default_factory=dict)
 
 
@@ -239,12 +253,12 @@ def _analysis_items(derivation: Derivation) -> list[_Item]:
     conserved = derivation.conserved
     for name, e in expected.conserved.items():
         value = _as_expr((conserved or {}).get(name), names)
-        if conserved is not None and value is None:
-            found = ", ".join(conserved) or "none"
-            items.append(_Item("conserved", name, (e,), None,
-                               f"lagsolve finds no conserved quantity {name!r} (it finds: {found})", missing=MISMATCH))
+        if value is None:
+            found = "no analysis" if conserved is None else ", ".join(conserved) or "nothing"
+            items.append(_Item("conserved", name, (e,), None, f"lagsolve's analysis does not find {name!r} "
+                               f"(it finds: {found})", shifts=True, rate=True))
             continue
-        items.append(_Item("conserved", name, (e,), None if value is None else (value,), NOT_YET, shifts=True))
+        items.append(_Item("conserved", name, (e,), (value,), shifts=True))
     spec = expected.effective_potential
     if spec and "expression" in spec:
         derived = derivation.effective_potential
@@ -305,9 +319,13 @@ class _Checker:
         self._states: list[State] | None = None
         self._extra: set[Any] = set()
         self._released: ReleasedConstraints | None = None
+        self._rates: dict[str, Any] = {}
         for item in items:
             for e in (*item.expected, *(item.derived or ())):
                 self._extra |= self.prepare(e).free_symbols
+            if item.rate:
+                self._rates[item.name] = self.rate(item.expected[0])
+                self._extra |= self._rates[item.name].free_symbols
 
     # preparation
 
@@ -330,6 +348,15 @@ class _Checker:
             expr = expr.xreplace(known)
         return derivation.elimination.apply(expr)
 
+    def rate(self, expr: Any) -> Any:
+        r""":math:`dC/dt` of ``expr`` along the equations of motion (the derived accelerations put in),
+        with the constraints used as in :meth:`prepare`."""
+        model = self.derivation.model
+        accelerations = {a: self.derivation.accelerations[q.name]
+                         for q, a in zip(model.coordinates, model.accelerations, strict=True)}
+        rate = model.time_derivative(self._unify(expr), second_order=True).xreplace(accelerations)
+        return self.prepare(rate)
+
     def space(self) -> StateSpace:
         if self._space is None:
             self._space = StateSpace(self.derivation, self._extra, self.seed)
@@ -343,6 +370,8 @@ class _Checker:
     # verdicts
 
     def verdict(self, item: _Item) -> Verdict:
+        if item.rate:
+            return self.conservation(item)
         expected = tuple(self.prepare(e) for e in item.expected)
         base = {"quantity": item.quantity, "name": item.name, "expected": item.expected}
         if item.derived is None:
@@ -415,6 +444,34 @@ class _Checker:
             note = "the same quantity with another zero level" if harmless else ""
             return Verdict(**base, status=OK if harmless else MISMATCH, reason=OFFSET, offset=offset, note=note)
         return Verdict(**base, status=MISMATCH, reason=DIFFERS)
+
+    def conservation(self, item: _Item) -> Verdict:
+        """A claimed constant of the motion: ok when dC/dt = 0 along the equations, on the constraint surface."""
+        rate = self._rates[item.name]
+        base = {"quantity": item.quantity, "name": item.name, "expected": item.expected}
+        along = "its rate dC/dt along the equations of motion"
+        if _symbolically_equal(rate, sympy.Integer(0)):
+            return Verdict(**base, status=OK, reason=CONSERVED, note=f"{item.note}; {along} simplifies to 0")
+        compiled = Compiled(rate, self.space())
+        rows: list[Row] = []
+        for state in self.states():
+            value = compiled(state)
+            if isinstance(value, mpmath.mpf):
+                rows.append((state, [value], [mpmath.mpf(0)]))
+        if len(rows) < MINIMUM_STATES:
+            return Verdict(**base, status=UNCHECKED, reason=TOO_FEW_STATES, states=len(rows),
+                           note=f"{item.note}; only {len(rows)} states on the constraint surface where "
+                                "dC/dt is defined were found")
+        zero = [close(es[0], 0) for _, es, _ in rows]
+        base |= {"states": len(rows), "agreeing": sum(zero)}
+        if all(zero):
+            return Verdict(**base, status=OK, reason=CONSERVED,
+                           note=f"{item.note}; {along} is 0 at {len(rows)} states on the constraint surface")
+        row = rows[zero.index(False)]
+        prepared = self.prepare(item.expected[0])
+        return Verdict(**base, status=MISMATCH, reason=NOT_CONSERVED, witness=self.witness(row, (prepared,), (rate,)),
+                       note=f"{item.note}; {along} is not 0 at {len(rows) - sum(zero)} of {len(rows)} states "
+                            "on the constraint surface")
 
     # diagnosis helpers
 

@@ -89,7 +89,10 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
         from lagsolve.mechanics.chart import minimal_chart
 
         chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
-        run = run_simulation(derivation.form, derivation.conserved, simulate, chart=chart, chart_note=chart_note)
+        from lagsolve.mechanics.analysis import energy_reason
+
+        run = run_simulation(derivation.form, derivation.conserved, simulate, chart=chart, chart_note=chart_note,
+                             energy_note=energy_reason(derivation.analysis.conservation))
         slug = safe_slug(derivation.problem.source)
         figures = []
         for key, data in run.figures.items():
@@ -240,8 +243,8 @@ def _simulate(problem: object, options: SimulationOptions, progress: object) -> 
     form = matrix_form(problem, display=False)  # type: ignore[arg-type]
     # the conserved quantities to monitor and the minimal coordinates come from cheap criteria on the matrix
     # form (the same functions derive uses), never from the symbolic solve or the analysis of equilibria
-    conserved, chart, chart_note = monitored(form, options.analysis_timeout)
-    return run_simulation(form, conserved, options, progress, "", chart, chart_note)
+    conserved, chart, chart_note, energy_note = monitored(form, options.analysis_timeout)
+    return run_simulation(form, conserved, options, progress, "", chart, chart_note, energy_note)
 
 
 def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: float = 600.0,

@@ -44,10 +44,11 @@ class SimulationResult:
 
 
 def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progress: Any = None,
-                   note: str = "", chart: Any = None, chart_note: str = "") -> SimulationResult:
+                   note: str = "", chart: Any = None, chart_note: str = "", energy_note: str = "") -> SimulationResult:
     """Bind ``form`` (a :class:`~lagsolve.mechanics.matrix_form.MatrixForm`) to numbers, integrate,
     and build the requested tables and figures. ``conserved`` maps names to expressions whose
-    drift is reported; ``note`` is appended to the summary. ``chart`` (a
+    drift is reported (the energy is conserved exactly when it has an ``energy``; ``energy_note`` says
+    why not); ``note`` is appended to the summary. ``chart`` (a
     :class:`~lagsolve.mechanics.chart.MinimalChart`) lets the run integrate in minimal
     coordinates; ``chart_note`` says why there is none.
 
@@ -72,7 +73,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     if options.coordinates not in ("minimal", "full"):
         raise ValueError(f"unknown coordinates option {options.coordinates!r}")
     minimal = options.coordinates == "minimal"
-    system = bind(form, options.values, conserved, chart if minimal else None)
+    system = bind(form, options.values, conserved, chart if minimal else None, energy_note)
     if minimal and chart is None and chart_note and form.constraints:
         note = f"  not in minimal coordinates: {chart_note}\n" + note
     t_end = options.t_end if options.t_end is not None else (spec.t_end if spec else None)

@@ -55,6 +55,10 @@ class Analysis:
     linearization_note: str
 
 
+#: CPU seconds the symbolic equilibrium solve may take when numeric equilibria can be given instead
+NUMERIC_FALLBACK_CAP = 4.0
+
+
 def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
     """The analysis of a finished derivation (see the module docstring), each part a stage of ``stages``
     (a fresh budget when None): a part that runs out of its share, or does not apply, says why in its note."""
@@ -91,7 +95,7 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
         conservation = Conservation((), (), (_stage_reason(stages, "conserved quantities"),))
     effective, effective_note = None, ""
     if friction:
-        stages.skip("effective potential", "Coulomb friction acts: equilibria are not isolated points")
+        stages.skip("effective potential", "Coulomb friction acts: equilibria are not isolated points", "n/a")
         effective_note = "Coulomb friction acts"
     else:
         found_v = stages.run("effective potential", effective_potential, system, conservation, friction)
@@ -103,7 +107,10 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
         stages.skip("equilibria and normal modes", linear_note, "n/a")
     elif effective is None:
         values = dict(problem.simulation.values) if problem.simulation is not None else None
-        found_l = stages.run("equilibria and normal modes", linearize, system, conservation.cyclic, friction, values)
+        # with numbers to fall back on, a symbolic solve that has not finished in a few seconds will not help
+        cap = NUMERIC_FALLBACK_CAP if values is not None and not problem.functions else None
+        found_l = stages.run("equilibria and normal modes", linearize, system, conservation.cyclic, friction, values,
+                             cap=cap, instead="numeric equilibria at the simulation values are given instead")
         linear, linear_note = (found_l if found_l is not None
                                else (None, _stage_reason(stages, "equilibria and normal modes")))
         spec = problem.simulation
@@ -112,6 +119,9 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
                                  dict(spec.initial))
             if numeric is not None:
                 linear, linear_note = numeric, f"numeric: {linear_note}"
+            else:
+                linear_note += f"; {_stage_reason(stages, 'numeric equilibria')}"
+                stages.settle("numeric equilibria")  # the analysis section says it
     else:
         stages.skip("equilibria and normal modes", "the effective potential covers this system", "n/a")
     return Analysis(classes, reduced, reduced_note, system, conservation, effective, effective_note,
@@ -157,11 +167,12 @@ def with_analysis(derivation: Derivation, stages: Stages | None = None) -> Deriv
     return dataclasses.replace(derivation, analysis=analysis, **contract_forms(analysis))
 
 
-def monitored(form: MatrixForm, budget: float = 30.0) -> tuple[dict[str, Any], MinimalChart | None, str]:
+def monitored(form: MatrixForm, budget: float = 30.0) -> tuple[dict[str, Any], MinimalChart | None, str, str]:
     """What a simulation needs from the analysis, decided cheaply from the matrix form: the conserved
     quantities to monitor (by the same criteria :func:`analyse` uses, without verifying them along
     explicit accelerations) and the chart of minimal coordinates (or the reason there is none).
-    Nothing is solved or simplified for display, so a simulation never waits for symbolic analysis."""
+    Nothing is solved or simplified for display, so a simulation never waits for symbolic analysis.
+    The last item says why the energy is not conserved ("" when it is)."""
     stages = Stages(budget)
     problem, model, constraints = form.problem, form.model, form.constraints
     taken = set(problem.symbols) | {f.name for f in problem.functions} | {momentum_name(c.symbol)
@@ -182,4 +193,12 @@ def monitored(form: MatrixForm, budget: float = 30.0) -> tuple[dict[str, Any], M
         conservation = Conservation((), (), ())
     analysis = Analysis(classes or (), reduced, note, system, conservation, None, "", None, "")
     chart, chart_note = minimal_chart(analysis, model)
-    return contract_forms(analysis)["conserved"], chart, chart_note
+    return contract_forms(analysis)["conserved"], chart, chart_note, energy_reason(conservation)
+
+
+def energy_reason(conservation: Conservation) -> str:
+    """Why the energy is not conserved, from the conservation notes ("" when it is)."""
+    if any(c.name == "energy" for c in conservation.quantities):
+        return ""
+    reason = next((n.split(": ", 1)[1] for n in conservation.notes if n.startswith("energy: ")), "")
+    return reason.removeprefix("not conserved, ") or "the analysis finds no conserved energy"

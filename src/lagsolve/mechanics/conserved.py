@@ -4,9 +4,11 @@ For a system :math:`L(q, \dot q, t)` with generalized forces :math:`Q` and (poss
 velocity constraints :math:`\sum_i a_{ji}\dot q_i + b_j = 0` left over:
 
 * a coordinate :math:`q_k` is **cyclic** when :math:`\partial L/\partial q_k = 0`,
-  :math:`Q_k = 0` and no constraint involves :math:`q_k` or :math:`\dot q_k`; then
-  :math:`p_k = \partial L/\partial\dot q_k` is constant, since
-  :math:`\dot p_k = \partial L/\partial q_k + Q_k + \sum_j\lambda_j a_{jk} = 0`;
+  :math:`Q_k = 0` and every constraint has :math:`a_{jk} = 0` (none involves :math:`\dot q_k`);
+  then :math:`p_k = \partial L/\partial\dot q_k` is constant, since
+  :math:`\dot p_k = \partial L/\partial q_k + Q_k + \sum_j\lambda_j a_{jk} = 0`. The coordinate
+  itself may appear in the other velocities' coefficients: the upright rolling coin's heading
+  :math:`\phi` enters :math:`\dot x - R\dot\theta\cos\phi = 0`, yet :math:`p_\phi` is conserved;
 * the **Jacobi integral** :math:`h = \sum_i \dot q_i\,\partial L/\partial\dot q_i - L` obeys
 
   .. math:: \frac{dh}{dt} = -\frac{\partial L}{\partial t} + \sum_i Q_i\dot q_i - \sum_j \lambda_j b_j,
@@ -117,8 +119,8 @@ def conserved_quantities(system: MotionSystem, *, friction: bool = False) -> Con
     notes: list[str] = []
     cyclic = []
     for i, q in enumerate(model.coordinates):
-        involved = any(c.coefficients[i] != 0 or q in c.expression.free_symbols or
-                       any(q in a.free_symbols for a in (*c.coefficients, c.offset)) for c in system.constraints)
+        # only a_jk matters: dp_k/dt = dL/dq_k + Q_k + sum_j lambda_j a_jk (q_k may sit in other coefficients)
+        involved = any(not proved_zero(c.coefficients[i]) for c in system.constraints)
         if involved or not proved_zero(sympy.diff(L, q)) or not proved_zero(system.generalized_forces[i]):
             continue
         momentum = sympy.diff(L, model.velocities[i])
@@ -131,7 +133,7 @@ def conserved_quantities(system: MotionSystem, *, friction: bool = False) -> Con
         quantities.append(Conserved(
             f"p_{q.name}", "momentum", tidy(momentum), q,
             f"{q.name} is cyclic: dL/d{q.name} = 0, Q_{q.name} = 0"
-            + (" and no constraint involves it" if system.constraints else "") + _unverified(system),
+            + (f" and no constraint involves {q.name}_dot" if system.constraints else "") + _unverified(system),
         ))
     energy = _jacobi(system, friction, notes)
     if energy is not None:

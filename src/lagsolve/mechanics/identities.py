@@ -16,7 +16,7 @@ from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.simplify import tidy
+from lagsolve.mechanics.simplify import pythagoras, tidy
 
 #: concrete smooth functions standing in for declared functions in numeric probes
 _PROBES = (lambda u: sympy.sin(u) + u**2 / 3, lambda u: sympy.exp(u / 2) - u, lambda u: u**3 / 5 + sympy.cos(u))
@@ -33,7 +33,8 @@ class Zero(Enum):
 def zero_status(expr: Any, *, samples: int = 6, seed: int = 3) -> Zero:
     """Whether ``expr`` is identically zero.
 
-    Tries ``expr == 0``, ``cancel(expr) == 0`` and ``tidy(expr) == 0`` (exact identities);
+    Tries ``expr == 0``, ``cancel(expr) == 0`` and ``tidy(expr) == 0`` (exact identities), the
+    last two again with compound angles expanded (``cos(θ1 − θ2)``);
     when none holds, evaluates ``expr`` at ``samples`` random points (positive symbols get
     positive values, declared functions concrete bodies): a value clearly away from zero
     proves it non-zero, otherwise the answer is :attr:`Zero.UNDECIDED`.
@@ -56,6 +57,16 @@ def zero_status(expr: Any, *, samples: int = 6, seed: int = 3) -> Zero:
         pass
     if tidy(expr) == 0:
         return Zero.PROVED
+    forms = [expr]
+    if any(not f.args[0].is_Symbol for f in expr.atoms(sympy.sin, sympy.cos)):
+        # cos(θ1 − θ2) and the like (the solve keeps them): expand into single angles, then try again
+        forms.append(sympy.expand_trig(expr))
+    try:
+        # sin² + cos² = 1 both ways, also on expressions too large for the display simplifier
+        if any(sympy.cancel(f) == 0 or any(p == 0 for p in pythagoras(f)) for f in forms[1:] + forms[:1]):
+            return Zero.PROVED
+    except (sympy.PolynomialError, ValueError, TypeError):
+        pass
     return Zero.UNDECIDED if numerically_zero(expr, samples=samples, seed=seed) else Zero.NONZERO
 
 

@@ -44,11 +44,12 @@ class MatrixForm:
 def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
     """Build the matrix form of ``problem``'s equations of motion (no solve, no display simplification).
 
-    ``display=False`` is for the numeric stage alone: the energies are not tidied and the derivatives
-    are taken with SymEngine (see :func:`~lagsolve.mechanics.lagrange.lagrange_terms`). The
-    equations are the same; only their written shape differs, which compiled code does not see.
+    ``display=False`` is the core of a derivation and what the numeric stage compiles: the energies are
+    tidied only when they are small, and the derivatives are taken with SymEngine (see
+    :func:`~lagsolve.mechanics.lagrange.lagrange_terms`). The equations are the same; only their
+    written shape differs.
     """
-    model = build_model(problem, tidy=display)
+    model = build_model(problem, tidy=True if display else None)
     constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
     loads = force_terms(problem, model)
     frictions = tuple(friction_term(f, problem, model) for f in problem.friction)

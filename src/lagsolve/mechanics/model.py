@@ -65,7 +65,11 @@ def time_derivative(expr: Any, model: Model, *, second_order: bool = False) -> A
     return result
 
 
-def build_model(problem: Problem, *, tidy: bool = True) -> Model:
+#: energies with more operations than this are not tidied when ``tidy=None`` (the cost grows quickly)
+TIDY_ENERGY_LIMIT = 300
+
+
+def build_model(problem: Problem, *, tidy: bool | None = True) -> Model:
     r"""Energies of ``problem``.
 
     .. math::
@@ -75,6 +79,7 @@ def build_model(problem: Problem, *, tidy: bool = True) -> Model:
 
     with :math:`T_{rot} = \tfrac12 I\omega^2` for a planar body and
     :math:`\tfrac12\sum_k I_k\omega_k^2` (principal axes, body-frame components) in 3-D.
+    ``tidy=None`` tidies them only when they are small (:data:`TIDY_ENERGY_LIMIT`);
     ``tidy=False`` leaves the energies as built (for the numeric stage, which compiles them with
     common-subexpression elimination and has no use for a compact display form).
     """
@@ -99,6 +104,6 @@ def build_model(problem: Problem, *, tidy: bool = True) -> Model:
         potential += problem.potential
     # Simplify the energies once, here: every later expression is built from them,
     # so a compact L keeps the whole derivation small (an identity, not an approximation).
-    if tidy:
+    if tidy or (tidy is None and sympy.count_ops(kinetic) + sympy.count_ops(potential) <= TIDY_ENERGY_LIMIT):
         kinetic, potential = tidy_sum(kinetic), tidy_sum(potential)
     return Model(problem.time, q, qd, qdd, kinetic, potential, kinetic - potential)

@@ -139,7 +139,7 @@ def tidy_sum(expr: Any) -> Any:
         if sympy.count_ops(expanded) <= TRIGSIMP_LIMIT:
             reduced = sympy.trigsimp(expanded)
             candidates += [reduced, sympy.expand(sympy.expand_trig(reduced))]
-        candidates.append(compound_angles(expanded))
+        candidates += [compound_angles(c) for c in candidates[:3]]
     candidates += [sympy.factor_terms(c) for c in candidates]
     return min(candidates, key=measure)
 

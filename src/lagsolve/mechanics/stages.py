@@ -103,23 +103,34 @@ class Stages:
         self._done.add(stage)
         self.notes.append(StageNote(stage, reason, kind))
 
-    def run(self, stage: str, fn: Callable[..., T], *args: Any, **kwargs: Any) -> T | None:
-        """``fn(*args, **kwargs)`` under this stage's slice of the budget; None (and a note) when the
-        slice runs out or ``fn`` raises :class:`StageSkipped`."""
+    def run(self, stage: str, fn: Callable[..., T], *args: Any, cap: float | None = None, instead: str = "",
+            **kwargs: Any) -> T | None:
+        """``fn(*args, **kwargs)`` under this stage's slice of the budget (at most ``cap`` seconds, when a
+        cheaper route gives the answer ``instead``); None (and a note) when the slice runs out or ``fn``
+        raises :class:`StageSkipped`."""
         if stage not in STAGES:
             raise KeyError(f"unknown stage {stage!r}")
-        seconds = self.slice_for(stage)
+        seconds = self.slice_for(stage) if cap is None else min(self.slice_for(stage), cap)
         self._done.add(stage)
         try:
             with cpu_limit(seconds):
                 return fn(*args, **kwargs)
         except StageTimeout:
-            self.notes.append(StageNote(stage, f"ran out of its share of the CPU budget ({seconds:.1f} s of "
-                                               f"{self.budget:g} s); raise it with --timeout", "budget"))
+            if cap is not None and seconds >= cap:
+                reason = f"did not finish within {seconds:.1f} s of CPU; {instead}"
+                self.notes.append(StageNote(stage, reason, "budget"))
+            else:
+                self.notes.append(StageNote(stage, f"ran out of its share of the CPU budget ({seconds:.1f} s of "
+                                                   f"{self.budget:g} s); raise it with --timeout", "budget"))
         except StageSkipped as reason:
             kind = "size" if str(reason).startswith("too large") else "skipped"
             self.notes.append(StageNote(stage, str(reason), kind))
         return None
+
+    def settle(self, stage: str) -> None:
+        """Mark ``stage``'s "skipped" note as nothing to report (its answer is given elsewhere)."""
+        self.notes = [StageNote(n.stage, n.reason, "n/a") if n.stage == stage and n.kind == "skipped" else n
+                      for n in self.notes]
 
     def shown(self) -> tuple[StageNote, ...]:
         """The notes a report shows (all but ``"n/a"``)."""

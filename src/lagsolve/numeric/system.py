@@ -224,7 +224,8 @@ def _values(form: MatrixForm, overrides: Mapping[str, float]) -> dict[str, float
 
 
 def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
-         conserved: Mapping[str, Any] | None = None, chart: MinimalChart | None = None) -> NumericSystem:
+         conserved: Mapping[str, Any] | None = None, chart: MinimalChart | None = None,
+         energy_note: str = "") -> NumericSystem:
     """Bind a problem's matrix form to parameter values (the file's, then ``overrides``) and its
     concrete functions, and compile everything the integrator needs. ``conserved`` maps names to
     expressions whose drift should be reported (those with unknown symbols are skipped); with a
@@ -346,7 +347,9 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
     conserved_names = list(conserved or {})
     usable = [i for i, e in enumerate(prepared["conserved"]) if e.free_symbols <= allowed]
     curve_coordinate, curve = _constraint_curve(form, prepare, arguments)
-    energy_conserved, note = _energy_conserved(form)
+    # mechanics decides (mechanics.analysis.monitored, or the derivation's analysis); this only evaluates
+    energy_conserved = "energy" in (conserved or {})
+    note = energy_note or "the analysis finds no conserved energy"
     try:
         return NumericSystem(
             coordinates=tuple(c.name for c in problem.coordinates),
@@ -408,16 +411,3 @@ def _constraint_curve(form: MatrixForm, prepare: Any,
     if any(model.time in e.free_symbols for e in shape):
         return None, None
     return free[0], compile_state_function(shape, **arguments)
-
-
-def _energy_conserved(form: MatrixForm) -> tuple[bool, str]:
-    """Whether the Jacobi integral h = Σ q̇ ∂L/∂q̇ − L of the full system is conserved, and why (not)."""
-    model = form.model
-    if sympy.diff(model.lagrangian, model.time) != 0:
-        return False, "L depends explicitly on time"
-    if any(g != 0 for g in form.generalized_forces):
-        return False, "non-conservative forces (or dissipation, or friction) do work"
-    for c in form.constraints:
-        if c.offset != 0 or any(sympy.diff(a, model.time) != 0 for a in c.coefficients):
-            return False, f"constraint {c.name!r} depends on time, so its force can do work"
-    return True, "L has no explicit time, the constraints are workless and no other force does work"

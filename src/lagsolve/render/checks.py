@@ -36,6 +36,9 @@ def check_table(report: CheckReport) -> str:
             lines.append(f"      derived:  {_components(verdict.derived, note)}")
             if verdict.witness is not None:
                 lines.append(f"      differ at {_state(verdict.witness, note)}")
+        elif verdict.status == "mismatch" and verdict.witness is not None:  # a claimed constant that changes
+            lines.append(f"      claimed: {_components(verdict.expected, note)}")
+            lines.append(f"      dC/dt ≠ 0 at {_state(verdict.witness, note, rate=True)}")
     counts = [(report.count("ok"), "ok"), (report.count("warning"), "warning"),
               (report.count("mismatch"), "mismatch"), (report.count("unchecked"), "not checked")]
     parts = [f"{n} {_plural(word, n)}" for n, word in counts if n]
@@ -94,6 +97,12 @@ def describe(verdict: Verdict, note: Notation) -> str:
         return f"mismatch: differs by a constant (expected = derived + {shown})"
     if reason == c.SAME:
         return "ok"
+    if reason == c.CONSERVED:
+        where = f"at {verdict.states} states on the constraint surface" if verdict.states else "symbolically"
+        return f"ok (conserved: dC/dt = 0 along the equations of motion, {where})"
+    if reason == c.NOT_CONSERVED:
+        return (f"mismatch: not conserved, dC/dt ≠ 0 along the equations of motion at "
+                f"{verdict.states - verdict.agreeing} of {verdict.states} states")
     if reason == c.SIGN_DEPENDENT:
         where = note.text(verdict.condition) if verdict.condition is not None else "some states"
         return (f"warning: holds only where {where} (agrees at {verdict.agreeing} of {verdict.states} states, "
@@ -147,7 +156,7 @@ def _number(value: complex | None) -> str:
     return f"{value.real:.6g}{value.imag:+.6g}i"
 
 
-def _state(witness: Witness, note: Notation) -> str:
+def _state(witness: Witness, note: Notation, *, rate: bool = False) -> str:
     values = [f"{note.text(sympy.Symbol(name))} = {value:.4g}" for name, value in witness.values]
     for name, lam in witness.functions:
         variables = lam.variables
@@ -158,6 +167,8 @@ def _state(witness: Witness, note: Notation) -> str:
         else:
             values.append(f"{name}({', '.join(map(str, variables))}) = {note.text(lam.expr)}")
     expected = ", ".join(_number(v) for v in witness.expected)
+    if rate:
+        return f"{', '.join(values)}: dC/dt = {expected}"
     derived = ", ".join(_number(v) for v in witness.derived)
     return f"{', '.join(values)}: expected {expected}, derived {derived}"
 

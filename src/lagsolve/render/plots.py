@@ -141,7 +141,8 @@ def conservation_figure(trajectory: Trajectory, title: str) -> Any:
     ax = axes[0][0]
     series = {}
     if trajectory.stats.get("energy_conserved"):
-        series["energy $h$"] = trajectory.energy
+        # the conserved h the analysis found (of the reduced system where a constraint moves), else the full one
+        series["energy $h$"] = trajectory.conserved.get("energy", trajectory.energy)
     for name, values in trajectory.conserved.items():
         if name != "energy" or "energy $h$" not in series:  # the same h, drawn once
             series[name.replace("_", " ")] = values

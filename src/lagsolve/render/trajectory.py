@@ -87,7 +87,8 @@ def summary(trajectory: Trajectory, name: str, timing: bool = True) -> str:
         lines.append(f"  largest constraint residual{' (before projection)' if projected else ''}: "
                      f"{stats['max_residual']:.3g}")
     if stats.get("energy_conserved"):
-        lines.append(f"  energy (Jacobi integral) conserved: relative drift {stats['energy_drift']:.3g}")
+        drift = stats.get("conserved_drift", {}).get("energy", stats["energy_drift"])
+        lines.append(f"  energy (Jacobi integral) conserved: relative drift {drift:.3g}")
     else:
         lines.append(f"  energy not conserved: {stats.get('energy_note', '')}")
     for quantity, drift in stats.get("conserved_drift", {}).items():
