@@ -29,6 +29,7 @@ lint: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/python bench/derive.py
 	$(BIN)/python bench/simulate.py
+	$(BIN)/python bench/scale.py
 
 clean:
 	rm -rf $(VENV) out build dist .pytest_cache

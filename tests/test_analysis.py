@@ -282,7 +282,10 @@ def test_conserved_quantities_do_not_drift_in_simulation(name):
     derivation = derived_file(name)
     problem = derivation.problem
     assert problem.simulation is not None and problem.simulation.t_end is not None
-    system = bind(derivation.form, {}, derivation.conserved)
+    from lagsolve.mechanics.analysis import energy_reason
+
+    note = energy_reason(derivation.analysis.conservation)
+    system = bind(derivation.form, {}, derivation.conserved, energy_note=note)
     if not derivation.conserved:  # then the run does not claim energy either, and says why
         assert not system.energy_conserved and system.energy_note
         assert problem.friction or "time" in system.energy_note or "forces" in system.energy_note

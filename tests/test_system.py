@@ -63,11 +63,18 @@ def test_unknown_override_is_refused() -> None:
         bind(matrix_form(load_text(BEAD)), {"h": 1.0})
 
 
-def test_energy_conservation_is_decided_from_the_equations() -> None:
-    """Energy counts as conserved for a workless, time-independent system."""
-    system = bind(matrix_form(load_text(CARTESIAN_PENDULUM)))
-    assert system.energy_conserved and "workless" in system.energy_note
-    assert system.holonomic == (0,)
+def test_energy_conservation_is_taken_from_the_mechanics() -> None:
+    """The numeric system does not decide energy conservation again: it is conserved exactly when the
+    mechanics (mechanics.analysis.monitored) gives an 'energy', and otherwise it carries the mechanics' reason."""
+    from lagsolve.mechanics.analysis import monitored
+
+    form = matrix_form(load_text(CARTESIAN_PENDULUM))
+    conserved, _, _, note = monitored(form)
+    assert "energy" in conserved and note == ""
+    system = bind(form, None, conserved, energy_note=note)
+    assert system.energy_conserved and system.holonomic == (0,)
+    unclaimed = bind(form, None, {}, energy_note="because")
+    assert not unclaimed.energy_conserved and unclaimed.energy_note == "because"
 
 
 ROUGH_TUBE_CLOSED_FORM = """r*Omega**2*sin(theta)**2 - g*cos(theta)

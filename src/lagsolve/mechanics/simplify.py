@@ -39,7 +39,7 @@ def measure(expr: Any) -> tuple[int, int, str]:
 #: (they dominate run time on large expressions; the Pythagorean reduction below is cheap)
 SIMPLIFY_LIMIT = 60
 #: above this many operations :func:`tidy` only pulls out common factors (no factor, cancel or trig rewriting)
-TIDY_LIMIT = 400
+TIDY_LIMIT = 200
 TRIGSIMP_LIMIT = 0
 _ERRORS = (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError)
 
