@@ -59,3 +59,12 @@ def test_markdown_escapes() -> None:
     assert md_escape("<b>*x*</b>") == r"&lt;b&gt;\*x\*&lt;/b&gt;"
     expected = "**bold** &lt;script&gt;alert(1)&lt;/script&gt; \\$x\\$"
     assert md_prose("**bold** <script>alert(1)</script> $x$") == expected
+
+
+def test_ascii_text_spells_out_what_a_terminal_cannot_show() -> None:
+    """Dots over names, Greek letters, powers, subscripts and marks become ASCII, in the input's own names."""
+    from lagsolve.render.notation import ascii_text
+
+    assert ascii_text("ẍ = -(g + ẋ²*f''(x))") == "x_ddot = -(g + x_dot**2*f''(x))"
+    assert ascii_text("θ\u0307 λ_wire Ω r⁻¹⁰ q₀") == "theta_dot lambda_wire Omega r**-10 q0"
+    assert ascii_text("✓ ok, ✗ mismatch, – not checked, x ≥ 0 → é") == "+ ok, X mismatch, - not checked, x >= 0 -> e"

@@ -152,3 +152,29 @@ def test_hostile_latex_compiles(hostile: Derivation, tmp_path: Path) -> None:
     run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "h.tex"],
                          cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stdout[-2000:]
+
+
+def test_simulation_summary_cannot_end_its_block_in_latex(hostile: Derivation) -> None:
+    """A name in the simulation summary cannot close the block around it and run \\input."""
+    summary_text = "\\end{verbatim}\\input{/etc/hostname}: simulated to t = 1\n  final state: x = 1\n"
+    tex = render(hostile, "tex", simulation={"summary": summary_text, "figures": []})
+    assert r"\input{/etc/hostname}" not in tex and r"\end{verbatim}\input" not in tex
+    assert r"\textbackslash{}end\{verbatim\}\textbackslash{}input\{/etc/hostname\}" in tex
+    assert r"~~final~state:~x~=~1" in tex
+
+
+def test_simulation_summary_cannot_end_its_block_in_markdown(hostile: Derivation) -> None:
+    """A name with a code fence cannot close the simulation summary's code block in Markdown."""
+    summary_text = "Name ``` # heading\n  final state: x = 1\n"
+    md = render(hostile, "md", simulation={"summary": summary_text, "figures": []})
+    assert "````text\nName ``` # heading\n  final state: x = 1\n````" in md
+
+
+def test_code_fence_in_a_description_cannot_swallow_the_report() -> None:
+    """A ``` or ~~~ line in a description is shown as text: every fence left in the report is lagsolve's own."""
+    text = HOSTILE.replace("description: 'See \\input{/etc/passwd} and \\write18{rm -rf /}; $x$ & # _ ^ ~ <b>bold</b>'",
+                           "description: |\n  Before\n  ```python\n  code\n   ~~~\n  after")
+    md = render(derive(load_text(text, "fence.yaml")), "md")
+    assert "Before\n\\```python\ncode\n \\~~~\nafter" in md
+    fences = [line for line in md.splitlines() if line.lstrip().startswith(("```", "~~~"))]
+    assert len(fences) % 2 == 0 and all(f in ("```", "```math") for f in fences)

@@ -151,3 +151,13 @@ def test_coupled_friction_is_solved_consistently() -> None:
             _, lam0, _, _ = frictionless.solve_all(0.0, q, qd)
             assert abs(lam[0] - lam0[0]) > 1e-6  # the coupling is real
     assert sympy.Symbol("N_rough", nonnegative=True) in lagrange.forcing.free_symbols
+
+
+def test_set_contradicting_a_positive_parameter_is_refused() -> None:
+    """--set g=-9.81 for a parameter assumed positive is refused with the fix, not simulated silently."""
+    with pytest.raises(SpecError) as caught:
+        bind(matrix_form(load_text(BEAD, "bead.yaml")), {"g": -9.81})
+    assert [str(i) for i in caught.value.issues] == [
+        "bead.yaml: --set: g=-9.81 contradicts the assumption that parameter 'g' is positive (parameters are, "
+        "unless declared with positive: false), which the derivation relies on; give a value >= 0, or "
+        "declare g with positive: false in bead.yaml"]

@@ -8,6 +8,7 @@ Heavy libraries (SymPy, matplotlib) are imported only inside commands, so
 
 from __future__ import annotations
 
+import codecs
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -42,14 +43,12 @@ def _note(text: str, *, err: bool = False, level: int = 1, nl: bool = True) -> N
 
 
 def _golden(reports: Reports, folder: Path, update: bool) -> int:
+    from lagsolve.files import write_file
     from lagsolve.pipeline import golden_differences
 
     if update:
-        folder.mkdir(parents=True, exist_ok=True)
         for fmt, text in reports.outputs.items():
-            target = folder / f"{reports.slug}.{fmt}"
-            target.write_text(text, encoding="utf-8")
-            _note(f"  wrote {target}")
+            _note(f"  wrote {write_file(folder, f'{reports.slug}.{fmt}', text, option='--update-golden')}")
         return 0
     diffs = golden_differences(reports, folder)
     for diff in diffs:
@@ -57,6 +56,22 @@ def _golden(reports: Reports, folder: Path, update: bool) -> int:
     verdict = "differs from" if diffs else "matches"
     _note(f"{reports.source}: {verdict} the golden files in {folder}")
     return 1 if diffs else 0
+
+
+def _ascii_fallback(error: UnicodeError) -> tuple[str, int]:
+    from lagsolve.render.notation import ascii_fallback  # imported only when needed: it loads SymPy
+
+    return ascii_fallback(error)
+
+
+def _ascii_where_needed() -> None:
+    """A terminal whose encoding cannot show ẍ, λ or ✓ (cp1252, ASCII) gets x_ddot, lambda and +
+    instead of a UnicodeEncodeError."""
+    codecs.register_error("lagsolve-ascii", _ascii_fallback)
+    for stream in (sys.stdout, sys.stderr):
+        encoding = (getattr(stream, "encoding", None) or "").lower().replace("-", "").replace("_", "")
+        if encoding != "utf8" and hasattr(stream, "reconfigure"):
+            stream.reconfigure(errors="lagsolve-ascii")
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
@@ -71,6 +86,7 @@ def main(context: click.Context, quiet: bool, verbose: bool) -> None:
     if quiet and verbose:
         raise click.UsageError("--quiet and --verbose exclude each other")
     context.obj = {"verbosity": 0 if quiet else 2 if verbose else 1}
+    _ascii_where_needed()
 
 
 @main.command()
@@ -141,6 +157,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     lagsolve derive problems/bead.yaml --format tex -o bead.tex
     lagsolve derive problems/bead.yaml --simulate      # the report with the simulation's figures
     """
+    from lagsolve.files import write_file
     from lagsolve.pipeline import SimulationOptions, derive_file, safe_slug
 
     if update_golden and golden is None:
@@ -170,27 +187,30 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
             continue
         for warning in reports.warnings:
             _note(f"warning: {reports.source}: not completed: {warning}", err=True)
-        if golden is not None:
-            status = max(status, _golden(reports, golden, update_golden))
-            continue
-        if stream:
+        if stream and golden is None:
             texts.append(reports.outputs["json"])
             continue
-        if fmt and output is None:
+        if fmt and output is None and golden is None:
             click.echo(reports.outputs[fmt], nl=False)
             continue
-        if single_file:
-            targets = {fmt: output}
-        elif fmt:
-            targets = {fmt: output / f"{reports.slug}{EXTENSIONS[fmt]}"}
-        else:
-            folder = (output or Path("out")) / reports.slug
-            targets = {f: folder / f"{reports.slug}{EXTENSIONS[f]}" for f in formats}
-            _note(reports.summary, nl=False)
-        for f, target in targets.items():
-            _note(f"  wrote {_write(target, reports.outputs[f])}")
-        for name, data in reports.files.items():
-            _note(f"  wrote {_write(next(iter(targets.values())).parent / name, data)}")
+        try:
+            if golden is not None:
+                status = max(status, _golden(reports, golden, update_golden))
+                continue
+            if single_file and output is not None:
+                root, place = output.parent, Path()
+                names = {fmt: output.name}
+            else:
+                root, place = output or Path("out"), Path() if fmt else Path(reports.slug)
+                names = {f: str(place / f"{reports.slug}{EXTENSIONS[f]}") for f in formats}
+            if not fmt:
+                _note(reports.summary, nl=False)
+            for f, name in names.items():
+                _note(f"  wrote {write_file(root, name, reports.outputs[f])}")
+            for name, data in reports.files.items():
+                _note(f"  wrote {write_file(root, place / name, data)}")
+        except LagsolveError as error:
+            status = max(status, _fail(error))
     if stream:
         from lagsolve.render.machine import json_stream
 
@@ -270,6 +290,7 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
     lagsolve simulate problems/bead.yaml --t-end 20 --set g=1.62 --initial x=0.5 --plot --show
     lagsolve simulate problems/bead.yaml --format csv -o bead.csv
     """
+    from lagsolve.files import write_file
     from lagsolve.pipeline import SimulationOptions, safe_slug, simulate_file
 
     options = SimulationOptions(
@@ -287,18 +308,24 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
         except LagsolveError as error:
             status = max(status, _fail(error))
             continue
-        folder = (output if output is not None and not single else Path("out")) / safe_slug(path)
+        root = output if output is not None and not single else Path("out")
+        folder = Path(safe_slug(path))
         to_stdout = fmt == "csv" and output is None
         _note(result.summary, nl=False, err=to_stdout)
         written = []
-        for kind, data in result.tables.items():
-            if to_stdout:
-                click.echo(data, nl=False)
-                continue
-            target = output if single and output is not None else folder / f"{result.slug}.{kind}"
-            written.append(_write(target, data))
-        for key, data in result.figures.items():
-            written.append(_write(folder / f"{result.slug}_{key}.{'gif' if key == 'animation' else 'png'}", data))
+        try:
+            for kind, data in result.tables.items():
+                if to_stdout:
+                    click.echo(data, nl=False)
+                elif single and output is not None:
+                    written.append(write_file(output.parent, output.name, data))
+                else:
+                    written.append(write_file(root, folder / f"{result.slug}.{kind}", data))
+            for key, data in result.figures.items():
+                extension = "gif" if key == "animation" else "png"
+                written.append(write_file(root, folder / f"{result.slug}_{key}.{extension}", data))
+        except LagsolveError as error:
+            status = max(status, _fail(error))
         for target in written:
             _note(f"  wrote {target}", err=to_stdout)
         if show:
@@ -319,19 +346,6 @@ def schema(kind: str) -> None:
     from lagsolve.schemas import schema_json
 
     click.echo(schema_json(kind), nl=False)
-
-
-def _write(target: Path, data: str | bytes) -> Path:
-    """Write one output file; a path that cannot be written is a command-line error (exit 2)."""
-    try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-        if isinstance(data, bytes):
-            target.write_bytes(data)
-        else:
-            target.write_text(data, encoding="utf-8")
-    except OSError as exc:
-        raise click.BadParameter(f"cannot write {target}: {exc.strerror or exc}", param_hint="-o/--output") from None
-    return target
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -79,7 +79,9 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
 
     files: dict[str, bytes] = {}
     simulation = None
-    potential = _potential_figure(derivation)
+    # figures are made only for a format that shows them (JSON does not)
+    figures_shown = bool({"md", "tex"} & set(formats))
+    potential = _potential_figure(derivation) if figures_shown else None
     if potential is not None:
         files[potential["file"]] = potential.pop("png")
     text = summary(derivation)
@@ -101,6 +103,8 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
 
         simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures}
         text += run.summary
+    if not figures_shown:
+        files = {}
     return text, {fmt: render(derivation, fmt, templates, simulation, potential) for fmt in formats}, files
 
 
@@ -212,15 +216,21 @@ def golden_differences(reports: Reports, folder: Path) -> list[str]:
     """Unified diffs between ``reports`` and the golden files ``folder/<slug>.<ext>``.
 
     A missing golden file counts as a difference (its diff says so).
+
+    Raises
+    ------
+    SpecError
+        A golden file is a symbolic link (not followed), a folder, unreadable or not UTF-8.
     """
     import difflib
+
+    from lagsolve.files import read_text
 
     diffs = []
     for fmt, text in reports.outputs.items():
         path = Path(folder) / f"{reports.slug}.{fmt}"
-        try:
-            expected = path.read_text(encoding="utf-8")
-        except FileNotFoundError:
+        expected = read_text(path, option="--golden")
+        if expected is None:
             diffs.append(f"--- {path} (missing; create it with --update-golden)\n")
             continue
         if expected != text:

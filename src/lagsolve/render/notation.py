@@ -11,6 +11,7 @@ environment in :mod:`lagsolve.render.report`.
 
 from __future__ import annotations
 
+import re
 import unicodedata
 from collections.abc import Callable
 from typing import Any
@@ -187,13 +188,100 @@ def md_escape(text: str) -> str:
     return "".join(out)
 
 
+_FENCE_RE = re.compile(r"^( {0,3})([`~])(?=\2\2)", re.MULTILINE)
+
+
 def md_prose(text: str) -> str:
-    """A description for the Markdown report: Markdown is kept, raw HTML and math delimiters are not."""
-    return str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace("$", "\\$")
+    r"""A description for the Markdown report: Markdown is kept, raw HTML, math delimiters and code
+    fences are not (a fence would turn the rest of the report into code).
+
+    >>> md_prose("See <b> $x$\n```python")
+    'See &lt;b&gt; \\$x\\$\n\\```python'
+    """
+    text = str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace("$", "\\$")
+    return _FENCE_RE.sub(r"\1\\\2", text)
+
+
+def tex_lines(text: str) -> str:
+    r"""Preformatted user text (a simulation summary) as TeX lines: every character escaped, spaces kept
+    as ties so columns line up in ``\ttfamily``, each line ended by ``\\``. Unlike ``verbatim``, no
+    text can end the environment.
+
+    >>> print(tex_lines("a  b\n\\end{verbatim}"))
+    a~~b\\
+    \textbackslash{}end\{verbatim\}
+    """
+    lines = [tex_escape(line).replace(" ", "~") or "~" for line in str(text).rstrip("\n").split("\n")]
+    return "\\\\\n".join(lines)
+
+
+def md_code(text: str) -> str:
+    """Preformatted user text as a fenced Markdown code block whose fence no backtick run in it can close.
+
+    >>> print(md_code("a ``` b"))
+    ````text
+    a ``` b
+    ````
+    """
+    body = str(text).rstrip("\n")
+    longest = max((len(run) for run in re.findall(r"`+", body)), default=0)
+    fence = "`" * max(3, longest + 1)
+    return f"{fence}text\n{body}\n{fence}"
+
+
+_ASCII = {
+    _DOT: "_dot", _DDOT: "_ddot", "\u2212": "-", "\u2013": "-", "\u2014": "--", "\u2192": "->",
+    "\u00b7": "*", "\u2202": "d", "\u2264": "<=", "\u2265": ">=", "\u2260": "!=", "\u2026": "...",
+    "\u2713": "+", "\u2717": "X", "\u25cb": "o", "\u25a1": "[]", "\u1d40": "^T", "\u221a": "sqrt",
+    "\u00d7": "*", "\u00b1": "+/-",
+    "\u2248": "~", "\u221e": "oo", "\u2227": "^", "\u00a0": " ",
+}
+
+
+def ascii_text(text: str) -> str:
+    """Text in ASCII for a terminal that cannot show Unicode: ẍ → x_ddot, θ̇ → theta_dot, λ → lambda,
+    ² → **2, ✓ → +, ✗ → X; other accents are dropped and anything else unknown becomes '?'.
+
+    >>> ascii_text("λ_wire = m*(g + ẋ²*f''(x)) ✓ θ̇₀ −1 → é")
+    "lambda_wire = m*(g + x_dot**2*f''(x)) + theta_dot0 -1 -> e"
+    """
+    out: list[str] = []
+    exponent = False  # inside a run of superscripts: ⁻¹⁰ → **-10
+    for ch in unicodedata.normalize("NFD", str(text)):
+        name = "" if ch.isascii() else unicodedata.name(ch, "")
+        if name.startswith("SUPERSCRIPT ") and (name.endswith("MINUS") or unicodedata.digit(ch, None) is not None):
+            out.append(("" if exponent else "**") + ("-" if name.endswith("MINUS") else str(unicodedata.digit(ch))))
+            exponent = True
+            continue
+        exponent = False
+        if ch.isascii():
+            out.append(ch)
+        elif ch in _ASCII:
+            out.append(_ASCII[ch])
+        elif unicodedata.combining(ch):
+            continue
+        elif name.startswith("GREEK ") and " LETTER " in name:
+            letter = name.rsplit(" ", 1)[-1].lower().replace("lamda", "lambda")
+            out.append(letter.capitalize() if "CAPITAL" in name else letter)
+        elif name.startswith("SUBSCRIPT ") and unicodedata.digit(ch, None) is not None:
+            out.append(str(unicodedata.digit(ch)))
+        else:
+            out.append("?")
+    return "".join(out)
+
+
+def ascii_fallback(error: UnicodeError) -> tuple[str, int]:
+    """A codec error handler (``codecs.register_error``) writing :func:`ascii_text` for what the
+    stream's encoding cannot hold."""
+    if not isinstance(error, UnicodeEncodeError):
+        raise error
+    return ascii_text(error.object[error.start: error.end]), error.end
 
 
 FILTERS: dict[str, Callable[[str], str]] = {
     "tex": tex_escape,
+    "tex_lines": tex_lines,
     "md": md_escape,
     "md_prose": md_prose,
+    "md_code": md_code,
 }

@@ -68,7 +68,11 @@ def summary(trajectory: Trajectory, name: str, timing: bool = True) -> str:
     lines.append(f"               {rates}")
     for event in trajectory.events:
         where = ", ".join(f"{k} = {v:.6g}" for k, v in event.state.items() if not k.endswith("_dot"))
-        if event.kind == "release":
+        if event.kind == "release" and event.time == trajectory.t[0] and event.action == "stopped":
+            lines.append(f"  event: constraint {event.name!r} would have to pull at the start, t = {event.time:.10g} "
+                         f"({where}), so contact is lost at once; stopped there (--after-release continue goes on "
+                         "without it)")
+        elif event.kind == "release":
             verb = "stopped there" if event.action == "stopped" else "continued without it"
             lines.append(f"  event: constraint {event.name!r} released at t = {event.time:.10g} ({where}); {verb}")
         else:
