@@ -9,6 +9,7 @@ Heavy libraries (SymPy, matplotlib) are imported only inside commands, so
 from __future__ import annotations
 
 import codecs
+import os
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -17,6 +18,11 @@ import click
 
 from lagsolve import __version__
 from lagsolve.errors import LagsolveError, SpecError
+
+# numeric libraries run single-threaded: the budgets count the process's CPU time, which idle-spinning BLAS
+# threads would otherwise inflate (and the arrays here are small); set before NumPy is first imported
+for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
 
 if TYPE_CHECKING:
     from lagsolve.pipeline import Reports

@@ -158,6 +158,7 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
+    _preload()
     text, outputs, files = run_with_budget(_derive_and_render, (problem, formats, templates, simulate, timeout),
                                            timeout, f"the derivation of {path}",
                                            on_partial=_render_core(formats, templates))
@@ -208,8 +209,18 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
+    _preload()
     table, counts, rows = run_with_budget(_derive_and_check, (problem, timeout), timeout, f"the check of {path}")
     return Checked(str(path), problem.name, table, counts, rows)
+
+
+def _preload() -> None:
+    """Import the heavy modules here, before the budgeted child is forked, so that the child inherits them and
+    its CPU budget goes to the problem, not to importing SymPy (and several files share one import)."""
+    import lagsolve.mechanics.analysis
+    import lagsolve.mechanics.derivation
+    import lagsolve.render.report
+    import lagsolve.simulation  # noqa: F401
 
 
 def golden_differences(reports: Reports, folder: Path) -> list[str]:
@@ -269,4 +280,5 @@ def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: floa
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
+    _preload()
     return run_with_budget(_simulate, (problem, options, progress), timeout, f"the simulation of {path}")
