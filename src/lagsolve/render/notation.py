@@ -67,11 +67,23 @@ class MechanicsLatexPrinter(LatexPrinter):
             inner = super()._print_Symbol(sympy.Symbol(base))
             return ("\\dot{%s}" if order == 1 else "\\ddot{%s}") % inner
         for prefix, head in (("lambda_", "\\lambda"), ("N_", "N")):
-            if expr.name.startswith(prefix) and "_" in expr.name[len(prefix):]:
-                # a multiplier or normal force named after a constraint with '_' in its name
-                label = expr.name[len(prefix):].replace("_", "\\_")
-                return f"{head}_{{\\mathrm{{{label}}}}}"
+            label = expr.name[len(prefix):]
+            if expr.name.startswith(prefix) and _worded(label):
+                # a multiplier or normal force named after its constraint: the label is a word, set upright
+                escaped = label.replace("_", "\\_")
+                return f"{head}_{{\\mathrm{{{escaped}}}}}"
+        head, sep, tail = expr.name.partition("_")
+        if sep and head and _worded(tail) and "_" not in tail:
+            return f"{super()._print_Symbol(sympy.Symbol(head))}_{{\\mathrm{{{tail}}}}}"
         return super()._print_Symbol(expr)
+
+    def _print_Mul(self, expr: Any) -> str:
+        flipped = _positive_denominators(expr)
+        return super()._print_Mul(expr) if flipped is expr else self._print(flipped)
+
+    def ordered_terms(self, expr: Any) -> list[Any]:
+        """The terms of a sum in the order this printer writes them."""
+        return list(self._as_ordered_terms(expr, order=None))
 
     def _print_Derivative(self, expr: Any) -> str:
         found = _single_function_derivative(expr)
@@ -80,6 +92,26 @@ class MechanicsLatexPrinter(LatexPrinter):
         inner, order = found
         name = self._print(sympy.Symbol(inner.func.__name__))
         return f"{name}{_prime(order)}\\left({self._print(inner.args[0])}\\right)"
+
+
+def _worded(label: str) -> bool:
+    """A subscript that is a word (``wire``, ``cart``, ``floor_1``), not a Greek letter or an index."""
+    letters = label.rstrip("0123456789")
+    return len(letters) > 1 and letters not in _GREEK and letters.replace("_", "").isalpha()
+
+
+def _positive_denominators(expr: Any) -> Any:
+    """``x/(-M - m)`` → ``-x/(M + m)``: a denominator whose terms are all negative gives up its sign."""
+    factors = list(sympy.Mul.make_args(expr))
+    sign = 1
+    for k, f in enumerate(factors):
+        if (isinstance(f, sympy.Pow) and f.exp.is_Integer and f.exp < 0 and isinstance(f.base, sympy.Add)
+                and all(t.could_extract_minus_sign() for t in f.base.args)):
+            factors[k] = sympy.Pow(-f.base, f.exp)
+            sign *= -1 if f.exp % 2 else 1
+    if all(a is b for a, b in zip(factors, sympy.Mul.make_args(expr), strict=True)):
+        return expr
+    return sympy.Mul(sign, *factors)
 
 
 def _greek(name: str, mark: str = "") -> str:
@@ -107,6 +139,10 @@ class MechanicsTextPrinter(StrPrinter):
         if exp.is_Integer and 2 <= exp <= 9 and (base.is_Symbol or base.is_Function or base.is_Derivative):
             return self._print(base) + "⁰¹²³⁴⁵⁶⁷⁸⁹"[int(exp)]
         return super()._print_Pow(expr, rational)
+
+    def _print_Mul(self, expr: Any) -> str:
+        flipped = _positive_denominators(expr)
+        return super()._print_Mul(expr) if flipped is expr else self._print(flipped)
 
     def _print_Derivative(self, expr: Any) -> str:
         found = _single_function_derivative(expr)
