@@ -16,8 +16,8 @@ from __future__ import annotations
 
 import re
 
-#: glyphs on a line of the LaTeX report (A4, 2.2 cm margins, 11 pt: about 490 pt; a glyph is about 5.3 pt)
-LINE = 80
+#: glyphs on a line of the LaTeX report (A4, 2.2 cm margins, 11 pt: about 490 pt; a glyph is about 6 pt)
+LINE = 76
 _COMMAND = re.compile(r"\\([A-Za-z]+|.)")
 _FUNCTIONS = {"sin", "cos", "tan", "log", "exp", "sec", "csc", "cot", "sinh", "cosh", "tanh", "asin", "acos", "atan"}
 _SILENT = {"left", "right", "Bigl", "Bigr", "bigl", "bigr", "mathbf", "dot", "ddot", "limits", "displaystyle",
@@ -209,15 +209,13 @@ def _factor_lines(tex: str, room: float) -> list[str] | None:
     if len(items) == 3 and items[0][1] in ("\\frac", "\\dfrac") and items[1][0] == items[2][0] == "group":
         numerator, denominator = items[1][1][1:-1], items[2][1][1:-1]
         head = rf"{sign}\frac{{1}}{{{denominator}}} "
-        if width(head) <= room / 2:
-            if width(numerator) <= room:
-                return None
-            return _wrapped(head, "", tex_lines(numerator, room - width(head) - 2))
+        if width(numerator) <= room and width(denominator) <= room:
+            return None
+        if width(head) <= room * 0.6:
+            return _around(head, "", numerator, room)
         # numerator and denominator both long: (numerator) / (denominator), each broken
-        top = tex_lines(numerator, room - 4)
-        bottom = tex_lines(denominator, room - 6)
-        top_lines = _wrapped(sign, "", top) if len(_terms(numerator)) > 1 else [sign + top[0], *top[1:]]
-        return top_lines + _wrapped(r"\Big/ ", "", bottom)
+        top = _around(sign, "", numerator, room) if len(_terms(numerator)) > 1 else [sign + numerator]
+        return top + _around(r"\Big/ ", "", denominator, room)
     candidates = [k for k, (kind, text) in enumerate(items) if kind == "paren" and text.startswith("\\left(")
                   and not (k and items[k - 1][0] == "group") and len(_terms(_inner(text))) > 1]
     if not candidates:
@@ -225,10 +223,17 @@ def _factor_lines(tex: str, room: float) -> list[str] | None:
     k = max(candidates, key=lambda n: width(items[n][1]))
     head = sign + "".join(text for _, text in items[:k])
     tail = "".join(text for _, text in items[k + 1:])
-    if width(head) + width(tail) > room / 2:
+    if width(head) + width(tail) > room * 0.6:
         return None
-    inner = tex_lines(_inner(items[k][1]), room - width(head) - 2)
-    return _wrapped(head, tail, inner) if len(inner) > 1 else None
+    return _around(head, tail, _inner(items[k][1]), room)
+
+
+def _around(head: str, tail: str, inner: str, room: float) -> list[str]:
+    r"""``head \Bigl(inner\Bigr) tail`` broken: a short head opens the first line, a long one a line of its own."""
+    if width(head) <= room / 3:
+        return _wrapped(head, tail, tex_lines(inner, room - width(head) - 2))
+    lines = tex_lines(inner, room - 4)
+    return [rf"{head}\Bigl(", *lines[:-1], rf"{lines[-1]}\Bigr){tail}"]
 
 
 def _inner(paren: str) -> str:
@@ -291,7 +296,7 @@ def _cells(tex: str) -> list[list[str]] | None:
     return rows
 
 
-def matrix(name: str, tex: str) -> str:
+def matrix(tex: str, name: str) -> str:
     r"""``name = [matrix]`` as rows of ``align*``: the matrix when it fits, else entry by entry.
 
     A column vector too wide is written one component per line (``F_{1} = ...``); a wider matrix one
@@ -313,11 +318,31 @@ def matrix(name: str, tex: str) -> str:
     return " \\\\\n".join(rows)
 
 
-def vector(name: str, components: list[str], labels: tuple[str, ...] = ("x", "y", "z")) -> str:
+def vector(components: list[str], name: str, labels: tuple[str, ...] = ("x", "y", "z")) -> str:
     r"""``name = (a, b, c)`` inline when it fits in a line of text, else displayed one component per line."""
     inline = rf"{name} = \left({', '.join(components)}\right)"
-    if width(inline) <= LINE * 0.8:
+    if width(inline) <= LINE * 0.45:
         return f"${inline}$"
     named = labels if len(components) <= len(labels) else tuple(str(k) for k in range(1, len(components) + 1))
     rows = [equation(f"{name}_{{{label}}}", c) for label, c in zip(named, components, strict=False)]
     return "\n\\begin{align*}\n" + " \\\\\n".join(rows) + "\n\\end{align*}\n"
+
+
+def boxed(lhs: str, rhs: str) -> str:
+    r"""``lhs &= \boxed{rhs}`` for a final answer; a long ``rhs`` is broken inside the box.
+
+    >>> boxed("a", "b")
+    'a &= \\boxed{b}'
+    """
+    lines = tex_lines(rhs, LINE - width(lhs) - 5)
+    if len(lines) == 1:
+        return rf"{lhs} &= \boxed{{{lines[0]}}}"
+    body = " \\\\\n&\\qquad ".join(lines)
+    return rf"{lhs} &= \boxed{{\begin{{aligned}}[t] &{body}\end{{aligned}}}}"
+
+
+def formula(lhs: str, rhs: str) -> str:
+    r"""``$lhs = rhs$`` in running text when it fits in most of a line, else displayed and broken."""
+    if width(lhs) + width(rhs) + 2 <= LINE * 0.45:
+        return f"${lhs} = {rhs}$"
+    return "\n\\begin{align*}\n" + equation(lhs, rhs) + "\n\\end{align*}\n"

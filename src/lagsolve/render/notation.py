@@ -19,6 +19,9 @@ import sympy
 from sympy.printing.latex import LatexPrinter
 from sympy.printing.str import StrPrinter
 
+from lagsolve.render.breaking import boxed, broken, equation, formula, matrix, vector
+from lagsolve.render.prose import description_segments, render_segments, segments
+
 _GREEK = {
     "alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "zeta": "ζ", "eta": "η",
     "theta": "θ", "iota": "ι", "kappa": "κ", "lambda": "λ", "mu": "μ", "nu": "ν", "xi": "ξ",
@@ -157,6 +160,7 @@ class Notation:
 
     def __init__(self, coordinates: list[str] | tuple[str, ...]) -> None:
         rates = frozenset(coordinates)
+        self.coordinates = tuple(coordinates)
         self._latex = MechanicsLatexPrinter(rates, {"mul_symbol": None})
         self._text = MechanicsTextPrinter(rates)
 
@@ -228,8 +232,48 @@ def md_prose(text: str) -> str:
     return str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace("$", "\\$")
 
 
-FILTERS: dict[str, Callable[[str], str]] = {
+def tex_prose(text: str, symbols: dict[str, tuple[str, str]]) -> str:
+    """A note of the derivation for LaTeX: the quantities it names as math, the rest escaped."""
+    return "".join(f"${tex}$" if kind == "math" else tex_escape(tex) for kind, tex, _ in segments(text, symbols))
+
+
+def md_math_prose(text: str, symbols: dict[str, tuple[str, str]]) -> str:
+    """A note of the derivation for Markdown: the quantities it names as GitHub math, the rest escaped."""
+    return "".join(f"$`{tex}`$" if kind == "math" else md_prose(tex) for kind, tex, _ in segments(text, symbols))
+
+
+def tex_description(text: str) -> str:
+    """A description from the file for LaTeX: its safe ``$...$`` math kept, everything else escaped."""
+    return render_segments(description_segments(text), tex_escape, lambda m: f"${m}$")
+
+
+def md_description(text: str) -> str:
+    """A description from the file for Markdown: its safe ``$...$`` math as GitHub math, the rest escaped."""
+    return render_segments(description_segments(text), md_escape, lambda m: f"$`{m}`$")
+
+
+def symbol_table(names: dict[str, Any], note: Notation) -> dict[str, tuple[str, str]]:
+    """The problem's names (and ``x_dot``, ``p_x``, ``Q_x`` of each coordinate) → (LaTeX, text)."""
+    table = {name: (note.latex(sym), note.text(sym)) for name, sym in names.items() if isinstance(sym, sympy.Symbol)}
+    for name in note.coordinates:
+        for extra in (f"{name}_dot", f"{name}_ddot", f"p_{name}", f"Q_{name}"):
+            sym = sympy.Symbol(extra)
+            table[extra] = (note.latex(sym), note.text(sym))
+    return table
+
+
+FILTERS: dict[str, Callable[..., str]] = {
+    "tex_prose": tex_prose,
+    "md_math": md_math_prose,
+    "tex_description": tex_description,
+    "md_description": md_description,
     "tex": tex_escape,
+    "boxed": boxed,
+    "broken": broken,
+    "formula": formula,
+    "equation": equation,
+    "matrix": matrix,
+    "vector": vector,
     "md": md_escape,
     "md_prose": md_prose,
 }

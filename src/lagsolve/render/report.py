@@ -20,7 +20,7 @@ import sympy
 from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.render.analysis_report import analysis_context, analysis_json, analysis_summary, contract_json
-from lagsolve.render.notation import FILTERS, Notation, to_json
+from lagsolve.render.notation import FILTERS, Notation, symbol_table, to_json
 
 FORMAT_VERSION = 1
 #: above this many coordinates the matrix form is written one equation per row instead of as matrices
@@ -164,6 +164,7 @@ def context(derivation: Derivation) -> dict[str, Any]:
         "friction": friction,
         "analysis": analysis_context(derivation, note),
         "notes": [n.sentence() for n in derivation.notes],
+        "symbols": symbol_table(problem.symbols, note),
         "stage_notes": {n.stage: n.reason for n in derivation.notes},
     }
 
