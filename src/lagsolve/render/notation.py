@@ -249,7 +249,8 @@ def tex_description(text: str) -> str:
 
 def md_description(text: str) -> str:
     """A description from the file for Markdown: its safe ``$...$`` math as GitHub math, the rest escaped."""
-    return render_segments(description_segments(text), md_escape, lambda m: f"$`{m}`$")
+    return render_segments(description_segments(text), lambda t: md_prose(t).replace("|", "\\|"),
+                           lambda m: f"$`{m}`$")
 
 
 def symbol_table(names: dict[str, Any], note: Notation) -> dict[str, tuple[str, str]]:

@@ -47,6 +47,7 @@ def context(derivation: Derivation) -> dict[str, Any]:
          "description": c.description}
         for c in problem.coordinates
     ]
+    unilateral = {c.name for c in problem.constraints if c.unilateral}
     constraints = []
     for c in derivation.constraints:
         velocity = sum((a * v for a, v in zip(c.coefficients, model.velocities, strict=True)), c.offset)
@@ -60,6 +61,7 @@ def context(derivation: Derivation) -> dict[str, Any]:
             "offset": tex(c.offset),
             "acceleration_rhs": tex(c.acceleration_rhs),
             "on": list(c.on),
+            "unilateral": c.name in unilateral,
         })
     equations = []
     for i, (lhs, rhs) in enumerate(derivation.equation_sides):
@@ -160,6 +162,8 @@ def context(derivation: Derivation) -> dict[str, Any]:
             for i in range(len(coords))] if len(coords) > LARGE else [],
         "accelerations": accelerations,
         "multipliers": multipliers,
+        "unilateral": [{"name": c.name, "multiplier": tex(c.multiplier)} for c in derivation.constraints
+                       if c.name in unilateral],
         "forces": forces,
         "friction": friction,
         "analysis": analysis_context(derivation, note),
@@ -228,6 +232,7 @@ def render(derivation: Derivation, fmt: str, templates: Path | None = None,
 def result_dict(derivation: Derivation) -> dict[str, Any]:
     """The result contract (format section 2) as a dict of strings."""
     problem = derivation.problem
+    unilateral = {c.name for c in problem.constraints if c.unilateral}
     forces: dict[str, Any] | None = None if derivation.constraint_forces is None else {}
     for name, result in (derivation.constraint_forces or {}).items():
         entry: dict[str, Any] = {}
@@ -254,6 +259,7 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
                 "expression": to_json(c.expression),
                 "coefficients": {q.name: to_json(a) for q, a in zip(problem.coordinates, c.coefficients, strict=True)},
                 "offset": to_json(c.offset),
+                **({"unilateral": True} if c.name in unilateral else {}),
             }
             for c in derivation.constraints
         },
