@@ -216,7 +216,7 @@ def _factor_lines(tex: str, room: float) -> list[str] | None:
         # numerator and denominator both long: (numerator) / (denominator), each broken
         top = _around(sign, "", numerator, room) if len(_terms(numerator)) > 1 else [sign + numerator]
         return top + _around(r"\Big/ ", "", denominator, room)
-    candidates = [k for k, (kind, text) in enumerate(items) if kind == "paren" and text.startswith("\\left(")
+    candidates = [k for k, (kind, text) in enumerate(items) if kind == "paren" and text[5:6] in "(|"
                   and not (k and items[k - 1][0] == "group") and len(_terms(_inner(text))) > 1]
     if not candidates:
         return None
@@ -225,27 +225,33 @@ def _factor_lines(tex: str, room: float) -> list[str] | None:
     tail = "".join(text for _, text in items[k + 1:])
     if width(head) + width(tail) > room * 0.6:
         return None
-    return _around(head, tail, _inner(items[k][1]), room)
+    bar = items[k][1][5] == "|"
+    return _around(head, tail, _inner(items[k][1]), room, bar)
 
 
-def _around(head: str, tail: str, inner: str, room: float) -> list[str]:
-    r"""``head \Bigl(inner\Bigr) tail`` broken: a short head opens the first line, a long one a line of its own."""
+def _around(head: str, tail: str, inner: str, room: float, bar: bool = False) -> list[str]:
+    r"""``head \Bigl(inner\Bigr) tail`` broken: a short head opens the first line, a long one a line of its own
+    (``\Bigl| ... \Bigr|`` for an absolute value when ``bar``)."""
     if width(head) <= room / 3:
-        return _wrapped(head, tail, tex_lines(inner, room - width(head) - 2))
+        return _wrapped(head, tail, tex_lines(inner, room - width(head) - 2), bar)
     lines = tex_lines(inner, room - 4)
-    return [rf"{head}\Bigl(", *lines[:-1], rf"{lines[-1]}\Bigr){tail}"]
+    return _wrapped(head, tail, ["", *lines], bar)
 
 
 def _inner(paren: str) -> str:
-    r"""``\left( x \right)`` → ``x``."""
-    return paren[len("\\left("):paren.rindex("\\right")].strip()
+    r"""``\left( x \right)`` → ``x``; ``\left|{x}\right|`` → ``x``."""
+    inner = paren[len("\\left("):paren.rindex("\\right")].strip()
+    if inner.startswith("{") and _close_brace(inner, 0) == len(inner):
+        inner = inner[1:-1].strip()
+    return inner
 
 
-def _wrapped(head: str, tail: str, inner: list[str]) -> list[str]:
-    r"""``head \Bigl( line1`` ... ``lineN \Bigr) tail``."""
+def _wrapped(head: str, tail: str, inner: list[str], bar: bool = False) -> list[str]:
+    r"""``head \Bigl( line1`` ... ``lineN \Bigr) tail`` (with ``|`` for ``(`` and ``)`` when ``bar``)."""
+    left, right = (r"\Bigl|", r"\Bigr|") if bar else (r"\Bigl(", r"\Bigr)")
     if len(inner) == 1:
-        return [rf"{head}\Bigl({inner[0]}\Bigr){tail}"]
-    return [rf"{head}\Bigl({inner[0]}", *inner[1:-1], rf"{inner[-1]}\Bigr){tail}"]
+        return [rf"{head}{left}{inner[0]}{right}{tail}"]
+    return [rf"{head}{left}{inner[0]}", *inner[1:-1], rf"{inner[-1]}{right}{tail}"]
 
 
 # -- filters for align* -----------------------------------------------------------------------------
@@ -321,7 +327,7 @@ def matrix(tex: str, name: str) -> str:
 def vector(components: list[str], name: str, labels: tuple[str, ...] = ("x", "y", "z")) -> str:
     r"""``name = (a, b, c)`` inline when it fits in a line of text, else displayed one component per line."""
     inline = rf"{name} = \left({', '.join(components)}\right)"
-    if width(inline) <= LINE * 0.45:
+    if width(inline) <= LINE * 0.35:
         return f"${inline}$"
     named = labels if len(components) <= len(labels) else tuple(str(k) for k in range(1, len(components) + 1))
     rows = [equation(f"{name}_{{{label}}}", c) for label, c in zip(named, components, strict=False)]

@@ -199,7 +199,7 @@ def _tex_char(ch: str) -> str:
         return ch  # ASCII and Latin-1 letters work with inputenc/T1
     name = unicodedata.name(ch, "")
     if name.startswith("GREEK ") and " LETTER " in name:
-        letter = name.rsplit(" ", 1)[-1].lower()
+        letter = name.rsplit(" ", 1)[-1].lower().replace("lamda", "lambda")  # Unicode spells it LAMDA
         if "CAPITAL" in name:
             letter = letter.capitalize()
         if letter in _GREEK:
