@@ -12,7 +12,7 @@ environment in :mod:`lagsolve.render.report`.
 from __future__ import annotations
 
 import unicodedata
-from collections.abc import Callable
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import sympy
@@ -232,12 +232,12 @@ def md_prose(text: str) -> str:
     return str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace("$", "\\$")
 
 
-def tex_prose(text: str, symbols: dict[str, tuple[str, str]]) -> str:
+def tex_prose(text: str, symbols: Mapping[str, Sequence[str]]) -> str:
     """A note of the derivation for LaTeX: the quantities it names as math, the rest escaped."""
     return "".join(f"${tex}$" if kind == "math" else tex_escape(tex) for kind, tex, _ in segments(text, symbols))
 
 
-def md_math_prose(text: str, symbols: dict[str, tuple[str, str]]) -> str:
+def md_math_prose(text: str, symbols: Mapping[str, Sequence[str]]) -> str:
     """A note of the derivation for Markdown: the quantities it names as GitHub math, the rest escaped."""
     return "".join(f"$`{tex}`$" if kind == "math" else md_prose(tex) for kind, tex, _ in segments(text, symbols))
 
@@ -253,13 +253,13 @@ def md_description(text: str) -> str:
                            lambda m: f"$`{m}`$")
 
 
-def symbol_table(names: dict[str, Any], note: Notation) -> dict[str, tuple[str, str]]:
-    """The problem's names (and ``x_dot``, ``p_x``, ``Q_x`` of each coordinate) → (LaTeX, text)."""
-    table = {name: (note.latex(sym), note.text(sym)) for name, sym in names.items() if isinstance(sym, sympy.Symbol)}
+def symbol_table(names: dict[str, Any], note: Notation) -> dict[str, list[str]]:
+    """The problem's names (and ``x_dot``, ``p_x``, ``Q_x`` of each coordinate) → [LaTeX, text] (plain data)."""
+    table = {name: [note.latex(sym), note.text(sym)] for name, sym in names.items() if isinstance(sym, sympy.Symbol)}
     for name in note.coordinates:
         for extra in (f"{name}_dot", f"{name}_ddot", f"p_{name}", f"Q_{name}"):
             sym = sympy.Symbol(extra)
-            table[extra] = (note.latex(sym), note.text(sym))
+            table[extra] = [note.latex(sym), note.text(sym)]
     return table
 
 

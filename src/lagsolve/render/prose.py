@@ -19,7 +19,7 @@ parts and wrap the math parts for their format.
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 
 #: LaTeX commands a description's ``$...$`` may use
 _SAFE_WORDS = (
@@ -34,7 +34,7 @@ _SAFE_CHARS = re.compile(r"^[A-Za-z0-9 +\-*/=()\[\]|,.;:'^_{}<>!]*$")
 _COMMAND = re.compile(r"\\([A-Za-z]+|[,;! ])")
 
 #: names every derivation uses in its notes: (LaTeX, Unicode text)
-GENERIC: dict[str, tuple[str, str]] = {
+GENERIC: dict[str, Sequence[str]] = {
     "L": ("L", "L"), "T": ("T", "T"), "V": ("V", "V"), "h": ("h", "h"), "T2": ("T_2", "T₂"),
     "T0": ("T_0", "T₀"), "Q": ("Q", "Q"), "Q_i": ("Q_i", "Qᵢ"), "N": ("N", "N"), "t": ("t", "t"),
 }
@@ -51,7 +51,7 @@ _TOKEN = re.compile(
     r"|(?P<other>.)", re.S)
 
 
-def segments(text: str, symbols: Mapping[str, tuple[str, str]]) -> list[tuple[str, str, str]]:
+def segments(text: str, symbols: Mapping[str, Sequence[str]]) -> list[tuple[str, str, str]]:
     """``text`` as (kind, LaTeX, Unicode) pieces: kind "math" for the quantities it names, else "text".
 
     ``symbols`` maps the problem's names (with ``x_dot``, ``p_x``, ``Q_x``) to their LaTeX and text forms.
