@@ -20,7 +20,7 @@ from lagsolve.errors import LagsolveError, SpecError
 if TYPE_CHECKING:
     from lagsolve.pipeline import Reports
 
-EXTENSIONS = {"md": ".md", "tex": ".tex", "json": ".json"}
+EXTENSIONS = {"md": ".md", "tex": ".tex", "html": ".html", "json": ".json"}
 
 
 def _fail(error: LagsolveError) -> int:
@@ -88,7 +88,7 @@ def check(files: tuple[Path, ...], timeout: float) -> None:
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("-o", "--output", type=click.Path(path_type=Path),
               help="Output folder (default out/), or a file name when one file and one --format are given.")
-@click.option("--format", "fmt", type=click.Choice(["md", "tex", "json"]),
+@click.option("--format", "fmt", type=click.Choice(["md", "tex", "html", "json"]),
               help="Only this format; printed to stdout unless -o is given.")
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,
               help="CPU seconds allowed for each derivation; a stage that runs out of its share is named "

@@ -101,7 +101,7 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
 
         simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures}
         text += run.summary
-    return text, {fmt: render(derivation, fmt, templates, simulation, potential) for fmt in formats}, files
+    return text, {fmt: render(derivation, fmt, templates, simulation, potential, files) for fmt in formats}, files
 
 
 def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:

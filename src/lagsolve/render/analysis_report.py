@@ -66,17 +66,20 @@ def _contact_json(checks: Any) -> dict[str, Any]:
             "contact": {c.constraint: to_json(c.multiplier) for c in checks}}
 
 
-def analysis_context(derivation: Derivation, note: Notation) -> dict[str, Any] | None:
-    """Strings for the analysis sections (None when the derivation carries no analysis)."""
+def analysis_context(derivation: Derivation, note: Notation, math: str = "latex") -> dict[str, Any] | None:
+    """Strings for the analysis sections (None when the derivation carries no analysis); expressions in LaTeX,
+    or in presentation MathML when ``math`` is "mathml"."""
     analysis = derivation.analysis
     if analysis is None:
         return None
-    tex, text = note.latex, note.text
+    tex, text = (note.mathml if math == "mathml" else note.latex), note.text
     constraints = []
     for k in analysis.classification:
         entry: dict[str, Any] = {"name": k.name, "kind": k.kind, "kind_text": KINDS[k.kind], "note": k.note}
         if k.kind != "holonomic":
-            entry["form"] = _pfaffian(k.form, k.variables, tex)
+            entry["form"] = (_pfaffian(k.form, k.variables, tex) if math == "latex" else
+                             tex(sum((w * sympy.Symbol(f"d{x.name}") for w, x in zip(k.form, k.variables,
+                                                                                    strict=True)), sympy.Integer(0))))
             entry["exact"] = k.exact
             entry["factor"] = tex(k.factor) if k.factor is not None and k.factor != 1 else ""
         if k.kind == "integrable":
@@ -117,7 +120,7 @@ def analysis_context(derivation: Derivation, note: Notation) -> dict[str, Any] |
     conservation = analysis.conservation
     conserved = []
     for c in conservation.quantities:
-        symbol = tex(sympy.Symbol(c.name)) if c.kind == "momentum" else "h"
+        symbol = tex(sympy.Symbol(c.name)) if c.kind == "momentum" else tex(sympy.Symbol("h"))
         conserved.append({
             "name": c.name, "kind": c.kind, "symbol": symbol, "tex": tex(c.expression), "text": text(c.expression),
             "coordinate": tex(c.coordinate) if c.coordinate is not None else "",

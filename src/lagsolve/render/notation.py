@@ -11,12 +11,15 @@ environment in :mod:`lagsolve.render.report`.
 
 from __future__ import annotations
 
+import re
 import unicodedata
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import sympy
+from markupsafe import Markup, escape
 from sympy.printing.latex import LatexPrinter
+from sympy.printing.mathml import MathMLPresentationPrinter
 from sympy.printing.str import StrPrinter
 
 from lagsolve.render.breaking import boxed, broken, equation, formula, matrix, vector
@@ -155,6 +158,62 @@ class MechanicsTextPrinter(StrPrinter):
         return f"{inner.func.__name__}{_prime(order) if order <= 3 else f'^({order})'}({self._print(inner.args[0])})"
 
 
+class MechanicsMathMLPrinter(MathMLPresentationPrinter):
+    """Presentation MathML with dots for rates, primes for declared functions and upright word subscripts."""
+
+    def __init__(self, rates: frozenset[str] = frozenset(), settings: dict | None = None) -> None:
+        super().__init__(settings or {})
+        self.rates = rates
+
+    def _element(self, tag: str, text: str | None = None, **attributes: str) -> Any:
+        node = self.dom.createElement(tag)
+        for key, value in attributes.items():
+            node.setAttribute(key, value)
+        if text is not None:
+            node.appendChild(self.dom.createTextNode(text))
+        return node
+
+    def _print_Symbol(self, sym: Any, style: str = "plain") -> Any:
+        base, order = _split_rate(sym.name)
+        if order and base in self.rates:
+            letters = base.rstrip("0123456789")
+            over = self._element("mover", accent="true")
+            over.appendChild(self._print(sympy.Symbol(letters or base)))
+            over.appendChild(self._element("mo", "\u02d9" if order == 1 else "\u00a8"))
+            if not letters or letters == base:
+                return over
+            sub = self._element("msub")  # θ̇ with its index below: the dot sits on the letter
+            sub.appendChild(over)
+            sub.appendChild(self._element("mn", base[len(letters):]))
+            return sub
+        head, sep, tail = sym.name.partition("_")
+        if sep and head and _worded(tail):
+            sub = self._element("msub")
+            sub.appendChild(self._print(sympy.Symbol(head)))
+            sub.appendChild(self._element("mi", tail, mathvariant="normal"))
+            return sub
+        return super()._print_Symbol(sym, style)
+
+    def _print_Mul(self, expr: Any) -> Any:
+        flipped = _positive_denominators(expr)
+        return super()._print_Mul(expr) if flipped is expr else self._print(flipped)
+
+    def _print_Derivative(self, expr: Any) -> Any:
+        found = _single_function_derivative(expr)
+        if found is None:
+            return super()._print_Derivative(expr)
+        inner, order = found
+        row = self._element("mrow")
+        name = self._element("msup")
+        name.appendChild(self._element("mi", inner.func.__name__))
+        name.appendChild(self._element("mo", "\u2032" * order) if order <= 3 else self._element("mn", f"({order})"))
+        row.appendChild(name)
+        row.appendChild(self._element("mo", "("))
+        row.appendChild(self._print(inner.args[0]))
+        row.appendChild(self._element("mo", ")"))
+        return row
+
+
 class Notation:
     """Printers bound to one problem's coordinates (which names get dots)."""
 
@@ -163,12 +222,17 @@ class Notation:
         self.coordinates = tuple(coordinates)
         self._latex = MechanicsLatexPrinter(rates, {"mul_symbol": None})
         self._text = MechanicsTextPrinter(rates)
+        self._mathml = MechanicsMathMLPrinter(rates)
 
     def latex(self, expr: Any) -> str:
         return self._latex.doprint(expr)
 
     def text(self, expr: Any) -> str:
         return self._text.doprint(expr)
+
+    def mathml(self, expr: Any) -> str:
+        """Presentation MathML (without the ``<math>`` element), as browsers render it natively."""
+        return self._mathml.doprint(expr)
 
 
 def to_json(expr: Any) -> str:
@@ -253,6 +317,42 @@ def md_description(text: str) -> str:
                            lambda m: f"$`{m}`$")
 
 
+def mathml_fragment(mathml: str) -> Markup:
+    """MathML printed by :class:`MechanicsMathMLPrinter` (from expressions, never from file text), unescaped."""
+    return Markup(mathml)  # noqa: S704 - SymPy's printer escapes text; names are validated identifiers
+
+
+def mathml_inline(mathml: str) -> Markup:
+    """An expression's MathML as inline math."""
+    return Markup("<math>{}</math>").format(mathml_fragment(mathml))
+
+
+_UNICODE_TEX = {**{f"\\{name}": letter for name, letter in _GREEK.items()}, "\\partial": "∂", "\\cdot": "·",
+                "\\times": "×", "\\le": "≤", "\\ge": "≥", "\\ne": "≠", "\\infty": "∞", "\\pm": "±"}
+
+
+def _tex_to_text(tex: str) -> str:
+    r"""Safe description math as readable Unicode for HTML: ``\dot{\theta}^2`` → ``θ̇²``."""
+    out = re.sub(r"\\(?:dot|ddot)\{?\s*(\\?[A-Za-z]+)\s*\}?",
+                 lambda m: m.group(1) + (_DDOT if "ddot" in m.group(0) else _DOT), tex)
+    for command, letter in sorted(_UNICODE_TEX.items(), key=lambda kv: -len(kv[0])):
+        out = out.replace(command, letter)
+    out = re.sub(r"\^\{?(\d)\}?", lambda m: "⁰¹²³⁴⁵⁶⁷⁸⁹"[int(m.group(1))], out)
+    return re.sub(r"\\[A-Za-z]+", "", out).replace("{", "").replace("}", "")
+
+
+def html_description(text: str) -> Markup:
+    """A description for the HTML report: text escaped, its safe ``$...$`` math in italics as Unicode."""
+    return Markup("").join(Markup('<i class="m">{}</i>').format(_tex_to_text(p)) if kind == "math" else escape(p)
+                           for kind, p in description_segments(text))
+
+
+def html_prose(text: str, symbols: Mapping[str, Sequence[str]]) -> Markup:
+    """A note of the derivation for HTML: the quantities it names in italics (Unicode), the rest escaped."""
+    return Markup("").join(Markup('<i class="m">{}</i>').format(uni) if kind == "math" else escape(uni)
+                           for kind, _, uni in segments(text, symbols))
+
+
 def symbol_table(names: dict[str, Any], note: Notation) -> dict[str, list[str]]:
     """The problem's names (and ``x_dot``, ``p_x``, ``Q_x`` of each coordinate) → [LaTeX, text] (plain data)."""
     table = {name: [note.latex(sym), note.text(sym)] for name, sym in names.items() if isinstance(sym, sympy.Symbol)}
@@ -264,6 +364,10 @@ def symbol_table(names: dict[str, Any], note: Notation) -> dict[str, list[str]]:
 
 
 FILTERS: dict[str, Callable[..., str]] = {
+    "m": mathml_inline,
+    "mml": mathml_fragment,
+    "html_prose": html_prose,
+    "html_description": html_description,
     "tex_prose": tex_prose,
     "md_math": md_math_prose,
     "tex_description": tex_description,
