@@ -198,6 +198,12 @@ class MechanicsMathMLPrinter(MathMLPresentationPrinter):
         flipped = _positive_denominators(expr)
         return super()._print_Mul(expr) if flipped is expr else self._print(flipped)
 
+    def parenthesize(self, item: Any, level: int, strict: bool = False) -> Any:
+        """f'(x) needs no parentheses of its own in a product, as in the LaTeX."""
+        if isinstance(item, sympy.Derivative) and _single_function_derivative(item) is not None:
+            return self._print(item)
+        return super().parenthesize(item, level, strict)
+
     def _print_Derivative(self, expr: Any) -> Any:
         found = _single_function_derivative(expr)
         if found is None:
