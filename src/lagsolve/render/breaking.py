@@ -262,19 +262,19 @@ def broken(tex: str, room: float = LINE) -> str:
     return " \\\\\n&\\qquad ".join(tex_lines(tex, room))
 
 
-def equation(lhs: str, rhs: str, relation: str = "=") -> str:
+def equation(lhs: str, rhs: str, relation: str = "=", line: float = LINE) -> str:
     r"""``lhs &= rhs`` as rows of ``align*``, either side broken when long.
 
     >>> equation("a", "b")
     'a &= b'
     """
-    if width(lhs) <= LINE / 3:
-        rhs_lines = tex_lines(rhs, LINE - width(lhs) - 3)
+    if width(lhs) <= line / 3:
+        rhs_lines = tex_lines(rhs, line - width(lhs) - 3)
         rows = [f"{lhs} &{relation} {rhs_lines[0]}"] + [rf"&\qquad {r}" for r in rhs_lines[1:]]
     else:
-        lhs_lines = tex_lines(lhs, LINE - 2)
+        lhs_lines = tex_lines(lhs, line - 2)
         rows = [f"&{lhs_lines[0]}"] + [rf"&\qquad {r}" for r in lhs_lines[1:]]
-        rows += [f"&{relation} {r}" if k == 0 else rf"&\qquad {r}" for k, r in enumerate(tex_lines(rhs, LINE - 4))]
+        rows += [f"&{relation} {r}" if k == 0 else rf"&\qquad {r}" for k, r in enumerate(tex_lines(rhs, line - 4))]
     return " \\\\\n".join(rows)
 
 
@@ -330,7 +330,7 @@ def vector(components: list[str], name: str, labels: tuple[str, ...] = ("x", "y"
     if width(inline) <= LINE * 0.35:
         return f"${inline}$"
     named = labels if len(components) <= len(labels) else tuple(str(k) for k in range(1, len(components) + 1))
-    rows = [equation(f"{name}_{{{label}}}", c) for label, c in zip(named, components, strict=False)]
+    rows = [equation(f"{name}_{{{label}}}", c, line=LINE - 6) for label, c in zip(named, components, strict=False)]
     return "\n\\begin{align*}\n" + " \\\\\n".join(rows) + "\n\\end{align*}\n"
 
 
@@ -351,4 +351,5 @@ def formula(lhs: str, rhs: str) -> str:
     r"""``$lhs = rhs$`` in running text when it fits in most of a line, else displayed and broken."""
     if width(lhs) + width(rhs) + 2 <= LINE * 0.45:
         return f"${lhs} = {rhs}$"
-    return "\n\\begin{align*}\n" + equation(lhs, rhs) + "\n\\end{align*}\n"
+    # in a list item: the indentation takes about six glyphs of the line
+    return "\n\\begin{align*}\n" + equation(lhs, rhs, line=LINE - 6) + "\n\\end{align*}\n"
