@@ -90,3 +90,16 @@ def test_the_browser_renders_the_math(bead: Derivation, browser: Any, tmp_path: 
     assert browser.execute_script("return performance.getEntriesByType('resource').length;") == 0
     errors = [entry for entry in browser.get_log("browser") if entry["level"] in ("SEVERE", "ERROR")]
     assert errors == []
+
+
+def test_cli_writes_the_html_report(tmp_path: Path) -> None:
+    """`lagsolve derive --format html -o FILE.html` writes the page."""
+    from click.testing import CliRunner
+
+    from lagsolve.cli import main
+
+    target = tmp_path / "bead.html"
+    result = CliRunner().invoke(main, ["derive", str(ROOT / "problems" / "bead.yaml"), "--format", "html",
+                                       "-o", str(target)])
+    assert result.exit_code == 0, result.output
+    assert target.read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
