@@ -103,3 +103,11 @@ def test_cli_writes_the_html_report(tmp_path: Path) -> None:
                                        "-o", str(target)])
     assert result.exit_code == 0, result.output
     assert target.read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
+
+
+def test_description_math_reads_as_unicode() -> None:
+    r"""$\cos\theta = 2/3$ and $\sqrt{1 + f'(x)^2}$ read as cos θ = 2/3 and √(1 + f'(x)²) in the page."""
+    from lagsolve.render.notation import html_description
+
+    out = str(html_description(r"at $\cos\theta = 2/3$, $m/\sqrt{1 + \dot x^2}$"))
+    assert out == 'at <i class="m">cos θ = 2/3</i>, <i class="m">m/√(1 + ẋ²)</i>'

@@ -338,13 +338,18 @@ _UNICODE_TEX = {**{f"\\{name}": letter for name, letter in _GREEK.items()}, "\\p
 
 
 def _tex_to_text(tex: str) -> str:
-    r"""Safe description math as readable Unicode for HTML: ``\dot{\theta}^2`` → ``θ̇²``."""
-    out = re.sub(r"\\(?:dot|ddot)\{?\s*(\\?[A-Za-z]+)\s*\}?",
-                 lambda m: m.group(1) + (_DDOT if "ddot" in m.group(0) else _DOT), tex)
+    r"""Safe description math as readable Unicode for HTML: ``\dot{\theta}^2`` → ``θ̇²``, ``\sqrt{x}`` → ``√(x)``."""
+    out = re.sub(r"\\(dot|ddot)\s*\{?\s*(\\?[A-Za-z]+)\s*\}?",
+                 lambda m: m.group(2) + (_DDOT if m.group(1) == "ddot" else _DOT), tex)
+    for _ in range(4):  # nested groups, innermost first
+        out = re.sub(r"\\sqrt\s*\{([^{}]*)\}", r"√(\1)", out)
+        out = re.sub(r"\\[dt]?frac\s*\{([^{}]*)\}\s*\{([^{}]*)\}", r"(\1)/(\2)", out)
+    out = re.sub(r"\\(sin|cos|tan|cot|sec|csc|sinh|cosh|tanh|exp|log|ln|arcsin|arccos|arctan)\b\s*", r"\1 ", out)
     for command, letter in sorted(_UNICODE_TEX.items(), key=lambda kv: -len(kv[0])):
-        out = out.replace(command, letter)
+        out = re.sub(re.escape(command) + r"(?![A-Za-z])", letter, out)
+    out = out.replace("\\,", "\u2009").replace("\\;", " ").replace("\\!", "").replace("\\ ", " ")
     out = re.sub(r"\^\{?(\d)\}?", lambda m: "⁰¹²³⁴⁵⁶⁷⁸⁹"[int(m.group(1))], out)
-    return re.sub(r"\\[A-Za-z]+", "", out).replace("{", "").replace("}", "")
+    return re.sub(r"\\[A-Za-z]+\s*", "", out).replace("{", "").replace("}", "")
 
 
 def html_description(text: str) -> Markup:
