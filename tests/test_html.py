@@ -110,4 +110,4 @@ def test_description_math_reads_as_unicode() -> None:
     from lagsolve.render.notation import html_description
 
     out = str(html_description(r"at $\cos\theta = 2/3$, $m/\sqrt{1 + \dot x^2}$"))
-    assert out == 'at <i class="m">cos θ = 2/3</i>, <i class="m">m/√(1 + ẋ²)</i>'
+    assert out == 'at <i class="m">cos θ = 2/3</i>, <i class="m">m/√(1 + x\u0307²)</i>'
