@@ -111,3 +111,27 @@ def test_description_math_reads_as_unicode() -> None:
 
     out = str(html_description(r"at $\cos\theta = 2/3$, $m/\sqrt{1 + \dot x^2}$"))
     assert out == 'at <i class="m">cos θ = 2/3</i>, <i class="m">m/√(1 + x\u0307²)</i>'
+
+
+def test_the_time_slider_moves_the_particles(bead: Derivation, browser: Any, tmp_path: Path) -> None:
+    """With a simulation, the slider moves each particle along its path and the plots' cursors follow."""
+    from lagsolve.pipeline import derive_file
+    from lagsolve.simulation import SimulationOptions
+
+    reports = derive_file(ROOT / "problems" / "bead.yaml", ("html",),
+                          simulate=SimulationOptions(values={}, initial={}, samples=201))
+    html = reports.outputs["html"]
+    assert 'id="time"' in html and "application/json" in html
+    page = tmp_path / "bead.html"
+    page.write_text(html, encoding="utf-8")
+    browser.get(page.as_uri())
+    before = browser.execute_script("return document.querySelector('#path-view circle').getAttribute('cx');")
+    browser.execute_script("var s = document.getElementById('time'); s.value = '100';"
+                           "s.dispatchEvent(new Event('input'));")
+    after, cursor, label = browser.execute_script(
+        "return [document.querySelector('#path-view circle').getAttribute('cx'),"
+        " document.querySelector('#series-plots line').getAttribute('x1'),"
+        " document.getElementById('time-label').textContent];")
+    assert after != before and float(cursor) > 40 and label.startswith("t = 5")
+    assert browser.execute_script("return performance.getEntriesByType('resource').length;") == 0
+    assert [e for e in browser.get_log("browser") if e["level"] in ("SEVERE", "ERROR")] == []

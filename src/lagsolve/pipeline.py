@@ -97,9 +97,11 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
             name = f"{slug}_{key}.png"
             files[name] = data
             figures.append({"file": name, "caption": FIGURE_CAPTIONS.get(key, key)})
+        from lagsolve.render.trajectory import animation
         from lagsolve.render.trajectory import summary as run_summary
 
-        simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures}
+        simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures,
+                      "animation": animation(run.trajectory)}
         text += run.summary
     return text, {fmt: render(derivation, fmt, templates, simulation, potential, files) for fmt in formats}, files
 
