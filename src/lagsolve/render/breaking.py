@@ -347,9 +347,15 @@ def boxed(lhs: str, rhs: str) -> str:
     return rf"{lhs} &= \boxed{{\begin{{aligned}}[t] &{body}\end{{aligned}}}}"
 
 
-def formula(lhs: str, rhs: str) -> str:
-    r"""``$lhs = rhs$`` in running text when it fits in most of a line, else displayed and broken."""
+def formula(lhs: str, rhs: str, punctuation: str = "") -> str:
+    r"""``$lhs = rhs$`` in running text when it fits in most of a line, else displayed and broken; a
+    ``punctuation`` mark that follows goes after the inline math or at the end of the display.
+
+    >>> formula("h", "m", ":")
+    '$h = m$:'
+    """
     if width(lhs) + width(rhs) + 2 <= LINE * 0.45:
-        return f"${lhs} = {rhs}$"
+        return f"${lhs} = {rhs}${punctuation}"
+    end = rf"\text{{{punctuation}}}" if punctuation else ""
     # in a list item: the indentation takes about six glyphs of the line
-    return "\n\\begin{align*}\n" + equation(lhs, rhs, line=LINE - 6) + "\n\\end{align*}\n"
+    return "\n\\begin{align*}\n" + equation(lhs, rhs, line=LINE - 6) + end + "\n\\end{align*}\n"
