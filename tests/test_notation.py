@@ -77,3 +77,10 @@ def test_no_leading_minus_in_a_denominator() -> None:
     note = Notation(["x"])
     assert note.latex(x / (-big - m * sympy.sin(th) ** 2)) == r"- \frac{x}{M + m \sin^{2}{\left(\theta \right)}}"
     assert note.text(x / (-big - m)) == "-x/(M + m)"
+
+
+def test_dotted_letters_in_notes_are_math_in_latex() -> None:
+    """A note's q̈, ẋ and Aᵀ are set as math in LaTeX, not printed as '?'."""
+    from lagsolve.render.notation import tex_escape
+
+    assert tex_escape("M q\u0308 = F + A\u1d40\u03bb, x\u0307") == r"M $\ddot{q}$ = F + A$^{T}$$\lambda$, $\dot{x}$"

@@ -259,7 +259,17 @@ def tex_escape(text: str) -> str:
     >>> tex_escape(r"\input{x} 50% & $1")
     '\\textbackslash{}input\\{x\\} 50\\% \\& \\$1'
     """
-    return "".join(_tex_char(ch) for ch in str(text) if ch in "\n\t" or ch.isprintable())
+    out = []
+    for k, piece in enumerate(_MARKED.split(str(text))):
+        if k % 2:  # a letter with a dot or two above it, or a superscript T (q̈, Aᵀ in the notes)
+            accent = {"\u0307": "\\dot", "\u0308": "\\ddot"}.get(piece[-1])
+            out.append(f"$\\{accent[1:]}{{{piece[0]}}}$" if accent else "$^{T}$")
+        else:
+            out.append("".join(_tex_char(ch) for ch in piece if ch in "\n\t" or ch.isprintable()))
+    return "".join(out)
+
+
+_MARKED = re.compile("([A-Za-z][\u0307\u0308]|\u1d40)")
 
 
 def _tex_char(ch: str) -> str:
