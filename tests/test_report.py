@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -125,23 +126,58 @@ def test_templates_are_packaged() -> None:
     assert any((d / "report.tex.j2").is_file() for d in template_dirs("latex"))
 
 
+#: how far past the margin a line may run before a report is not of print quality
+OVERFULL_LIMIT = 10.0
+
+
+def compile_latex(tex: str, files: dict[str, bytes], folder: Path) -> tuple[subprocess.CompletedProcess[str], str]:
+    """pdflatex on ``tex`` (with the figures it includes) in ``folder``: the run and its log."""
+    if shutil.which("pdflatex") is None:
+        pytest.skip("pdflatex is not installed (CI installs texlive-latex-base and texlive-latex-recommended)")
+    (folder / "r.tex").write_text(tex)
+    for file_name, data in files.items():
+        (folder / file_name).write_bytes(data)
+    run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "r.tex"],
+                         cwd=folder, capture_output=True, text=True, timeout=300)
+    log = (folder / "r.log").read_text(errors="replace") if (folder / "r.log").exists() else ""
+    return run, log
+
+
+def overfull(log: str, tex: str) -> list[str]:
+    """Each line of the report that runs more than OVERFULL_LIMIT pt past the margin, with its width and source."""
+    lines = tex.splitlines()
+    out = []
+    for m in re.finditer(r"Overfull \\hbox \(([\d.]+)pt too wide\) .*?lines? (\d+)", log):
+        if float(m.group(1)) > OVERFULL_LIMIT:
+            source = lines[int(m.group(2)) - 1] if int(m.group(2)) <= len(lines) else ""
+            out.append(f"{m.group(1)} pt at line {m.group(2)}: {source[:160]}")
+    return out
+
+
+@pytest.mark.parametrize("name", ["knife_edge", "rotating_tube", "double_pendulum", "ladder_rough_floor"])
+def test_latex_fits_the_page(name: str, tmp_path: Path) -> None:
+    """A freshly rendered report of a problem with long results compiles with no line over 10 pt past the margin."""
+    derivation = derive(load_problem(ROOT / "problems" / f"{name}.yaml"))
+    tex = render(derivation, "tex")
+    run, log = compile_latex(tex, {}, tmp_path)
+    assert run.returncode == 0, run.stdout[-2000:]
+    assert overfull(log, tex) == []
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("name", shipped())
 def test_latex_compiles(name: str, tmp_path: Path) -> None:
-    """Each problem's LaTeX report compiles with pdflatex (skipped where pdflatex is not installed)."""
-    if shutil.which("pdflatex") is None:
-        pytest.skip("pdflatex is not installed (CI installs texlive-latex-base)")
+    """Each problem's LaTeX report compiles with pdflatex, no line runs over 10 pt past the margin, and it is the
+    reviewed golden report (skipped where pdflatex is not installed)."""
     from lagsolve.pipeline import derive_file
 
     reports = derive_file(ROOT / "problems" / f"{name}.yaml", ("tex",))
-    assert reports.outputs["tex"] == (ROOT / "tests" / "golden" / f"{name}.tex").read_text()
-    (tmp_path / "r.tex").write_text(reports.outputs["tex"])
-    for file_name, data in reports.files.items():  # figures the report includes
-        (tmp_path / file_name).write_bytes(data)
-    run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "r.tex"],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    tex = reports.outputs["tex"]
+    run, log = compile_latex(tex, reports.files, tmp_path)
     assert run.returncode == 0, run.stdout[-2000:]
     assert (tmp_path / "r.pdf").stat().st_size > 1000
+    assert overfull(log, tex) == []
+    assert tex == (ROOT / "tests" / "golden" / f"{name}.tex").read_text()
 
 
 def test_hostile_latex_compiles(hostile: Derivation, tmp_path: Path) -> None:

@@ -27,7 +27,7 @@ for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 if TYPE_CHECKING:
     from lagsolve.pipeline import Reports
 
-EXTENSIONS = {"md": ".md", "tex": ".tex", "json": ".json"}
+EXTENSIONS = {"md": ".md", "tex": ".tex", "html": ".html", "json": ".json"}
 
 
 def _fail(error: LagsolveError) -> int:
@@ -138,7 +138,7 @@ def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("-o", "--output", type=click.Path(path_type=Path),
               help="Output folder (default out/), or a file name when one file and one --format are given.")
-@click.option("--format", "fmt", type=click.Choice(["md", "tex", "json", "jsonl"]),
+@click.option("--format", "fmt", type=click.Choice(["md", "tex", "html", "json", "jsonl"]),
               help="Only this format; printed to stdout unless -o is given. json with several files prints one "
                    "array; jsonl prints one result per line.")
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,

@@ -80,7 +80,8 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
     files: dict[str, bytes] = {}
     simulation = None
     # figures are made only for a format that shows them (JSON does not)
-    figures_shown = bool({"md", "tex"} & set(formats))
+    figures_shown = bool({"md", "tex", "html"} & set(formats))
+    figures_written = bool({"md", "tex"} & set(formats))
     potential = _potential_figure(derivation) if figures_shown else None
     if potential is not None:
         files[potential["file"]] = potential.pop("png")
@@ -99,13 +100,16 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
             name = f"{slug}_{key}.png"
             files[name] = data
             figures.append({"file": name, "caption": FIGURE_CAPTIONS.get(key, key)})
+        from lagsolve.render.trajectory import animation
         from lagsolve.render.trajectory import summary as run_summary
 
-        simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures}
+        simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures,
+                      "animation": animation(run.trajectory)}
         text += run.summary
-    if not figures_shown:
-        files = {}
-    return text, {fmt: render(derivation, fmt, templates, simulation, potential) for fmt in formats}, files
+    outputs = {fmt: render(derivation, fmt, templates, simulation, potential, files) for fmt in formats}
+    if not figures_written:
+        files = {}  # an HTML page carries its figures inside; JSON has none
+    return text, outputs, files
 
 
 def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
