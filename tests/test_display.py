@@ -17,7 +17,7 @@ def test_latex_block_has_one_row_per_result() -> None:
     text = lagsolve.derive(BEAD)._repr_latex_()
     assert text.startswith("$$\\begin{aligned}") and text.endswith("\\end{aligned}$$")
     assert "\\ddot{x} &=" in text and "\\ddot{y} &=" in text
-    assert "\\lambda_{wire} &=" in text
+    assert "\\lambda_{\\mathrm{wire}} &=" in text
     assert "\\left|F_{\\mathrm{wire}}\\right| &=" in text
 
 

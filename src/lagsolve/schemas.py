@@ -148,7 +148,7 @@ def output_schema() -> dict[str, Any]:
         "lagrangian": text,
         "constraints": _by_name(_closed({
             "kind": {"enum": ["holonomic", "nonholonomic"]}, "expression": text, "coefficients": by_name,
-            "offset": text}, ("kind", "expression", "coefficients", "offset"))),
+            "offset": text, "unilateral": {"type": "boolean"}}, ("kind", "expression", "coefficients", "offset"))),
         "equations": texts,
         "mass_matrix": {"type": "array", "items": texts},
         "forcing": texts,

@@ -214,7 +214,11 @@ def _factor_lines(tex: str, room: float) -> list[str] | None:
         if width(head) <= room * 0.6:
             return _around(head, "", numerator, room)
         # numerator and denominator both long: (numerator) / (denominator), each broken
-        top = _around(sign, "", numerator, room) if len(_terms(numerator)) > 1 else [sign + numerator]
+        if len(_terms(numerator)) > 1:
+            top = _around(sign, "", numerator, room)
+        else:  # a product, such as r (a long sum): broken inside its parentheses
+            inner = tex_lines(numerator, room)
+            top = [sign + inner[0], *inner[1:]]
         return top + _around(r"\Big/ ", "", denominator, room)
     candidates = [k for k, (kind, text) in enumerate(items) if kind == "paren" and text[5:6] in "(|"
                   and not (k and items[k - 1][0] == "group") and len(_terms(_inner(text))) > 1]
