@@ -110,7 +110,7 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
         Whatever lagsolve error ``fn`` raised, re-raised here.
     """
     method = "fork" if sys.platform.startswith("linux") else "spawn"
-    ctx = multiprocessing.get_context(method)
+    ctx: Any = multiprocessing.get_context(method)
     receiver, sender = ctx.Pipe(duplex=False)
     # not a daemon: a simulation runs its analysis in a child of its own
     process = ctx.Process(target=_child, args=(sender, fn, args, seconds, os.getpid()), daemon=False)

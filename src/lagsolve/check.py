@@ -255,8 +255,9 @@ def _analysis_items(derivation: Derivation) -> list[_Item]:
         value = _as_expr((conserved or {}).get(name), names)
         if value is None:
             found = "no analysis" if conserved is None else ", ".join(conserved) or "nothing"
+            # its rate along the equations needs the explicit accelerations; without them it stays unchecked
             items.append(_Item("conserved", name, (e,), None, f"lagsolve's analysis does not find {name!r} "
-                               f"(it finds: {found})", shifts=True, rate=True))
+                               f"(it finds: {found})", shifts=True, rate=derivation.accelerations is not None))
             continue
         items.append(_Item("conserved", name, (e,), (value,), shifts=True))
     spec = expected.effective_potential
@@ -352,8 +353,8 @@ class _Checker:
         r""":math:`dC/dt` of ``expr`` along the equations of motion (the derived accelerations put in),
         with the constraints used as in :meth:`prepare`."""
         model = self.derivation.model
-        accelerations = {a: self.derivation.accelerations[q.name]
-                         for q, a in zip(model.coordinates, model.accelerations, strict=True)}
+        derived = self.derivation.accelerations or {}  # items with a rate exist only when they are derived
+        accelerations = {a: derived[q.name] for q, a in zip(model.coordinates, model.accelerations, strict=True)}
         rate = model.time_derivative(self._unify(expr), second_order=True).xreplace(accelerations)
         return self.prepare(rate)
 
@@ -373,7 +374,7 @@ class _Checker:
         if item.rate:
             return self.conservation(item)
         expected = tuple(self.prepare(e) for e in item.expected)
-        base = {"quantity": item.quantity, "name": item.name, "expected": item.expected}
+        base: dict[str, Any] = {"quantity": item.quantity, "name": item.name, "expected": item.expected}
         if item.derived is None:
             return Verdict(**base, status=item.missing,
                            reason=NOT_DERIVED if item.missing == UNCHECKED else ABSENT, note=item.note)
@@ -448,7 +449,7 @@ class _Checker:
     def conservation(self, item: _Item) -> Verdict:
         """A claimed constant of the motion: ok when dC/dt = 0 along the equations, on the constraint surface."""
         rate = self._rates[item.name]
-        base = {"quantity": item.quantity, "name": item.name, "expected": item.expected}
+        base: dict[str, Any] = {"quantity": item.quantity, "name": item.name, "expected": item.expected}
         along = "its rate dC/dt along the equations of motion"
         if _symbolically_equal(rate, sympy.Integer(0)):
             return Verdict(**base, status=OK, reason=CONSERVED, note=f"{item.note}; {along} simplifies to 0")

@@ -150,7 +150,7 @@ class StateSpace:
         problem = derivation.problem
         arity: dict[Any, int] = {}
         sources = [derivation.model.lagrangian, *(c.expression for c in derivation.constraints),
-                   *derivation.accelerations.values(), *derivation.multipliers.values()]
+                   *(derivation.accelerations or {}).values(), *(derivation.multipliers or {}).values()]
         for expr in sources:
             for call in expr.atoms(sympy.core.function.AppliedUndef):
                 arity.setdefault(call.func, len(call.args))

@@ -187,7 +187,7 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     if shown is None:
         shown = _display(form, elimination, raw_acc, raw_lam, _plain, _plain)
     multipliers = shown["multipliers"]
-    forces = None
+    forces: dict[str, ConstraintForce] | None = None
     if not constraints:
         forces = {}
         stages.skip("forces of constraint", "there are no constraints", "n/a")

@@ -45,8 +45,8 @@ def force_terms(problem: Problem, model: Model) -> tuple[ForceTerm, ...]:
             jac = position_jacobian(particle.position, model)
             if len(force.value) != jac.rows:
                 continue  # dimensions are checked by the loader
-            q_force = jac.T * sympy.Matrix(force.value)
-            terms.append(ForceTerm(f"force on {particle.name}", tuple(q_force)))
+            generalized = jac.T * sympy.Matrix(force.value)
+            terms.append(ForceTerm(f"force on {particle.name}", tuple(generalized)))
     if problem.dissipation is not None:
         row = tuple(-sympy.diff(problem.dissipation, qd) for qd in model.velocities)
         terms.append(ForceTerm("dissipation", row))

@@ -54,7 +54,8 @@ def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
     loads = force_terms(problem, model)
     frictions = tuple(friction_term(f, problem, model) for f in problem.friction)
     n = len(model.coordinates)
-    q_forces = tuple(sum((t.generalized[i] for t in (*loads, *frictions)), sympy.Integer(0)) for i in range(n))
+    terms: tuple[ForceTerm | FrictionTerm, ...] = (*loads, *frictions)
+    q_forces = tuple(sum((t.generalized[i] for t in terms), sympy.Integer(0)) for i in range(n))
     lagrange = lagrange_terms(model, constraints, q_forces, engine="sympy" if display else "symengine")
     reactions = {c.name: reaction(problem, model, c) for c in constraints}
     return MatrixForm(problem, model, constraints, loads, frictions, q_forces, lagrange, reactions)

@@ -201,7 +201,7 @@ def reduce_system(model: Model, constraints: tuple[ConstraintTerms, ...], classe
                   for r, g, f in zip(terms.momenta_rates, terms.gradients, q_red, strict=True))
     agreement = "symbolic" if full_accelerations is not None else "unchecked"
     for k, i in enumerate(kept if full_accelerations is not None else ()):
-        status = zero_status(elimination.apply(full_accelerations[i]) - raw[k])
+        status = zero_status(elimination.apply((full_accelerations or ())[i]) - raw[k])
         if status is Zero.NONZERO:
             agreement = "differ"
             break

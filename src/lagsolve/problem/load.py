@@ -399,7 +399,7 @@ class _Loader:
         return out
 
     def bodies(self, value: Any, names: gateway.Namespace, rates: gateway.Namespace) -> list[Body]:
-        out = []
+        out: list[Body] = []
         if not isinstance(value, dict):
             self.mapping(("bodies",), value)
             return out

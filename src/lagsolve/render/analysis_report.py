@@ -166,7 +166,7 @@ def analysis_context(derivation: Derivation, note: Notation, math: str = "latex"
     modes = None
     lin = analysis.linearization
     if lin is not None:
-        modes = {"coordinates": [tex(q) for q in lin.coordinates], "equilibria": []}
+        modes: dict[str, Any] = {"coordinates": [tex(q) for q in lin.coordinates], "equilibria": []}
         checks = analysis.modes_contact or ((),) * len(lin.modes)
         for m, check in zip(lin.modes, checks, strict=True):
             has_g, has_d = any(x != 0 for x in m.gyroscopic), any(x != 0 for x in m.damping)

@@ -100,7 +100,7 @@ def context(derivation: Derivation, math: str = "latex") -> dict[str, Any]:
          **both(derivation.multipliers[c.name])}
         for c in derivation.constraints
     ]
-    forces = None if derivation.constraint_forces is None else []
+    forces: list[dict[str, Any]] | None = None if derivation.constraint_forces is None else []
     for c in derivation.constraints if forces is not None else ():
         result = derivation.constraint_forces[c.name]  # type: ignore[index]
         forces.append({  # type: ignore[union-attr]
@@ -171,7 +171,7 @@ def context(derivation: Derivation, math: str = "latex") -> dict[str, Any]:
         "friction": friction,
         "analysis": analysis_context(derivation, note, math),
         "notes": [n.sentence() for n in derivation.notes],
-        "symbols": symbol_table(problem.symbols, note),
+        "symbols": symbol_table(dict(problem.symbols), note),
         "math": math,
         "stage_notes": {n.stage: n.reason for n in derivation.notes},
     }
