@@ -267,12 +267,13 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
         "friction": {
             f.term.name: {
                 "normal_force": to_json(f.normal_force),
-                "force": [to_json(v) for v in f.term.force],
+                "force": [to_json(v) for v in (f.force or f.term.force)],
                 "generalized": {q.name: to_json(v)
-                                for q, v in zip(problem.coordinates, f.term.generalized, strict=True)},
+                                for q, v in zip(problem.coordinates, f.generalized or f.term.generalized, strict=True)},
                 "valid_while": to_json(f.term.valid_while),
                 "case": f.case,
                 "normal_force_valid_while": to_json(f.valid_while) if f.valid_while is not None else None,
+                "normal_force_equation": to_json(f.system) if f.system is not None else None,
             }
             for f in derivation.friction
         },
