@@ -34,14 +34,16 @@ from lagsolve.problem.schema import Problem
 
 @dataclass(frozen=True)
 class ConstraintForce:
-    """Result for one constraint: the force on its particle (``vector``, ``magnitude``),
-    per-particle forces when it acts on several, and a ``note`` when no force is claimed."""
+    """Result for one constraint: the force on its particle, or at the named point of a body (``vector``,
+    ``magnitude``), per-particle forces when it acts on several, and a ``note`` when no force is claimed
+    (then, with no particles at all, the generalized forces of constraint λ·a, ``generalized``)."""
 
     name: str
     vector: tuple[Any, ...] | None
     magnitude: Any | None
     particles: tuple[tuple[str, tuple[Any, ...], Any], ...]
     note: str
+    generalized: tuple[Any, ...] = ()  # λ·a per coordinate, when no physical force is known (no point named)
 
 
 @dataclass(frozen=True)
@@ -302,10 +304,11 @@ def _eliminated_accelerations(constraints: tuple[ConstraintTerms, ...], model: M
 def _constraint_force(react: Reaction, multiplier: Any, terms: ConstraintTerms,
                       elimination: Elimination) -> ConstraintForce:
     if not react.particles:
-        magnitude = None
+        generalized: tuple[Any, ...] = ()
         if react.generalized:
-            magnitude = norm([elimination.apply(multiplier * a) for a in terms.coefficients])
-        return ConstraintForce(react.name, None, magnitude, (), react.note)
+            # the generalized forces λ a: a force for a length, a torque for an angle; no magnitude mixes them
+            generalized = tuple(tidy(elimination.apply(multiplier * a)) for a in terms.coefficients)
+        return ConstraintForce(react.name, None, None, (), react.note, generalized)
     per_particle = []
     for p in react.particles:
         vector = tuple(tidy(elimination.apply(multiplier * d)) for d in p.direction)

@@ -105,6 +105,8 @@ def context(derivation: Derivation) -> dict[str, Any]:
             "particles": [{"name": p, "vector": [tex(v) for v in vec], "magnitude": both(mag)}
                           for p, vec, mag in result.particles] if len(result.particles) > 1 else [],
             "note": result.note,
+            "generalized": [{"coordinate": coords[i]["tex"], "coordinate_text": coords[i]["name"],
+                             "value": both(v)} for i, v in enumerate(result.generalized) if v != 0],
         })
     friction = [
         {"name": f.term.name, "particle": f.term.particle, "coefficient": tex(f.term.coefficient),
@@ -236,6 +238,9 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
         if len(result.particles) > 1:
             entry["particles"] = {p: {"vector": [to_json(v) for v in vec], "magnitude": to_json(mag)}
                                   for p, vec, mag in result.particles}
+        if result.generalized:
+            entry["generalized"] = {q.name: to_json(v)
+                                    for q, v in zip(problem.coordinates, result.generalized, strict=True)}
         if result.note:
             entry["note"] = result.note
         forces[name] = entry  # type: ignore[index]
@@ -310,6 +315,10 @@ def summary(derivation: Derivation) -> str:
     if ctx["forces"]:
         lines.append("  forces of constraint (magnitude):")
         for f in ctx["forces"]:
+            if f["generalized"]:
+                parts = ", ".join(f"Q_{g['coordinate_text']} = {g['value']['text']}" for g in f["generalized"])
+                lines.append(f"    {f['name']}: generalized forces of constraint (no point named): {parts}")
+                continue
             value = f["magnitude"]["text"] if f["magnitude"] else "— " + f["note"]
             lines.append(f"    |F_{f['name']}| = {value}")
     for f in ctx["friction"]:
