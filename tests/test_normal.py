@@ -3,6 +3,7 @@ Newton's laws written out by hand and solved numerically, or the textbook result
 
 from __future__ import annotations
 
+import functools
 import math
 import random
 
@@ -151,7 +152,7 @@ def test_ladder_with_a_rough_floor_matches_newton():
 def test_several_coupled_contacts_state_the_system_they_solve():
     """Two coupled contacts (floor and wall both rough): each contact gives the equation N = |a + B N| it solves;
     when the signs are not determined N stays a symbol, and either way the equation holds for the value given."""
-    derivation = derive(load_problem_text(LADDER_TWO_ROUGH), analysis=False)
+    derivation = derived_quickly(LADDER_TWO_ROUGH)
     assert len(derivation.friction) == 2
     for contact in derivation.friction:
         assert contact.case.startswith("coupled, ")
@@ -160,10 +161,73 @@ def test_several_coupled_contacts_state_the_system_they_solve():
             assert "implicit" in contact.case
 
 
+#: two coupled contacts whose signs are known: a block on a rough floor and one on a rough wall, linked by a
+#: linear constraint (no velocity terms, so each a has the sign of its gravity terms)
+CORNER = """
+name: Two blocks linked across a corner
+parameters: {m1: mass on the floor, m2: mass on the wall, g: gravity, mu: floor friction, nu: wall friction}
+coordinates: [x1, y1, x2, y2]
+particles:
+  a: {mass: m1, position: [x1, y1]}
+  b: {mass: m2, position: [x2, y2]}
+gravity: [0, -g]
+constraints:
+  floor: {holonomic: y1, on: a}
+  wall: {holonomic: x2, on: b}
+  link: {holonomic: x1 + y1 - x2 - y2, on: [a, b]}
+friction:
+  rough_floor: {coefficient: mu, on: a, normal: [floor], sliding: [x1]}
+  rough_wall: {coefficient: nu, on: b, normal: [wall], sliding: [y2]}
+"""
+
+
+def _corner_by_newton(m1: float, m2: float, g: float, mu: float, nu: float, s: float) -> tuple[float, float, float]:
+    """Newton for both blocks, unknowns (acceleration, link force l, floor force F, wall force W), friction
+    -mu |F| s and -nu |W| s: solved for each sign pattern of F and W, keeping the one that is consistent."""
+    found = []
+    for sf in (1, -1):
+        for sw in (1, -1):
+            A = np.array([[m1, -1, mu * s * sf, 0],     # a, x: m1 acc = -mu |F| s + l
+                          [0, 1, 1, 0],                 # a, y: 0 = F - m1 g + l
+                          [0, -1, 0, 1],                # b, x: 0 = W - l
+                          [m2, 1, 0, nu * s * sw]],     # b, y: m2 acc = -m2 g - l - nu |W| s
+                         dtype=float)
+            acc, _, F, W = np.linalg.solve(A, [0, m1 * g, 0, -m2 * g])
+            if sf * F >= 0 and sw * W >= 0:
+                found.append((acc, abs(F), abs(W)))
+    assert len(found) == 1
+    return found[0]
+
+
+def test_several_coupled_contacts_with_known_signs_match_newton():
+    """Floor and wall both rough and coupled through the link: the signs of a are known, so both N come in closed
+    form, substituted in the accelerations, and they agree with Newton's laws solved by hand."""
+    derivation = derive(load_problem_text(CORNER), analysis=False)
+    s = names(derivation.problem)
+    floor, wall = derivation.friction
+    assert floor.case.startswith("coupled, several contacts with the sign")
+    assert not derivation.accelerations["x1"].has(floor.term.normal, wall.term.normal)
+    rng = random.Random(9)
+    for _ in range(8):
+        m1, m2, g = rng.uniform(0.5, 2), rng.uniform(0.5, 2), 9.81
+        mu, nu, rate = rng.uniform(0.05, 0.5), rng.uniform(0.05, 0.5), rng.choice([-1, 1]) * rng.uniform(0.1, 2)
+        acc, n_floor, n_wall = _corner_by_newton(m1, m2, g, mu, nu, math.copysign(1, rate))
+        point = {s["m1"]: m1, s["m2"]: m2, s["g"]: g, s["mu"]: mu, s["nu"]: nu, s["x1_dot"]: rate, s["y2_dot"]: rate}
+        assert float(floor.normal_force.xreplace(point)) == pytest.approx(n_floor, rel=1e-9)
+        assert float(wall.normal_force.xreplace(point)) == pytest.approx(n_wall, rel=1e-9)
+        assert float(derivation.accelerations["x1"].xreplace(point)) == pytest.approx(acc, rel=1e-9)
+
+
 def load_problem_text(text: str):  # noqa: ANN201 - a Problem
     from lagsolve.problem.load import load_text
 
     return load_text(text)
+
+
+@functools.cache
+def derived_quickly(text: str):  # noqa: ANN201 - a Derivation
+    """``derive`` without the analysis, once per session."""
+    return derive(load_problem_text(text), analysis=False)
 
 
 def _with_friction() -> list[str]:
@@ -186,3 +250,14 @@ def test_no_json_result_keeps_a_normal_force_that_has_a_closed_form(stem):
         texts += [*contact["force"], *contact["generalized"].values(), contact["normal_force"]]
     for text in texts:
         assert not _normal_symbols(text) & {str(n) for n in unsolved}, text
+
+
+def test_an_implicit_normal_force_is_shown_by_the_equation_it_solves():
+    """Where N stays implicit, the summary and the reports write N = |a + B N| (the system), not N = N."""
+    from lagsolve.render.report import summary
+
+    derivation = derived_quickly(LADDER_TWO_ROUGH)
+    text = summary(derivation)
+    for contact in derivation.friction:
+        line = next(ln for ln in text.splitlines() if ln.strip().startswith(f"friction {contact.term.name}:"))
+        assert "sqrt(" in line or "Abs(" in line or "|" in line, line

@@ -114,7 +114,10 @@ def context(derivation: Derivation) -> dict[str, Any]:
          "force": [tex(v) for v in f.term.force],
          "generalized": [{"coordinate": coords[i]["tex"], "value": tex(v)}
                          for i, v in enumerate(f.term.generalized) if v != 0],
-         "valid_while": tex(f.term.valid_while), "normal_force": both(f.normal_force),
+         "valid_while": tex(f.term.valid_while),
+         # an implicit N is shown by the equation it solves, N = |a + B N|, not as "N = N"
+         "normal_force": both(f.system.rhs if f.normal_force == f.term.normal and f.system is not None
+                              else f.normal_force),
          "case": f.case, "condition": tex(f.valid_while) if f.valid_while is not None else "",
          "static": next((tex(g.static if g.static is not None else g.coefficient)
                          for g in problem.friction if g.name == f.term.name), "")}
