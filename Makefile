@@ -4,7 +4,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: run test golden lint bench clean
+.PHONY: run test test-fast golden lint bench docs clean
 
 $(STAMP): pyproject.toml
 	test -d $(VENV) || $(PYTHON) -m venv $(VENV)
@@ -20,6 +20,10 @@ test: $(STAMP)
 	$(BIN)/ruff check src tests bench
 	$(BIN)/python -m pytest -q
 
+test-fast: $(STAMP)
+	$(BIN)/ruff check src tests bench
+	$(BIN)/python -m pytest -q -m "not slow"
+
 golden: $(STAMP)
 	$(BIN)/lagsolve derive problems/*.yaml --golden tests/golden --update-golden
 
@@ -29,6 +33,10 @@ lint: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/python bench/derive.py
 	$(BIN)/python bench/simulate.py
+	$(BIN)/python bench/scale.py
+
+docs: $(STAMP)
+	$(BIN)/mkdocs build --strict
 
 clean:
-	rm -rf $(VENV) out build dist .pytest_cache
+	rm -rf $(VENV) out build dist site .pytest_cache

@@ -22,13 +22,10 @@ from lagsolve.problem.schema import Problem
 
 PROBLEMS = Path(__file__).resolve().parents[1] / "problems"
 
-#: problems the derive-everything tests leave out for now: coupled_pendulums (its equilibrium analysis, sympy.solve
-#: in mechanics/linearize.py, does not finish), triple_pendulum and rolling_disc (about 10 s each to derive here;
-#: to be added to the end-to-end tests with golden reports once derivation is fast). tests/test_new_problems.py
-#: checks their answers by independent routes.
-AWAITING_DERIVATION = frozenset({"coupled_pendulums", "rolling_disc", "triple_pendulum"})
-#: problems derived by the suite whose reports are not reviewed golden files yet (tests/golden/ has none for them)
-AWAITING_GOLDEN = AWAITING_DERIVATION | {"block_two_pendulums", "bowl", "cart_two_wheels"}
+#: problems the derive-everything tests leave out (none: since the staged derivation, every shipped problem
+#: derives in seconds, and each has reviewed golden reports)
+AWAITING_DERIVATION: frozenset[str] = frozenset()
+AWAITING_GOLDEN: frozenset[str] = frozenset()
 
 
 def shipped(*, golden: bool = False) -> list[str]:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from lagsolve.mechanics.analysis import monitored
 from lagsolve.mechanics.matrix_form import matrix_form
 from lagsolve.numeric.initial import complete_initial
 from lagsolve.numeric.integrate import Trajectory, integrate_motion
@@ -51,7 +52,9 @@ simulation:
 
 def system_of(text: str, values: dict[str, float] | None = None) -> tuple[NumericSystem, dict]:
     problem = load_text(text, "inline.yaml")
-    system = bind(matrix_form(problem, display=False), values or {})
+    form = matrix_form(problem, display=False)
+    conserved, _, _, energy_note = monitored(form)  # what a simulation monitors, decided by the mechanics
+    system = bind(form, values or {}, conserved, energy_note=energy_note)
     assert problem.simulation is not None
     return system, dict(problem.simulation.initial)
 

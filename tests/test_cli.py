@@ -98,7 +98,7 @@ def test_timeout_still_gives_the_core(runner: CliRunner) -> None:
     was not completed and how to raise the budget, and the JSON has the matrix form."""
     import json
 
-    result = runner.invoke(main, ["derive", str(ROOT / "problems" / "rotating_tube.yaml"), "--timeout", "0.2",
+    result = runner.invoke(main, ["derive", str(ROOT / "problems" / "rotating_tube.yaml"), "--timeout", "1",
                                   "--format", "json"])
     assert result.exit_code == 0, result.output
     assert "warning:" in result.stderr and "--timeout" in result.stderr
@@ -173,3 +173,69 @@ def test_effective_potential_plot_beside_the_report(runner: CliRunner, tmp_path:
     folder = tmp_path / "hole_table"
     assert (folder / "hole_table_effective_potential.png").read_bytes().startswith(b"\x89PNG")
     assert "](hole_table_effective_potential.png)" in (folder / "hole_table.md").read_text()
+
+
+@pytest.mark.parametrize(("make", "message"), [
+    (lambda p: p.write_bytes(b"# Bead \xff\xfe"), "bead.md: --golden: is not UTF-8 text"),
+    (lambda p: p.mkdir(), "bead.md: --golden: is a folder, not a golden file"),
+])
+def test_golden_file_that_cannot_be_read_is_a_clean_error(runner: CliRunner, tmp_path: Path, make: object,
+                                                          message: str) -> None:
+    """A golden file that is not UTF-8 text, or a folder, gives exit 2 and a message naming it, no traceback."""
+    make(tmp_path / "bead.md")  # type: ignore[operator]
+    result = runner.invoke(main, ["derive", BEAD, "--format", "md", "--golden", str(tmp_path)])
+    assert result.exit_code == 2, result.output
+    assert message in result.stderr and isinstance(result.exception, SystemExit)
+
+
+def test_golden_link_is_not_followed(runner: CliRunner, tmp_path: Path) -> None:
+    """A golden file that links elsewhere is refused, and the file it points to is never read into the diff."""
+    secret = tmp_path / "secret.txt"
+    secret.write_text("root:x:0:0:secret\n")
+    (tmp_path / "golden").mkdir()
+    (tmp_path / "golden" / "bead.md").symlink_to(secret)
+    result = runner.invoke(main, ["derive", BEAD, "--format", "md", "--golden", str(tmp_path / "golden")])
+    assert result.exit_code == 2
+    assert "bead.md: --golden: is a symbolic link" in result.stderr
+    assert "secret" not in result.output
+
+
+def test_update_golden_into_something_unwritable_is_a_clean_error(runner: CliRunner, tmp_path: Path) -> None:
+    """--update-golden onto a folder where the file should be gives exit 2 and a message, no traceback."""
+    (tmp_path / "bead.md").mkdir()
+    result = runner.invoke(main, ["derive", BEAD, "--format", "md", "--golden", str(tmp_path), "--update-golden"])
+    assert result.exit_code == 2 and isinstance(result.exception, SystemExit)
+    assert "bead.md: --update-golden: is a folder, not a file" in result.stderr
+
+
+def test_links_inside_the_output_folder_are_not_followed(runner: CliRunner, tmp_path: Path) -> None:
+    """A report path that is a symbolic link is refused (exit 2); the file it points to is not overwritten."""
+    victim = tmp_path / "victim.txt"
+    victim.write_text("keep\n")
+    (tmp_path / "out" / "bead").mkdir(parents=True)
+    (tmp_path / "out" / "bead" / "bead.md").symlink_to(victim)
+    result = runner.invoke(main, ["derive", BEAD, "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2
+    assert "bead.md: -o/--output: is a symbolic link; lagsolve does not follow links when writing" in result.stderr
+    assert victim.read_text() == "keep\n"
+
+
+def test_json_output_writes_no_figure(runner: CliRunner, tmp_path: Path) -> None:
+    """--format json -o x.json writes that one file: the V_eff figure only comes with a report that shows it."""
+    result = runner.invoke(main, ["derive", HOLE, "--format", "json", "-o", str(tmp_path / "x.json")])
+    assert result.exit_code == 0, result.output
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["x.json"]
+
+
+def test_terminal_without_unicode_gets_ascii_notation(tmp_path: Path) -> None:
+    """With stdout in cp1252 the summary and the check table fall back to ASCII (x_ddot, lambda, +),
+    with exit 0 instead of a UnicodeEncodeError traceback."""
+    env = {**os.environ, "PYTHONIOENCODING": "cp1252"}
+    derive = subprocess.run([sys.executable, "-m", "lagsolve", "derive", BEAD, "-o", str(tmp_path)],
+                            env=env, capture_output=True)
+    assert derive.returncode == 0, derive.stderr.decode("cp1252")
+    text = derive.stdout.decode("cp1252")
+    assert "x_ddot = -(g + x_dot" in text and "lambda_wire = m*(g + x_dot" in text
+    check = subprocess.run([sys.executable, "-m", "lagsolve", "check", BEAD], env=env, capture_output=True)
+    assert check.returncode == 0, check.stderr.decode("cp1252")
+    assert "+ lambda_wire" in check.stdout.decode("cp1252")

@@ -166,3 +166,19 @@ def test_tables_do_not_depend_on_hash_seed(tmp_path: Path) -> None:
         assert run.returncode == 0, run.stderr
         tables.append({p.name: p.read_bytes() for p in sorted(target.rglob("*.csv"))})
     assert len(tables[0]) == len(names) and tables[0] == tables[1]
+
+
+def test_initial_state_off_the_constraints_names_line_and_field(runner: CliRunner, tmp_path: Path) -> None:
+    """Initial values that violate a constraint are reported at simulation.initial's line in the file,
+    and as coming from --initial too when that option was used."""
+    text = Path(SPHERE).read_text().replace("initial: {x: 0.001, y: 0.9999995, x_dot: 0.0}",
+                                            "initial: {x: 0.8, y: 0.9, x_dot: 0.0}")
+    line = next(i for i, row in enumerate(text.splitlines(), 1) if row.strip().startswith("initial:"))
+    (tmp_path / "off.yaml").write_text(text)
+    result = runner.invoke(main, ["simulate", str(tmp_path / "off.yaml")])
+    assert result.exit_code == 2
+    assert (f"off.yaml:{line}: simulation.initial: the initial positions violate the constraints (surface = 0.45); "
+            "give fewer coordinates") in result.stderr
+    both = runner.invoke(main, ["simulate", str(tmp_path / "off.yaml"), "--initial", "x=0.1"])
+    assert both.exit_code == 2
+    assert f"off.yaml:{line}: simulation.initial and --initial: the initial positions violate" in both.stderr

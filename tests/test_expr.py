@@ -382,3 +382,31 @@ def test_names_that_cannot_be_declared(name: Any, fragment: str) -> None:
 def test_ordinary_names_can_be_declared(name: str) -> None:
     """Single capital letters such as I (a moment of inertia) and Greek names are ordinary names."""
     assert name_problem(name) is None
+
+
+def test_number_bounds_are_inclusive_as_the_message_says() -> None:
+    """1e-300 and 1e100, the bounds the message states, are accepted; numbers just outside them are not."""
+    assert read("1e-300*x") == x / sympy.Integer(10) ** 300
+    assert read("0.001e-297") == sympy.Integer(1) / sympy.Integer(10) ** 300
+    assert read("1e100") == sympy.Integer(10) ** 100
+    assert read(1e-300) == sympy.Integer(1) / sympy.Integer(10) ** 300
+    for text in ("0.999e-300", "1.0000001e100"):
+        assert "numbers must lie between 1e-300 and 1e+100 in size" in rejection(text)
+
+
+def test_names_paragraph_of_the_format_doc_matches_the_rule() -> None:
+    """docs/format.md's Names paragraph says what name_problem does: each built-in it lists is refused,
+    and each SymPy-looking letter it calls an ordinary name (I, S, N, O, Q) is accepted."""
+    import re
+    from pathlib import Path
+
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "format.md").read_text(encoding="utf-8")
+    paragraph = " ".join(doc.split("\nNames: ", 1)[1].split("\n\n", 1)[0].split())
+    refused = re.search(r"not the name of a built-in function or constant of expressions \(([^)]*)\)", paragraph)
+    accepted = re.search(r"Single letters that mean something to SymPy — (.*?) — are accepted", paragraph)
+    assert refused is not None and accepted is not None, paragraph
+    refused_names = re.findall(r"`(\w+)`", refused.group(1))
+    accepted_names = re.findall(r"`(\w+)`", accepted.group(1))
+    assert refused_names and all(name_problem(n) is not None for n in refused_names), refused_names
+    assert "I" in accepted_names and all(name_problem(n) is None for n in accepted_names), accepted_names
+    assert "64 characters" in paragraph and name_problem("a" * 64) is None and name_problem("a" * 65)

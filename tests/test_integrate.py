@@ -144,3 +144,55 @@ simulation: {values: {k: 1}, initial: {x: 0}, t_end: 1}
     system, _ = system_of(text)
     with pytest.raises(SimulationError, match="singular at t = 0"):
         integrate_motion(system, np.array([0.0]), np.zeros(1), 1.0)
+
+
+LOG_WIRE = """
+name: Bead on y = log(x)
+parameters: {m: mass, g: gravity}
+coordinates: [x, y]
+particles: {bead: {mass: m, position: [x, y]}}
+gravity: [0, -g]
+constraints: {wire: {holonomic: y - log(x)}}
+simulation:
+  values: {m: 1.0, g: 9.81}
+  initial: {x: 0.5, x_dot: -1.0}
+  t_end: 5.0
+"""
+
+
+@pytest.mark.parametrize("minimal", [True, False])
+def test_a_state_that_stops_being_finite_stops_the_run(minimal: bool) -> None:
+    """A bead on y = log(x) reaching x <= 0 stops with an error saying when, at which state and why, not NaN rows."""
+    with pytest.raises(SimulationError) as caught:
+        run(LOG_WIRE, 5.0, minimal=minimal)
+    message = str(caught.value)
+    assert "the state is no longer finite at t = 2.6" in message
+    assert "is not a finite number" in message or "are not finite numbers" in message
+    assert "the last finite state was at t = " in message
+    assert "outside its domain (log or sqrt of a number <= 0" in message
+
+
+
+def test_stop_after_release_holds_when_contact_pulls_at_the_start() -> None:
+    """A unilateral constraint that would have to pull at t = 0 ends a run with after_release="stop" right there."""
+    trajectory = run(SPHERE, 5.0, initial={"x": 0.8, "y": 0.6, "x_dot": 3.0})
+    assert trajectory.t.tolist() == [0.0]
+    assert [(e.time, e.kind, e.name, e.action) for e in trajectory.events] == [(0.0, "release", "sphere", "stopped")]
+    going_on = run(SPHERE, 1.0, initial={"x": 0.8, "y": 0.6, "x_dot": 3.0}, after_release="continue")
+    assert going_on.t[-1] == 1.0 and going_on.events[0].action == "released"
+
+
+def test_accelerations_that_are_not_finite_at_the_start_stop_at_once() -> None:
+    """V = k x log(x) at x = -1 has no finite force: the run stops at t = 0 with the reason (SciPy would
+    otherwise loop for ever on a NaN step size)."""
+    text = """
+name: Bad start
+parameters: {m: mass, k: stiffness}
+coordinates: [x]
+kinetic: m*x_dot**2/2
+potential: k*x*log(x)
+simulation: {values: {m: 1.0, k: 1.0}, initial: {x: -1.0, x_dot: 0}, t_end: 1}
+"""
+    with pytest.raises(SimulationError, match=r"no longer finite at t = 0 \(x = -1, x_dot = 0\): x_ddot is not a "
+                                              r"finite number"):
+        run(text, 1.0)

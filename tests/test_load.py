@@ -563,3 +563,53 @@ def test_endless_file_is_refused_quickly() -> None:
         load_problem("/dev/zero")
     assert time.perf_counter() - start < 2.0
     assert "bytes; the limit is 262144" in str(caught.value)
+
+
+def test_values_contradicting_a_positive_assumption_are_refused() -> None:
+    """A negative simulation value or default for a positive parameter, or a negative initial value for a
+    positive coordinate, is refused with its line, field and the fix: the derivation assumed the opposite.
+    Zero, the limit case (mu = 0: no friction), is allowed."""
+    text = """\
+name: Spring
+parameters:
+  m: mass
+  k: {description: stiffness, positive: true, value: -2}
+  F: {description: force, positive: false}
+coordinates: {r: {description: distance, positive: true}, z: height}
+kinetic: m*(r_dot**2 + z_dot**2)/2
+potential: k*r**2/2 - F*z
+simulation:
+  values: {m: -0.5, F: -3, k: 0}
+  initial: {r: -0.5, z: -1}
+"""
+    issues = [str(i) for i in issues_of(text)]
+    assert issues == [
+        "p.yaml:4: parameters.k.value: -2 contradicts the assumption that parameter 'k' is positive (parameters "
+        "are, unless declared with positive: false), which the derivation relies on; give a value >= 0, or "
+        "declare it as k: {description: ..., positive: false} under parameters",
+        "p.yaml:10: simulation.values.m: -0.5 contradicts the assumption that parameter 'm' is positive (parameters "
+        "are, unless declared with positive: false), which the derivation relies on; give a value >= 0, or "
+        "declare it as m: {description: ..., positive: false} under parameters",
+        "p.yaml:11: simulation.initial.r: -0.5 contradicts the assumption that coordinate 'r' is positive "
+        "(declared positive: true), which the derivation relies on; give a value >= 0, or remove "
+        "positive: true from coordinate 'r'",
+    ]
+
+
+def test_free_text_and_names_are_bounded() -> None:
+    """A 200,000-character name, over-long descriptions and names are refused at once with the limit,
+    instead of slowing every figure and report down."""
+    text = BEAD.replace("name: Bead", "name: " + "A" * 200_000).replace(
+        "m: mass", "m: " + "b" * 1001 + "\n  k: {description: " + "c" * 1001 + "}\n  " + "q" * 65 + ": long")
+    issues = [str(i) for i in issues_of(text + "description: " + "d" * 20_001 + "\n")]
+    assert issues == [
+        "p.yaml:1: name: text of 200000 characters is too long; the limit here is 200; shorten it; "
+        "put details in description",
+        "p.yaml:3: parameters.m: text of 1001 characters is too long; the limit here is 1000; shorten it",
+        "p.yaml:4: parameters.k.description: text of 1001 characters is too long; the limit here is 1000; "
+        "shorten it",
+        f"p.yaml:5: parameters.{'q' * 65}: a name of 65 characters ('qqqqqqqqqqqqqqqqqqqq'...) is too long; "
+        "names are limited to 64 characters",
+        "p.yaml:15: description: text of 20001 characters is too long; the limit here is 20000; shorten it",
+    ]
+    assert load(BEAD.replace("name: Bead", "name: " + "A" * 200)).name == "A" * 200

@@ -20,8 +20,8 @@ def test_latex_uses_dots_for_rates() -> None:
 
 
 def test_latex_leaves_other_dot_names_alone() -> None:
-    """A parameter that merely ends in _dot (not a coordinate's rate) keeps SymPy's subscript form."""
-    assert note.latex(sympy.Symbol("w_dot")) == r"w_{dot}"
+    """A parameter that merely ends in _dot (not a coordinate's rate) keeps a subscript, upright like any word."""
+    assert note.latex(sympy.Symbol("w_dot")) == r"w_{\mathrm{dot}}"
 
 
 def test_latex_primes_for_declared_functions() -> None:
@@ -59,3 +59,37 @@ def test_markdown_escapes() -> None:
     assert md_escape("<b>*x*</b>") == r"&lt;b&gt;\*x\*&lt;/b&gt;"
     expected = "**bold** &lt;script&gt;alert(1)&lt;/script&gt; \\$x\\$"
     assert md_prose("**bold** <script>alert(1)</script> $x$") == expected
+
+
+def test_ascii_text_spells_out_what_a_terminal_cannot_show() -> None:
+    """Dots over names, Greek letters, powers, subscripts and marks become ASCII, in the input's own names."""
+    from lagsolve.render.notation import ascii_text
+
+    assert ascii_text("ẍ = -(g + ẋ²*f''(x))") == "x_ddot = -(g + x_dot**2*f''(x))"
+    assert ascii_text("θ\u0307 λ_wire Ω r⁻¹⁰ q₀") == "theta_dot lambda_wire Omega r**-10 q0"
+    assert ascii_text("✓ ok, ✗ mismatch, – not checked, x ≥ 0 → é") == "+ ok, X mismatch, - not checked, x >= 0 -> e"
+
+
+def test_word_subscripts_are_upright() -> None:
+    """λ_wire, N_rough and m_cart have upright subscripts; indices and Greek subscripts stay as they are."""
+    note = Notation(["x"])
+    assert note.latex(sympy.Symbol("lambda_wire")) == r"\lambda_{\mathrm{wire}}"
+    assert note.latex(sympy.Symbol("N_rough")) == r"N_{\mathrm{rough}}"
+    assert note.latex(sympy.Symbol("m_cart")) == r"m_{\mathrm{cart}}"
+    assert note.latex(sympy.Symbol("theta_0")) == r"\theta_{0}"
+    assert note.latex(sympy.Symbol("p_phi")) == r"p_{\phi}"
+
+
+def test_no_leading_minus_in_a_denominator() -> None:
+    """x/(−M − m sin²θ) is printed −x/(M + m sin²θ)."""
+    x, big, m, th = sympy.symbols("x M m theta")
+    note = Notation(["x"])
+    assert note.latex(x / (-big - m * sympy.sin(th) ** 2)) == r"- \frac{x}{M + m \sin^{2}{\left(\theta \right)}}"
+    assert note.text(x / (-big - m)) == "-x/(M + m)"
+
+
+def test_dotted_letters_in_notes_are_math_in_latex() -> None:
+    """A note's q̈, ẋ and Aᵀ are set as math in LaTeX, not printed as '?'."""
+    from lagsolve.render.notation import tex_escape
+
+    assert tex_escape("M q\u0308 = F + A\u1d40\u03bb, x\u0307") == r"M $\ddot{q}$ = F + A$^{T}$$\lambda$, $\dot{x}$"

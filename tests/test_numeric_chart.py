@@ -67,11 +67,9 @@ def test_accelerations_are_the_reduced_lagrangians(name):
 
 
 def _simulated():
-    # cart_two_wheels: the LLVM-compiled state function (numeric/compile.py) evaluates the constraint Jacobian's -R
-    # entries as +1; with the Python backend both runs are right (x = 12.5, x_dot = 5 at t = 5). Reported as a bug
-    known = {"cart_two_wheels": "LLVM backend evaluates -R in the constraint rows as +1 (the Python backend is right)"}
-    return [pytest.param(name, marks=pytest.mark.xfail(reason=known[name], strict=True)) if name in known else name
-            for name in shipped()]
+    # cart_two_wheels (coordinates x1, x2) once ran wrong with the LLVM backend: SymEngine's CSE temporaries are
+    # named x0, x1, ... and took the coordinates' places; compile.py now renames the arguments
+    return list(shipped())
 
 
 @pytest.mark.parametrize("name", _simulated())

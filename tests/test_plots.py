@@ -73,3 +73,11 @@ def test_minimal_coordinates_conservation_figure() -> None:
     assert [line.get_label() for line in drift.get_lines()] == ["energy $h$", "p theta"]
     assert residual.get_ylabel() == "constraint residual" and not residual.get_lines()
     assert "exactly 0 at every sample" in residual.texts[0].get_text()
+
+
+def test_a_name_with_dollar_signs_is_drawn_as_text(trajectory: Trajectory) -> None:
+    """A problem name such as 'bad $\\frac{ $' is a title, not mathtext: every figure and the animation draw."""
+    title = "bad $\\frac{ $ x"
+    for fig in plots.figures(trajectory, title, {"x": "x", "y": "y"}).values():
+        assert plots.png_bytes(fig).startswith(b"\x89PNG")
+    assert plots.animation_gif(trajectory, title, frames=3).startswith(b"GIF8")

@@ -54,3 +54,11 @@ def test_no_effective_potential_is_an_error():
     """Asking for the curve of a problem without an effective potential raises ValueError."""
     with pytest.raises(ValueError, match="no effective potential"):
         potential_curve(derived_file("knife_edge"), {"m": 1.0, "l": 1.0})
+
+
+def test_a_title_with_dollar_signs_is_drawn_as_text():
+    """A problem name with '$' in the V_eff title is plain text, so the figure still draws."""
+    from lagsolve.render.plots import png_bytes
+
+    figure = potential_figure([1.0, 2.0, 3.0], [1.0, 0.0, 1.0], [], coordinate="r", title="bad $\\frac{ $ x")
+    assert png_bytes(figure).startswith(b"\x89PNG")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -125,23 +126,58 @@ def test_templates_are_packaged() -> None:
     assert any((d / "report.tex.j2").is_file() for d in template_dirs("latex"))
 
 
+#: how far past the margin a line may run before a report is not of print quality
+OVERFULL_LIMIT = 10.0
+
+
+def compile_latex(tex: str, files: dict[str, bytes], folder: Path) -> tuple[subprocess.CompletedProcess[str], str]:
+    """pdflatex on ``tex`` (with the figures it includes) in ``folder``: the run and its log."""
+    if shutil.which("pdflatex") is None:
+        pytest.skip("pdflatex is not installed (CI installs texlive-latex-base and texlive-latex-recommended)")
+    (folder / "r.tex").write_text(tex)
+    for file_name, data in files.items():
+        (folder / file_name).write_bytes(data)
+    run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "r.tex"],
+                         cwd=folder, capture_output=True, text=True, timeout=300)
+    log = (folder / "r.log").read_text(errors="replace") if (folder / "r.log").exists() else ""
+    return run, log
+
+
+def overfull(log: str, tex: str) -> list[str]:
+    """Each line of the report that runs more than OVERFULL_LIMIT pt past the margin, with its width and source."""
+    lines = tex.splitlines()
+    out = []
+    for m in re.finditer(r"Overfull \\hbox \(([\d.]+)pt too wide\) .*?lines? (\d+)", log):
+        if float(m.group(1)) > OVERFULL_LIMIT:
+            source = lines[int(m.group(2)) - 1] if int(m.group(2)) <= len(lines) else ""
+            out.append(f"{m.group(1)} pt at line {m.group(2)}: {source[:160]}")
+    return out
+
+
+@pytest.mark.parametrize("name", ["knife_edge", "rotating_tube", "double_pendulum", "ladder_rough_floor"])
+def test_latex_fits_the_page(name: str, tmp_path: Path) -> None:
+    """A freshly rendered report of a problem with long results compiles with no line over 10 pt past the margin."""
+    derivation = derive(load_problem(ROOT / "problems" / f"{name}.yaml"))
+    tex = render(derivation, "tex")
+    run, log = compile_latex(tex, {}, tmp_path)
+    assert run.returncode == 0, run.stdout[-2000:]
+    assert overfull(log, tex) == []
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("name", shipped())
 def test_latex_compiles(name: str, tmp_path: Path) -> None:
-    """Each problem's LaTeX report compiles with pdflatex (skipped where pdflatex is not installed)."""
-    if shutil.which("pdflatex") is None:
-        pytest.skip("pdflatex is not installed (CI installs texlive-latex-base)")
+    """Each problem's LaTeX report compiles with pdflatex, no line runs over 10 pt past the margin, and it is the
+    reviewed golden report (skipped where pdflatex is not installed)."""
     from lagsolve.pipeline import derive_file
 
     reports = derive_file(ROOT / "problems" / f"{name}.yaml", ("tex",))
-    assert reports.outputs["tex"] == (ROOT / "tests" / "golden" / f"{name}.tex").read_text()
-    (tmp_path / "r.tex").write_text(reports.outputs["tex"])
-    for file_name, data in reports.files.items():  # figures the report includes
-        (tmp_path / file_name).write_bytes(data)
-    run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "r.tex"],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    tex = reports.outputs["tex"]
+    run, log = compile_latex(tex, reports.files, tmp_path)
     assert run.returncode == 0, run.stdout[-2000:]
     assert (tmp_path / "r.pdf").stat().st_size > 1000
+    assert overfull(log, tex) == []
+    assert tex == (ROOT / "tests" / "golden" / f"{name}.tex").read_text()
 
 
 def test_hostile_latex_compiles(hostile: Derivation, tmp_path: Path) -> None:
@@ -152,3 +188,29 @@ def test_hostile_latex_compiles(hostile: Derivation, tmp_path: Path) -> None:
     run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "h.tex"],
                          cwd=tmp_path, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stdout[-2000:]
+
+
+def test_simulation_summary_cannot_end_its_block_in_latex(hostile: Derivation) -> None:
+    """A name in the simulation summary cannot close the block around it and run \\input."""
+    summary_text = "\\end{verbatim}\\input{/etc/hostname}: simulated to t = 1\n  final state: x = 1\n"
+    tex = render(hostile, "tex", simulation={"summary": summary_text, "figures": []})
+    assert r"\input{/etc/hostname}" not in tex and r"\end{verbatim}\input" not in tex
+    assert r"\textbackslash{}end\{verbatim\}\textbackslash{}input\{/etc/hostname\}" in tex
+    assert r"~~final~state:~x~=~1" in tex
+
+
+def test_simulation_summary_cannot_end_its_block_in_markdown(hostile: Derivation) -> None:
+    """A name with a code fence cannot close the simulation summary's code block in Markdown."""
+    summary_text = "Name ``` # heading\n  final state: x = 1\n"
+    md = render(hostile, "md", simulation={"summary": summary_text, "figures": []})
+    assert "````text\nName ``` # heading\n  final state: x = 1\n````" in md
+
+
+def test_code_fence_in_a_description_cannot_swallow_the_report() -> None:
+    """A ``` or ~~~ line in a description is shown as text: every fence left in the report is lagsolve's own."""
+    text = HOSTILE.replace("description: 'See \\input{/etc/passwd} and \\write18{rm -rf /}; $x$ & # _ ^ ~ <b>bold</b>'",
+                           "description: |\n  Before\n  ```python\n  code\n   ~~~\n  after")
+    md = render(derive(load_text(text, "fence.yaml")), "md")
+    assert "Before\n\\```python\ncode\n \\~~~\nafter" in md
+    fences = [line for line in md.splitlines() if line.lstrip().startswith(("```", "~~~"))]
+    assert len(fences) % 2 == 0 and all(f in ("```", "```math") for f in fences)

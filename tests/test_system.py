@@ -63,11 +63,18 @@ def test_unknown_override_is_refused() -> None:
         bind(matrix_form(load_text(BEAD)), {"h": 1.0})
 
 
-def test_energy_conservation_is_decided_from_the_equations() -> None:
-    """Energy counts as conserved for a workless, time-independent system."""
-    system = bind(matrix_form(load_text(CARTESIAN_PENDULUM)))
-    assert system.energy_conserved and "workless" in system.energy_note
-    assert system.holonomic == (0,)
+def test_energy_conservation_is_taken_from_the_mechanics() -> None:
+    """The numeric system does not decide energy conservation again: it is conserved exactly when the
+    mechanics (mechanics.analysis.monitored) gives an 'energy', and otherwise it carries the mechanics' reason."""
+    from lagsolve.mechanics.analysis import monitored
+
+    form = matrix_form(load_text(CARTESIAN_PENDULUM))
+    conserved, _, _, note = monitored(form)
+    assert "energy" in conserved and note == ""
+    system = bind(form, None, conserved, energy_note=note)
+    assert system.energy_conserved and system.holonomic == (0,)
+    unclaimed = bind(form, None, {}, energy_note="because")
+    assert not unclaimed.energy_conserved and unclaimed.energy_note == "because"
 
 
 ROUGH_TUBE_CLOSED_FORM = """r*Omega**2*sin(theta)**2 - g*cos(theta)
@@ -144,3 +151,13 @@ def test_coupled_friction_is_solved_consistently() -> None:
             _, lam0, _, _ = frictionless.solve_all(0.0, q, qd)
             assert abs(lam[0] - lam0[0]) > 1e-6  # the coupling is real
     assert sympy.Symbol("N_rough", nonnegative=True) in lagrange.forcing.free_symbols
+
+
+def test_set_contradicting_a_positive_parameter_is_refused() -> None:
+    """--set g=-9.81 for a parameter assumed positive is refused with the fix, not simulated silently."""
+    with pytest.raises(SpecError) as caught:
+        bind(matrix_form(load_text(BEAD, "bead.yaml")), {"g": -9.81})
+    assert [str(i) for i in caught.value.issues] == [
+        "bead.yaml: --set: g=-9.81 contradicts the assumption that parameter 'g' is positive (parameters are, "
+        "unless declared with positive: false), which the derivation relies on; give a value >= 0, or "
+        "declare g with positive: false in bead.yaml"]

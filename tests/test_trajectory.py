@@ -46,3 +46,11 @@ def test_summary_lists_events() -> None:
     """A lost contact is listed with its time and where it happened."""
     text = summary(run(SPHERE, 6.0), "Sphere")
     assert "event: constraint 'sphere' released at t = 4.58" in text and "y = 0.666667" in text
+
+
+def test_summary_says_contact_was_lost_at_the_start() -> None:
+    """A run stopped at t = 0 because the contact would pull says so, and how to go on without it."""
+    text = summary(run(SPHERE, 5.0, initial={"x": 0.8, "y": 0.6, "x_dot": 3.0}), "Sphere")
+    assert "simulated to t = 0 " in text
+    assert ("event: constraint 'sphere' would have to pull at the start, t = 0 (x = 0.8, y = 0.6), so contact is "
+            "lost at once; stopped there (--after-release continue goes on without it)") in text

@@ -8,6 +8,8 @@ Heavy libraries (SymPy, matplotlib) are imported only inside commands, so
 
 from __future__ import annotations
 
+import codecs
+import os
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -17,10 +19,15 @@ import click
 from lagsolve import __version__
 from lagsolve.errors import LagsolveError, SpecError
 
+# numeric libraries run single-threaded: the budgets count the process's CPU time, which idle-spinning BLAS
+# threads would otherwise inflate (and the arrays here are small); set before NumPy is first imported
+for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
+
 if TYPE_CHECKING:
     from lagsolve.pipeline import Reports
 
-EXTENSIONS = {"md": ".md", "tex": ".tex", "json": ".json"}
+EXTENSIONS = {"md": ".md", "tex": ".tex", "html": ".html", "json": ".json"}
 
 
 def _fail(error: LagsolveError) -> int:
@@ -32,55 +39,98 @@ def _fail(error: LagsolveError) -> int:
     return 1
 
 
+def _note(text: str, *, err: bool = False, level: int = 1, nl: bool = True) -> None:
+    """Show ``text`` unless --quiet (level 1), or only with --verbose (level 2)."""
+    context = click.get_current_context(silent=True)
+    root = context.find_root() if context is not None else None
+    verbosity = root.obj.get("verbosity", 1) if root is not None and isinstance(root.obj, dict) else 1
+    if verbosity >= level:
+        click.echo(text, err=err, nl=nl)
+
+
 def _golden(reports: Reports, folder: Path, update: bool) -> int:
+    from lagsolve.files import write_file
     from lagsolve.pipeline import golden_differences
 
     if update:
-        folder.mkdir(parents=True, exist_ok=True)
         for fmt, text in reports.outputs.items():
-            target = folder / f"{reports.slug}.{fmt}"
-            target.write_text(text, encoding="utf-8")
-            click.echo(f"  wrote {target}")
+            _note(f"  wrote {write_file(folder, f'{reports.slug}.{fmt}', text, option='--update-golden')}")
         return 0
     diffs = golden_differences(reports, folder)
     for diff in diffs:
         click.echo(diff, nl=False)
     verdict = "differs from" if diffs else "matches"
-    click.echo(f"{reports.source}: {verdict} the golden files in {folder}")
+    _note(f"{reports.source}: {verdict} the golden files in {folder}")
     return 1 if diffs else 0
+
+
+def _ascii_fallback(error: UnicodeError) -> tuple[str, int]:
+    from lagsolve.render.notation import ascii_fallback  # imported only when needed: it loads SymPy
+
+    return ascii_fallback(error)
+
+
+def _ascii_where_needed() -> None:
+    """A terminal whose encoding cannot show ẍ, λ or ✓ (cp1252, ASCII) gets x_ddot, lambda and +
+    instead of a UnicodeEncodeError."""
+    codecs.register_error("lagsolve-ascii", _ascii_fallback)
+    for stream in (sys.stdout, sys.stderr):
+        encoding = (getattr(stream, "encoding", None) or "").lower().replace("-", "").replace("_", "")
+        if encoding != "utf8" and hasattr(stream, "reconfigure"):
+            stream.reconfigure(errors="lagsolve-ascii")
 
 
 @click.group(context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="lagsolve")
-def main() -> None:
+@click.option("-q", "--quiet", is_flag=True, help="Show only errors and the output asked for (no summaries, "
+                                                  "'wrote' lines or warnings).")
+@click.option("-v", "--verbose", is_flag=True, help="Also say on stderr what is done, file by file.")
+@click.pass_context
+def main(context: click.Context, quiet: bool, verbose: bool) -> None:
     """Lagrangian mechanics from a YAML problem file: equations of motion,
     multipliers, forces of constraint, and worked-solution reports."""
+    if quiet and verbose:
+        raise click.UsageError("--quiet and --verbose exclude each other")
+    context.obj = {"verbosity": 0 if quiet else 2 if verbose else 1}
+    _ascii_where_needed()
 
 
 @main.command()
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,
               help="CPU seconds allowed for each derivation and check.")
-def check(files: tuple[Path, ...], timeout: float) -> None:
+@click.option("--format", "fmt", type=click.Choice(["text", "json", "junit"]), default="text", show_default=True,
+              help="json: one array of verdicts per file; junit: JUnit XML for CI (a mismatch is a failure).")
+def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
     """Compare the expected answers in each problem FILE with the derivation.
 
     ✓ ok, ! holds only in part (warning), ✗ mismatch (exit 1), – not checked.
 
     \b
     lagsolve check problems/*.yaml
+    lagsolve check problems/*.yaml --format junit > check.xml
     """
     from lagsolve.pipeline import check_file
+    from lagsolve.render.machine import Unchecked, checks_json, checks_junit
 
     status = 0
+    results: list[object] = []
     for path in files:
+        _note(f"lagsolve: checking {path}", err=True, level=2)
         try:
             checked = check_file(path, timeout=timeout)
         except LagsolveError as error:
-            status = max(status, _fail(error))
+            code = _fail(error)
+            status = max(status, code)
+            results.append(Unchecked(str(path), str(error), code))
             continue
-        click.echo(checked.table, nl=False)
+        results.append(checked)
+        if fmt == "text":
+            click.echo(checked.table, nl=False)
         if not checked.passed:
             status = max(status, 1)
+    if fmt != "text":
+        click.echo((checks_json if fmt == "json" else checks_junit)(results), nl=False)
     sys.exit(status)
 
 
@@ -88,8 +138,9 @@ def check(files: tuple[Path, ...], timeout: float) -> None:
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("-o", "--output", type=click.Path(path_type=Path),
               help="Output folder (default out/), or a file name when one file and one --format are given.")
-@click.option("--format", "fmt", type=click.Choice(["md", "tex", "json"]),
-              help="Only this format; printed to stdout unless -o is given.")
+@click.option("--format", "fmt", type=click.Choice(["md", "tex", "html", "json", "jsonl"]),
+              help="Only this format; printed to stdout unless -o is given. json with several files prints one "
+                   "array; jsonl prints one result per line.")
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,
               help="CPU seconds allowed for each derivation; a stage that runs out of its share is named "
                    "and the rest is still given.")
@@ -108,15 +159,21 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     lagsolve derive problems/bead.yaml                 # summary here, reports in out/bead/
     lagsolve derive problems/*.yaml -o reports/        # several problems at once
     lagsolve derive problems/bead.yaml --format json   # the result contract on stdout
+    lagsolve derive problems/*.yaml --format jsonl     # one JSON result per line
     lagsolve derive problems/bead.yaml --format tex -o bead.tex
     lagsolve derive problems/bead.yaml --simulate      # the report with the simulation's figures
     """
+    from lagsolve.files import write_file
     from lagsolve.pipeline import SimulationOptions, derive_file, safe_slug
 
     if update_golden and golden is None:
         raise click.UsageError("--update-golden needs --golden DIR")
 
-    formats = (fmt,) if fmt else ("md", "tex", "json")
+    if fmt == "jsonl" and (output is not None or golden is not None):
+        raise click.UsageError("--format jsonl prints to stdout; redirect it, or use --format json with -o")
+    formats = ("json",) if fmt == "jsonl" else (fmt,) if fmt else ("md", "tex", "json")
+    stream = fmt == "jsonl" or (fmt == "json" and output is None and golden is None and len(files) > 1)
+    texts: list[str] = []
     slugs = [safe_slug(f) for f in files]
     if len(set(slugs)) != len(slugs):
         raise click.UsageError("two problem files have the same name; their reports would overwrite each other")
@@ -127,6 +184,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
         raise click.UsageError(f"-o {output} names one file, but {len(files)} problems were given; give a folder")
     status = 0
     for path in files:
+        _note(f"lagsolve: deriving {path}", err=True, level=2)
         try:
             simulate = SimulationOptions(values={}, initial={}, plots=True) if with_simulation else None
             reports = derive_file(path, formats, templates=templates, timeout=timeout, simulate=simulate)
@@ -134,25 +192,35 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
             status = max(status, _fail(error))
             continue
         for warning in reports.warnings:
-            click.echo(f"warning: {reports.source}: not completed: {warning}", err=True)
-        if golden is not None:
-            status = max(status, _golden(reports, golden, update_golden))
+            _note(f"warning: {reports.source}: not completed: {warning}", err=True)
+        if stream and golden is None:
+            texts.append(reports.outputs["json"])
             continue
-        if fmt and output is None:
+        if fmt and output is None and golden is None:
             click.echo(reports.outputs[fmt], nl=False)
             continue
-        if single_file:
-            targets = {fmt: output}
-        elif fmt:
-            targets = {fmt: output / f"{reports.slug}{EXTENSIONS[fmt]}"}
-        else:
-            folder = (output or Path("out")) / reports.slug
-            targets = {f: folder / f"{reports.slug}{EXTENSIONS[f]}" for f in formats}
-            click.echo(reports.summary, nl=False)
-        for f, target in targets.items():
-            click.echo(f"  wrote {_write(target, reports.outputs[f])}")
-        for name, data in reports.files.items():
-            click.echo(f"  wrote {_write(next(iter(targets.values())).parent / name, data)}")
+        try:
+            if golden is not None:
+                status = max(status, _golden(reports, golden, update_golden))
+                continue
+            if single_file and output is not None:
+                root, place = output.parent, Path()
+                names = {fmt: output.name}
+            else:
+                root, place = output or Path("out"), Path() if fmt else Path(reports.slug)
+                names = {f: str(place / f"{reports.slug}{EXTENSIONS[f]}") for f in formats}
+            if not fmt:
+                _note(reports.summary, nl=False)
+            for f, name in names.items():
+                _note(f"  wrote {write_file(root, name, reports.outputs[f])}")
+            for name, data in reports.files.items():
+                _note(f"  wrote {write_file(root, place / name, data)}")
+        except LagsolveError as error:
+            status = max(status, _fail(error))
+    if stream:
+        from lagsolve.render.machine import json_stream
+
+        click.echo(json_stream(texts, lines=fmt == "jsonl"), nl=False)
     sys.exit(status)
 
 
@@ -228,6 +296,7 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
     lagsolve simulate problems/bead.yaml --t-end 20 --set g=1.62 --initial x=0.5 --plot --show
     lagsolve simulate problems/bead.yaml --format csv -o bead.csv
     """
+    from lagsolve.files import write_file
     from lagsolve.pipeline import SimulationOptions, safe_slug, simulate_file
 
     options = SimulationOptions(
@@ -239,25 +308,32 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
         raise click.UsageError(f"-o {output} names one file, but {len(files)} problems were given; give a folder")
     status = 0
     for path in files:
+        _note(f"lagsolve: simulating {path}", err=True, level=2)
         try:
             result = simulate_file(path, options, timeout=timeout, progress=_progress_bar)
         except LagsolveError as error:
             status = max(status, _fail(error))
             continue
-        folder = (output if output is not None and not single else Path("out")) / safe_slug(path)
+        root = output if output is not None and not single else Path("out")
+        folder = Path(safe_slug(path))
         to_stdout = fmt == "csv" and output is None
-        click.echo(result.summary, nl=False, err=to_stdout)
+        _note(result.summary, nl=False, err=to_stdout)
         written = []
-        for kind, data in result.tables.items():
-            if to_stdout:
-                click.echo(data, nl=False)
-                continue
-            target = output if single and output is not None else folder / f"{result.slug}.{kind}"
-            written.append(_write(target, data))
-        for key, data in result.figures.items():
-            written.append(_write(folder / f"{result.slug}_{key}.{'gif' if key == 'animation' else 'png'}", data))
+        try:
+            for kind, data in result.tables.items():
+                if to_stdout:
+                    click.echo(data, nl=False)
+                elif single and output is not None:
+                    written.append(write_file(output.parent, output.name, data))
+                else:
+                    written.append(write_file(root, folder / f"{result.slug}.{kind}", data))
+            for key, data in result.figures.items():
+                extension = "gif" if key == "animation" else "png"
+                written.append(write_file(root, folder / f"{result.slug}_{key}.{extension}", data))
+        except LagsolveError as error:
+            status = max(status, _fail(error))
         for target in written:
-            click.echo(f"  wrote {target}", err=to_stdout)
+            _note(f"  wrote {target}", err=to_stdout)
         if show:
             for target in written:
                 if target.suffix in (".png", ".gif"):
@@ -265,17 +341,17 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
     sys.exit(status)
 
 
-def _write(target: Path, data: str | bytes) -> Path:
-    """Write one output file; a path that cannot be written is a command-line error (exit 2)."""
-    try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-        if isinstance(data, bytes):
-            target.write_bytes(data)
-        else:
-            target.write_text(data, encoding="utf-8")
-    except OSError as exc:
-        raise click.BadParameter(f"cannot write {target}: {exc.strerror or exc}", param_hint="-o/--output") from None
-    return target
+@main.command()
+@click.argument("kind", type=click.Choice(["input", "output"]))
+def schema(kind: str) -> None:
+    """Print the JSON Schema (draft 2020-12) of the problem file (input) or of the JSON result (output).
+
+    \b
+    lagsolve schema input > problem.schema.json
+    """
+    from lagsolve.schemas import schema_json
+
+    click.echo(schema_json(kind), nl=False)
 
 
 if __name__ == "__main__":  # pragma: no cover

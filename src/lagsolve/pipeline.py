@@ -79,7 +79,10 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
 
     files: dict[str, bytes] = {}
     simulation = None
-    potential = _potential_figure(derivation)
+    # figures are made only for a format that shows them (JSON does not)
+    figures_shown = bool({"md", "tex", "html"} & set(formats))
+    figures_written = bool({"md", "tex"} & set(formats))
+    potential = _potential_figure(derivation) if figures_shown else None
     if potential is not None:
         files[potential["file"]] = potential.pop("png")
     text = summary(derivation)
@@ -97,11 +100,16 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
             name = f"{slug}_{key}.png"
             files[name] = data
             figures.append({"file": name, "caption": FIGURE_CAPTIONS.get(key, key)})
+        from lagsolve.render.trajectory import animation
         from lagsolve.render.trajectory import summary as run_summary
 
-        simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures}
+        simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures,
+                      "animation": animation(run.trajectory)}
         text += run.summary
-    return text, {fmt: render(derivation, fmt, templates, simulation, potential) for fmt in formats}, files
+    outputs = {fmt: render(derivation, fmt, templates, simulation, potential, files) for fmt in formats}
+    if not figures_written:
+        files = {}  # an HTML page carries its figures inside; JSON has none
+    return text, outputs, files
 
 
 def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
@@ -154,6 +162,7 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
+    _preload()
     text, outputs, files = run_with_budget(_derive_and_render, (problem, formats, templates, simulate, timeout),
                                            timeout, f"the derivation of {path}",
                                            on_partial=_render_core(formats, templates))
@@ -168,6 +177,7 @@ class Checked:
     name: str
     table: str
     counts: dict[str, int]
+    rows: tuple[dict[str, str], ...] = ()  # one per verdict (:func:`lagsolve.render.machine.verdict_rows`)
 
     @property
     def passed(self) -> bool:
@@ -175,13 +185,16 @@ class Checked:
         return self.counts.get("mismatch", 0) == 0
 
 
-def _derive_and_check(problem: object, budget: float = DEFAULT_TIMEOUT) -> tuple[str, dict[str, int]]:
+def _derive_and_check(problem: object, budget: float = DEFAULT_TIMEOUT
+                      ) -> tuple[str, dict[str, int], tuple[dict[str, str], ...]]:
     from lagsolve.check import MISMATCH, OK, UNCHECKED, WARNING, check
     from lagsolve.mechanics.derivation import derive
     from lagsolve.render.checks import check_table
+    from lagsolve.render.machine import verdict_rows
 
     report = check(derive(problem, budget=budget * STAGE_SHARE))  # type: ignore[arg-type]
-    return check_table(report), {s: report.count(s) for s in (OK, WARNING, MISMATCH, UNCHECKED)}
+    return (check_table(report), {s: report.count(s) for s in (OK, WARNING, MISMATCH, UNCHECKED)},
+            verdict_rows(report))
 
 
 def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked:
@@ -200,23 +213,39 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
-    table, counts = run_with_budget(_derive_and_check, (problem, timeout), timeout, f"the check of {path}")
-    return Checked(str(path), problem.name, table, counts)
+    _preload()
+    table, counts, rows = run_with_budget(_derive_and_check, (problem, timeout), timeout, f"the check of {path}")
+    return Checked(str(path), problem.name, table, counts, rows)
+
+
+def _preload() -> None:
+    """Import the heavy modules here, before the budgeted child is forked, so that the child inherits them and
+    its CPU budget goes to the problem, not to importing SymPy (and several files share one import)."""
+    import lagsolve.mechanics.analysis
+    import lagsolve.mechanics.derivation
+    import lagsolve.render.report
+    import lagsolve.simulation  # noqa: F401
 
 
 def golden_differences(reports: Reports, folder: Path) -> list[str]:
     """Unified diffs between ``reports`` and the golden files ``folder/<slug>.<ext>``.
 
     A missing golden file counts as a difference (its diff says so).
+
+    Raises
+    ------
+    SpecError
+        A golden file is a symbolic link (not followed), a folder, unreadable or not UTF-8.
     """
     import difflib
+
+    from lagsolve.files import read_text
 
     diffs = []
     for fmt, text in reports.outputs.items():
         path = Path(folder) / f"{reports.slug}.{fmt}"
-        try:
-            expected = path.read_text(encoding="utf-8")
-        except FileNotFoundError:
+        expected = read_text(path, option="--golden")
+        if expected is None:
             diffs.append(f"--- {path} (missing; create it with --update-golden)\n")
             continue
         if expected != text:
@@ -255,4 +284,5 @@ def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: floa
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
+    _preload()
     return run_with_budget(_simulate, (problem, options, progress), timeout, f"the simulation of {path}")

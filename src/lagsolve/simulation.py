@@ -81,7 +81,10 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
         raise SpecError([Issue(source, 0, "simulation.t_end", "no end time",
                                "give simulation.t_end in the file or --t-end")])
     given = {**(spec.initial if spec else {}), **options.initial}
-    q0, qd0 = complete_initial(system, given, source)
+    from_file = "simulation.initial" if spec and spec.initial else ""
+    field = " and ".join(f for f in (from_file, "--initial" if options.initial else "") if f) or "simulation.initial"
+    line = problem.lines.get("simulation.initial", problem.lines.get("simulation", 0)) if from_file else 0
+    q0, qd0 = complete_initial(system, given, source, line=line, field=field)
     trajectory = integrate_motion(
         system, q0, qd0, t_end,
         samples=options.samples or (spec.samples if spec and spec.samples else 1001),

@@ -25,9 +25,12 @@ import dataclasses
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+import sympy
+
 from lagsolve.mechanics.chart import MinimalChart, minimal_chart
 from lagsolve.mechanics.conserved import Conservation, MotionSystem, conserved_quantities, constraint_surface
 from lagsolve.mechanics.constraints import constraint_terms
+from lagsolve.mechanics.contact import ContactCheck, check_point
 from lagsolve.mechanics.equilibria import EffectivePotential, effective_potential
 from lagsolve.mechanics.integrability import Classification, classify_all
 from lagsolve.mechanics.linearize import Linearization, applies, linearize, numeric_linearization
@@ -53,6 +56,9 @@ class Analysis:
     effective_note: str
     linearization: Linearization | None
     linearization_note: str
+    #: per equilibrium of ``effective_potential`` / ``linearization``: the unilateral constraints' forces there
+    effective_contact: tuple[tuple[ContactCheck, ...], ...] = ()
+    modes_contact: tuple[tuple[ContactCheck, ...], ...] = ()
 
 
 #: CPU seconds the symbolic equilibrium solve may take when numeric equilibria can be given instead
@@ -124,8 +130,34 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
                 stages.settle("numeric equilibria")  # the analysis section says it
     else:
         stages.skip("equilibria and normal modes", "the effective potential covers this system", "n/a")
+    effective_contact, modes_contact = _contact(derivation, reduced, effective, linear)
     return Analysis(classes, reduced, reduced_note, system, conservation, effective, effective_note,
-                    linear, linear_note)
+                    linear, linear_note, effective_contact, modes_contact)
+
+
+def _contact(derivation: Derivation, reduced: ReducedSystem | None, effective: EffectivePotential | None,
+             linear: Linearization | None) -> tuple[tuple[tuple[ContactCheck, ...], ...], ...]:
+    """Each equilibrium's unilateral constraint forces at rest (:mod:`lagsolve.mechanics.contact`)."""
+    unilateral = tuple(c.name for c in derivation.problem.constraints if c.unilateral)
+    if not unilateral or derivation.multipliers is None:
+        return (), ()
+    substitution = reduced.substitution if reduced is not None else None
+    velocities = dict.fromkeys(derivation.model.velocities, sympy.Integer(0))
+    if reduced is not None:
+        velocities.update(dict.fromkeys(reduced.model.velocities, sympy.Integer(0)))
+    effective_checks: list[tuple[ContactCheck, ...]] = []
+    for e in effective.equilibria if effective is not None else ():
+        if e.value is None:
+            effective_checks.append(())
+            continue
+        rates = {q: v for model in (derivation.model, *((reduced.model,) if reduced is not None else ()))
+                 for q, v in zip(model.coordinates, model.velocities, strict=True)}
+        moving = {rates[c]: w for c, _, w in effective.cyclic if c in rates}  # type: ignore[union-attr]
+        effective_checks.append(check_point(derivation.multipliers, unilateral, {effective.coordinate: e.value},
+                                            {**velocities, **moving}, substitution))
+    modes_checks = [check_point(derivation.multipliers, unilateral, dict(m.point), velocities, substitution)
+                    for m in (linear.modes if linear is not None else ())]
+    return tuple(effective_checks), tuple(modes_checks)
 
 
 def _stage_reason(stages: Stages, stage: str) -> str:

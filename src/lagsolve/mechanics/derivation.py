@@ -27,7 +27,7 @@ from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.normal import NormalForce, normal_forces
 from lagsolve.mechanics.reactions import Reaction
 from lagsolve.mechanics.reduce import Elimination, eliminate
-from lagsolve.mechanics.simplify import compound_angles, norm, tidy, tidy_sum
+from lagsolve.mechanics.simplify import compound_angles, norm, tidy, tidy_sum, tidy_sum_light
 from lagsolve.mechanics.stages import DEFAULT_BUDGET, StageNote, Stages, StageTimeout, cpu_limit
 from lagsolve.problem.schema import Problem
 
@@ -122,6 +122,27 @@ class Derivation:
         """True when every stage that applies gave its result (no stage ran out of budget or size)."""
         return not any(n.kind in ("budget", "size") for n in self.notes)
 
+    # notebook display (IPython calls these); the renderers are imported only when a result is shown
+
+    def _repr_latex_(self) -> str:
+        from lagsolve.render.display import derivation_latex
+
+        return derivation_latex(self)
+
+    def _repr_markdown_(self) -> str:
+        from lagsolve.render.display import derivation_markdown
+
+        return derivation_markdown(self)
+
+    def _repr_html_(self) -> str:
+        from lagsolve.render.display import derivation_html
+
+        return derivation_html(self)
+
+
+#: above this many coordinates the equation pieces get the light display simplification
+LARGE_SYSTEM = 4
+
 
 def derive(problem: Problem, *, budget: float | None = None, analysis: bool = True,
            on_core: Callable[[Derivation], None] | None = None) -> Derivation:
@@ -169,7 +190,9 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
         raw_lam = tuple(lam.xreplace(decoupled) for lam in raw_lam)
         raw_acc = tuple(a.xreplace(decoupled) for a in raw_acc)
 
-    shown = stages.run("display simplification", _display, form, elimination, raw_acc, raw_lam, tidy, tidy_sum)
+    # a large system gets a lighter display simplification of its many equation pieces (one rewriting each)
+    show_sum = tidy_sum if len(model.coordinates) <= LARGE_SYSTEM else tidy_sum_light
+    shown = stages.run("display simplification", _display, form, elimination, raw_acc, raw_lam, tidy, show_sum)
     if shown is None:
         shown = _display(form, elimination, raw_acc, raw_lam, _plain, _plain)
     if len(decoupled) < len(substituted) and raw_lam is not None and raw_acc is not None:

@@ -237,8 +237,9 @@ def numeric_linearization(system: MotionSystem, values: dict[str, float], initia
         if not sol.success or not np.all(np.isfinite(sol.x)):
             continue
         point = np.array([(x + np.pi) % (2 * np.pi) - np.pi if periodic[i] else x for i, x in enumerate(sol.x)])
-        point = np.where(np.isclose(point, -np.pi, atol=1e-9), np.pi, point)
-        point = np.where(np.abs(point) < 1e-12, 0.0, point)
+        periodic_mask = np.array(periodic, dtype=bool)
+        point = np.where(periodic_mask & np.isclose(np.abs(point), np.pi, atol=1e-7), np.pi, point)
+        point = np.where(np.abs(point) < 1e-7, 0.0, point)  # the root finder's own noise
         if np.max(np.abs(np.asarray(f_static(point), dtype=float))) > 1e-9:
             continue
         if any(np.allclose(point, p, atol=1e-7) for p in found):

@@ -113,10 +113,22 @@ def _nonzero(value: Any) -> bool:
     return sympy.cancel(value) != 0
 
 
+#: a dense block of M this large, with entries that vary, is not inverted symbolically at all (its determinant
+#: alone has up to k! terms): the solve is known to be too large before it starts
+DENSE_LIMIT = 4
+
+
 def _solve_blocks(M: sympy.Matrix, rhs: sympy.Matrix, limit: int | None) -> sympy.Matrix:
     """:math:`M^{-1}` applied to ``rhs`` block by block."""
     out = sympy.zeros(M.rows, rhs.cols)
-    for group in blocks(M):
+    groups = blocks(M)
+    for group in groups:
+        varying = sum(1 for i in group for k in group if i != k and M[i, k].free_symbols)
+        if limit is not None and len(group) >= DENSE_LIMIT and varying > len(group) * (len(group) - 1) // 2:
+            raise StageSkipped(f"too large: M has a dense {len(group)}×{len(group)} block whose entries vary, so "
+                               "the explicit solution would be far too long to read; the matrix form M q̈ = F + Aᵀλ "
+                               "above is the result")
+    for group in groups:
         sub = M.extract(group, group)
         part = solve_linear(sub, rhs.extract(group, list(range(rhs.cols))), limit)
         for k, i in enumerate(group):

@@ -40,7 +40,6 @@ from lagsolve.mechanics.linsolve import SIZE_LIMIT
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.reduce import Elimination, eliminate
 from lagsolve.mechanics.simplify import tidy, tidy_sum
-from lagsolve.mechanics.stages import StageSkipped
 
 
 @dataclass(frozen=True)
@@ -183,6 +182,8 @@ def reduce_system(model: Model, constraints: tuple[ConstraintTerms, ...], classe
     q_red = tuple(tidy(sum((forces[i] * sympy.diff(path[i], q) for i in range(len(path))), sympy.Integer(0)))
                   for q in q_ind)
     terms = lagrange_terms(reduced_model, (), q_red, engine="symengine")
+    if not elimination.positions and full_accelerations is None:
+        solve = False  # nothing eliminated, and the full system's explicit solve was too large: the same here
     if not solve:
         constants = tuple(k.constant for k in classes if k.constant is not None)
         return ReducedSystem(independent=q_ind, substitution=elimination, constants=constants, model=reduced_model,
@@ -191,9 +192,6 @@ def reduce_system(model: Model, constraints: tuple[ConstraintTerms, ...], classe
                              accelerations={}, agreement="unchecked"), ""
     if not elimination.positions and full_accelerations is not None:
         raw = tuple(full_accelerations)  # nothing eliminated: the reduced system is the full one
-    elif not elimination.positions:
-        raise StageSkipped("too large: with nothing to eliminate the reduced system is the full one, whose "
-                           "explicit accelerations are too large (see the explicit solve)")
     else:
         try:
             raw, _ = solve_augmented(terms, SIZE_LIMIT)

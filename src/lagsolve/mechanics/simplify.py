@@ -39,7 +39,9 @@ def measure(expr: Any) -> tuple[int, int, str]:
 #: (they dominate run time on large expressions; the Pythagorean reduction below is cheap)
 SIMPLIFY_LIMIT = 60
 #: above this many operations :func:`tidy` only pulls out common factors (no factor, cancel or trig rewriting)
-TIDY_LIMIT = 400
+TIDY_LIMIT = 200
+#: above this many operations sums are not searched for compound angles (the pairing grows with the square)
+CONTRACT_LIMIT = 600
 TRIGSIMP_LIMIT = 0
 _ERRORS = (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError)
 
@@ -139,9 +141,22 @@ def tidy_sum(expr: Any) -> Any:
         if sympy.count_ops(expanded) <= TRIGSIMP_LIMIT:
             reduced = sympy.trigsimp(expanded)
             candidates += [reduced, sympy.expand(sympy.expand_trig(reduced))]
-        candidates += [compound_angles(c) for c in candidates[:3]]
+        if sympy.count_ops(expanded) <= CONTRACT_LIMIT:
+            candidates += [compound_angles(c) for c in candidates[:3]]
+    if sympy.count_ops(expanded) > TIDY_LIMIT:
+        # a governor: pull common factors out of the best form only
+        best = min(candidates, key=measure)
+        return min([best, sympy.factor_terms(best)], key=measure)
     candidates += [sympy.factor_terms(c) for c in candidates]
     return min(candidates, key=measure)
+
+
+def tidy_sum_light(expr: Any) -> Any:
+    """A cheap :func:`tidy_sum` for large systems: expanded, compound angles contracted, common factors out
+    (one rewriting each instead of a search over candidates)."""
+    if not isinstance(expr, sympy.Basic):
+        return _number(expr)
+    return sympy.factor_terms(compound_angles(sympy.expand(expr)))
 
 
 def compound_angles(expr: Any) -> Any:

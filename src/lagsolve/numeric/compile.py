@@ -43,6 +43,25 @@ def substitute_functions(expr: Any, concrete: Mapping[Any, tuple[tuple[Any, ...]
 BACKENDS = ("auto", "llvm", "python")
 
 
+def private_arguments(arguments: Sequence[Any], expressions: Sequence[Any]) -> tuple[list[Any], list[Any]]:
+    """The arguments renamed ``_lagsolve_arg0``, ``_lagsolve_arg1``, ... in order, and the expressions in them.
+
+    Compilers with common-subexpression elimination name their temporaries ``x0, x1, ...``;
+    SymEngine's ``Lambdify(cse=True)`` does not avoid the names already in use, so a
+    coordinate called ``x1`` would silently take a temporary's value. A user's name starts
+    with a letter (``problem/expr.py``), so these names cannot be one. Each new symbol keeps
+    the assumptions of the one it replaces, so nothing evaluates differently.
+
+    >>> import sympy
+    >>> x1, x0 = sympy.symbols("x1 x0")
+    >>> private_arguments([x1, x0], [x1 + 2 * x0])
+    ([_lagsolve_arg0, _lagsolve_arg1], [_lagsolve_arg0 + 2*_lagsolve_arg1])
+    """
+    renamed = [sympy.Symbol(f"_lagsolve_arg{i}", **a.assumptions0) for i, a in enumerate(arguments)]
+    mapping = dict(zip(arguments, renamed, strict=True))
+    return renamed, [e.xreplace(mapping) if isinstance(e, sympy.Basic) else e for e in expressions]
+
+
 def compile_state_function(expressions: Sequence[Any], *, time: Any, coordinates: Sequence[Any],
                            velocities: Sequence[Any], parameters: Sequence[Any],
                            backend: str = "auto") -> StateFunction:
@@ -63,6 +82,7 @@ def compile_state_function(expressions: Sequence[Any], *, time: Any, coordinates
         raise ValueError(f"expressions contain symbols with no value: {sorted(map(str, stray))}")
     if not expressions:
         return lambda t, q, qd, p: np.zeros(0)
+    arguments, expressions = private_arguments(arguments, expressions)
     if backend != "python":
         compiled = _llvm(arguments, expressions, n, k)
         if compiled is not None:
@@ -72,7 +92,10 @@ def compile_state_function(expressions: Sequence[Any], *, time: Any, coordinates
     raw = sympy.lambdify(arguments, list(expressions), modules=_MODULES, cse=True)
 
     def evaluate(t: float, q: np.ndarray, qd: np.ndarray, p: np.ndarray) -> np.ndarray:
-        return np.asarray(raw(t, *q, *qd, *p), dtype=float)
+        try:
+            return np.asarray(raw(t, *q, *qd, *p), dtype=float)
+        except (ValueError, ZeroDivisionError, OverflowError):  # outside a domain: NaN, as the LLVM backend gives
+            return np.full(len(expressions), np.nan)
 
     evaluate.__doc__ = f"{len(expressions)} expressions of {n} coordinates, {n} velocities and {k} parameters"
     return evaluate

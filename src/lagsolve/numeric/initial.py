@@ -19,8 +19,12 @@ TOLERANCE = 1e-9
 
 
 def complete_initial(system: NumericSystem, given: Mapping[str, float], source: str = "",
-                     t0: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+                     t0: float = 0.0, *, line: int = 0,
+                     field: str = "simulation.initial") -> tuple[np.ndarray, np.ndarray]:
     """Positions and velocities at ``t0`` from the ``given`` values (``x``, ``x_dot``, ...).
+
+    ``line`` and ``field`` say where the values were given (``simulation.initial`` at a line of
+    ``source``, or ``--initial``), for the messages.
 
     Raises
     ------
@@ -28,7 +32,7 @@ def complete_initial(system: NumericSystem, given: Mapping[str, float], source: 
         When a name is unknown, or the constraints cannot be met (the residual is shown).
     """
     names = system.coordinates
-    issues = [Issue(source, 0, "initial", f"unknown coordinate or velocity {k!r}",
+    issues = [Issue(source, line, field, f"unknown coordinate or velocity {k!r}",
                     "known: " + ", ".join([*names, *(f"{n}_dot" for n in names)]))
               for k in given if k not in names and not (k.endswith("_dot") and k[:-4] in names)]
     if issues:
@@ -46,7 +50,7 @@ def complete_initial(system: NumericSystem, given: Mapping[str, float], source: 
         psi = system.position_residual(t0, q, qd, p)
         if not np.all(np.isfinite(psi)) or np.max(np.abs(psi), initial=0.0) > TOLERANCE:
             rows = ", ".join(f"{system.constraints[j]} = {v:.3g}" for j, v in zip(system.holonomic, psi, strict=True))
-            raise SpecError([Issue(source, 0, "initial", f"the initial positions violate the constraints ({rows})",
+            raise SpecError([Issue(source, line, field, f"the initial positions violate the constraints ({rows})",
                                    "give fewer coordinates (the others are solved from the constraints) or "
                                    "values that satisfy them")])
     if system.m:
@@ -58,11 +62,12 @@ def complete_initial(system: NumericSystem, given: Mapping[str, float], source: 
         residual = a @ qd + b
         if not np.all(np.isfinite(residual)) or np.max(np.abs(residual)) > TOLERANCE:
             rows = ", ".join(f"{c} = {v:.3g}" for c, v in zip(system.constraints, residual, strict=True))
-            raise SpecError([Issue(source, 0, "initial", f"the initial velocities violate the constraints ({rows})",
+            raise SpecError([Issue(source, line, field, f"the initial velocities violate the constraints ({rows})",
                                    "give fewer velocities (the others are solved from the constraints) or "
                                    "values that satisfy them")])
     if not (np.all(np.isfinite(q)) and np.all(np.isfinite(qd))):
-        raise SpecError([Issue(source, 0, "initial", "the initial state is not finite")])
+        raise SpecError([Issue(source, line, field, "the initial state is not finite",
+                                  "give values at which every expression of the problem can be evaluated")])
     return q, qd
 
 

@@ -218,16 +218,24 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
     steps = nfev = 0
     max_residual = run.residual(0.0, q0, qd0)
     t0, y0 = 0.0, np.concatenate([q0, qd0])  # the whole state at each (re)start
+    last: tuple[float, np.ndarray] | None = None  # the last state found finite, for a message
     _start_contacts(run, t0, y0, events)
     next_sample = 0
     finished = stopped = False
     while not finished:
         pulling = [j for j in system.unilateral if run.active[j] and run.solve(t0, y0)[1][j] < 0]
         if pulling:  # a unilateral constraint that would have to pull: contact is lost at once
-            _release(run, pulling[0])
+            stop = after_release == "stop"
             events.append(Event(float(t0), "release", system.constraints[pulling[0]], _state(system, y0),
-                                "released"))
+                                "stopped" if stop else "released"))
+            if stop:
+                rows.append(_sample(run, t0, y0))
+                stopped = True
+                break
+            _release(run, pulling[0])
             continue
+        _check_finite(run, t0, y0, last, rhs=True)  # at a (re)start: a NaN step size would make SciPy loop
+        last = (float(t0), y0)
         solver = getattr(integrate, method)(run.rhs, t0, run.local(y0), t_end, rtol=rtol, atol=atol,
                                             max_step=max_step)
         watch_old = _watch(run, t0, y0)
@@ -235,6 +243,7 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         while solver.status == "running":
             message = solver.step()
             if solver.status == "failed":
+                _check_finite(run, solver.t, run.full(solver.t, solver.y), last, rhs=True)
                 raise SimulationError(f"the integrator ({method}) failed at t = {solver.t:.6g}: {message}")
             steps += 1
             t_old, t_new = solver.t_old, solver.t
@@ -244,8 +253,13 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
             event = _first_event(run, dense, t_old, t_new, watch_old, watch_new)
             t_stop = event[0] if event is not None else t_new
             while next_sample < samples and times[next_sample] <= t_stop + 1e-12 * max(1.0, t_end):
-                rows.append(_sample(run, times[next_sample], dense(times[next_sample])))
+                y_sample = dense(times[next_sample])
+                _check_finite(run, times[next_sample], y_sample, last)
+                rows.append(_sample(run, times[next_sample], y_sample))
+                last = (float(times[next_sample]), y_sample)
                 next_sample += 1
+            _check_finite(run, t_stop, y_new if event is None else dense(t_stop), last)
+            last = (float(t_stop), y_new if event is None else dense(t_stop))
             if event is not None:
                 t0, y0, stopped = _handle(run, event, dense, events, after_release)
                 if stopped:
@@ -257,6 +271,8 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
             if explicit and project and ((m and run.chart is None) or run.stuck.any()):
                 q, qd = run.projected(t_new, y_new[:n], y_new[n:])
                 y_new = np.concatenate([q, qd])
+                _check_finite(run, t_new, y_new, last)
+                last = (float(t_new), y_new)
                 solver.y = run.local(y_new)
                 solver.f = run.rhs(t_new, solver.y)
                 watch_new = _watch(run, t_new, y_new)
@@ -267,7 +283,9 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         if not restarted:
             finished = True
     if next_sample < samples and not stopped:
-        rows.append(_sample(run, t_end, run.full(t_end, solver.y)))
+        y_end = run.full(t_end, solver.y)
+        _check_finite(run, t_end, y_end, last)
+        rows.append(_sample(run, t_end, y_end))
     if progress is not None:
         progress(t_end)
     if system.chart is not None and minimal and run.chart is None:
@@ -278,6 +296,42 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         "energy_conserved": system.energy_conserved, "energy_note": system.energy_note,
         "coordinates": coordinates, "projected": bool(m) and run.chart is None,
     })
+
+
+def _check_finite(run: _Run, t: float, y: np.ndarray, last: tuple[float, np.ndarray] | None,
+                  rhs: bool = False) -> None:
+    """Stop with a :class:`SimulationError` at a state (or, with ``rhs``, accelerations) that is not finite.
+
+    NaN or inf means an expression was evaluated outside its domain (log or sqrt of a number
+    ≤ 0, a division by zero) or the motion diverged; nothing computed from there on would mean
+    anything, so the run stops at the first such state and says where.
+    """
+    finite = bool(np.all(np.isfinite(y)))
+    if finite and not rhs:
+        return  # the common case, at every step: nothing more to do
+    system = run.system
+    names = [*system.coordinates, *(f"{c}_dot" for c in system.coordinates)]
+    bad = [] if finite else [name for name, v in zip(names, y, strict=True) if not np.isfinite(v)]
+    if not bad and rhs:
+        with np.errstate(all="ignore"):
+            try:
+                accelerations = run.solve(t, y)[0]
+            except SimulationError:
+                return
+        bad = [f"{c}_ddot" for c, v in zip(system.coordinates, accelerations, strict=True) if not np.isfinite(v)]
+    what = ""
+    if bad:
+        what = f"{', '.join(bad)} {'is not a finite number' if len(bad) == 1 else 'are not finite numbers'}"
+    if not what:
+        return
+    state = ", ".join(f"{name} = {v:.6g}" for name, v in zip(names, y, strict=True))
+    text = f"the state is no longer finite at t = {t:.10g} ({state}): {what}"
+    if last is not None:
+        previous = ", ".join(f"{name} = {v:.6g}" for name, v in zip(names, last[1], strict=True))
+        text += f"; the last finite state was at t = {last[0]:.10g} ({previous})"
+    raise SimulationError(text + ". An expression was evaluated outside its domain (log or sqrt of a number "
+                          "<= 0, a division by zero) or the motion diverged; the run stops there. Shorten t_end, "
+                          "change the initial state, or check the problem's expressions for where they hold")
 
 
 def _whole(run: _Run, dense: Callable[[float], np.ndarray]) -> Callable[[float], np.ndarray]:

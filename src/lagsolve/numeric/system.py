@@ -242,10 +242,15 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
     overrides = dict(overrides or {})
     issues: list[Issue] = []
     known = {p.name for p in problem.parameters}
-    for name in overrides:
+    for name, value in overrides.items():
         if name not in known:
             issues.append(Issue(source, 0, "--set", f"unknown parameter {name!r}",
                                 "known: " + ", ".join(sorted(known)) if known else "the problem has no parameters"))
+        elif value < 0 and next(p for p in problem.parameters if p.name == name).positive:
+            issues.append(Issue(source, 0, "--set", f"{name}={value:g} contradicts the assumption that parameter "
+                                f"{name!r} is positive (parameters are, unless declared with positive: false), "
+                                "which the derivation relies on",
+                                f"give a value >= 0, or declare {name} with positive: false in {source}"))
     values = _values(form, overrides)
     concrete = {}
     simulation = problem.simulation

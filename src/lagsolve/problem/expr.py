@@ -52,6 +52,10 @@ MAX_LITERAL = 40
 MAX_DECIMAL_EXPONENT = 300
 MAX_POWER = 1000
 MAX_CONSTANT = 1e100
+#: longest declared name (a coordinate, parameter, particle, constraint, ...)
+MAX_NAME_LENGTH = 64
+#: the range of a number's size in the text, both ends included (exact: "1e-300" itself is allowed)
+_SMALLEST, _LARGEST = Fraction(1, 10**300), Fraction(10**100)
 MAX_DERIVATIVE_ORDER = 8
 #: Exact numbers (integers, numerators, denominators) are limited to this many bits
 #: (about 1200 digits), far above anything a problem needs, far below what makes
@@ -135,6 +139,9 @@ def name_problem(name: str) -> str | None:
     """Why ``name`` cannot be declared (a parameter, coordinate, ...), or ``None`` if it can."""
     if not isinstance(name, str) or not name:
         return "a name must be a non-empty string"
+    if len(name) > MAX_NAME_LENGTH:
+        return (f"a name of {len(name)} characters ({name[:20]!r}...) is too long; "
+                f"names are limited to {MAX_NAME_LENGTH} characters")
     for ch in name:
         if not ch.isascii():
             return (f"non-ASCII character {describe_char(ch)} in name {name!r}; "
@@ -376,7 +383,8 @@ def _number(tok: _Token) -> Fraction:
             f"decimal exponents are limited to ±{MAX_DECIMAL_EXPONENT}",
         )
     value = Fraction(mantissa) * Fraction(10) ** power
-    if value != 0 and not (1e-300 <= abs(value) <= MAX_CONSTANT):
+    # compared exactly: the float 1e-300 is a little above 10**-300, which the message says is allowed
+    if value != 0 and not (_SMALLEST <= abs(value) <= _LARGEST):
         raise ExpressionError(
             f"number {text[:30]!r} at column {tok.column} is out of range",
             f"numbers must lie between 1e-300 and {MAX_CONSTANT:g} in size",

@@ -42,6 +42,11 @@ _SIMULATION_KEYS = ("values", "functions", "initial", "t_end", "samples", "metho
 _EXPECTED_KEYS = ("accelerations", "multipliers", "constraint_forces", "reduced", "conserved",
                   "effective_potential")
 _METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA")
+#: longest free text, in characters: the name (a title, drawn on every figure), the problem's
+#: description, and a parameter's, coordinate's or function's description
+MAX_TITLE_LENGTH = 200
+MAX_PROBLEM_DESCRIPTION_LENGTH = 20_000
+MAX_DESCRIPTION_LENGTH = 1_000
 
 
 def load_problem(path: str | Path) -> Problem:
@@ -125,14 +130,25 @@ class _Loader:
                 ok = False
         return ok
 
-    def text(self, path: tuple, value: Any, *, one_line: bool = False) -> str | None:
+    def text(self, path: tuple, value: Any, *, one_line: bool = False,
+             limit: int = MAX_DESCRIPTION_LENGTH) -> str | None:
         if isinstance(value, str):
             if one_line and ("\n" in value.strip() or not value.strip()):
                 self.issue(path, "expected one non-empty line of text")
                 return None
+            if not self.short_enough(path, value, limit):
+                return None
             return value.strip() if one_line else value
         self.issue(path, f"expected text, found {_kind(value)}")
         return None
+
+    def short_enough(self, path: tuple, value: str, limit: int) -> bool:
+        """Whether the free text ``value`` has at most ``limit`` characters; if not, an issue."""
+        if len(value) <= limit:
+            return True
+        self.issue(path, f"text of {len(value)} characters is too long; the limit here is {limit}",
+                   "shorten it" + ("; put details in description" if path == ("name",) else ""))
+        return False
 
     def number(self, path: tuple, value: Any, *, positive: bool = False) -> float | None:
         if isinstance(value, bool) or not isinstance(value, int | float):
@@ -146,6 +162,22 @@ class _Loader:
             self.issue(path, f"expected a positive number, found {value:g}")
             return None
         return value
+
+    def assumption_holds(self, path: tuple, name: str, value: float, positive: bool,
+                         kind: str = "parameter") -> bool:
+        """Whether ``value`` agrees with ``name`` being positive (the derivation relies on it); if not, an issue."""
+        if not positive or value >= 0:  # 0 is the limit case (mu = 0: no friction)
+            return True
+        if kind == "parameter":
+            why = "(parameters are, unless declared with positive: false)"
+            fix = (f"give a value >= 0, or declare it as {name}: {{description: ..., positive: false}} "
+                   "under parameters")
+        else:
+            why = "(declared positive: true)"
+            fix = f"give a value >= 0, or remove positive: true from coordinate {name!r}"
+        self.issue(path, f"{value:g} contradicts the assumption that {kind} {name!r} is positive {why}, "
+                   "which the derivation relies on", fix)
+        return False
 
     def flag(self, path: tuple, value: Any) -> bool | None:
         if isinstance(value, bool):
@@ -199,7 +231,8 @@ class _Loader:
                     self.issue((*path, i), f"expected a name, found {_kind(item)}")
             return out
         if isinstance(value, dict):
-            return [(k, v, (*path, k)) for k, v in value.items()]
+            return [(k, v if not isinstance(v, str) or self.short_enough((*path, k), v, MAX_DESCRIPTION_LENGTH)
+                     else "", (*path, k)) for k, v in value.items()]
         self.issue(path, f"expected a list of names or a mapping name: description, found {_kind(value)}")
         return []
 
@@ -208,10 +241,10 @@ class _Loader:
     def problem(self) -> Problem:
         data = self.data
         self.keys((), data, TOP_LEVEL, required=("name", "coordinates"))
-        name = self.text(("name",), data["name"], one_line=True) if "name" in data else None
+        name = self.text(("name",), data["name"], one_line=True, limit=MAX_TITLE_LENGTH) if "name" in data else None
         description = ""
         if "description" in data:
-            description = self.text(("description",), data["description"]) or ""
+            description = self.text(("description",), data["description"], limit=MAX_PROBLEM_DESCRIPTION_LENGTH) or ""
 
         time_name = data.get("time", "t")
         if not isinstance(time_name, str) or not self.declare(("time",), time_name, "the time"):
@@ -295,6 +328,8 @@ class _Loader:
                     real = bool(self.flag((*path, "real"), detail["real"]))
                 if "value" in detail:
                     default = self.number((*path, "value"), detail["value"])
+                    if default is not None and not self.assumption_holds((*path, "value"), name, default, positive):
+                        default = None
             elif detail is not None:
                 self.issue(path, f"expected a description or a mapping, found {_kind(detail)}")
             if not self.declare(path, name, "a parameter"):
@@ -734,15 +769,17 @@ class _Loader:
             return None
         self.keys(path, spec, _SIMULATION_KEYS)
         parameter_names = [p.name for p in parameters]
+        positive = {p.name: p.positive for p in parameters}
         values: dict[str, float] = {}
         for k, v in (self.mapping((*path, "values"), spec.get("values", {})) or {}).items():
             if k not in parameter_names:
                 self.issue((*path, "values", k), f"unknown parameter {k!r}", _known("parameters", parameter_names))
                 continue
             number = self.number((*path, "values", k), v)
-            if number is not None:
+            if number is not None and self.assumption_holds((*path, "values", k), k, number, positive[k]):
                 values[k] = number
         state_names = [c.name for c in coordinates] + [f"{c.name}_dot" for c in coordinates]
+        positive_coordinates = {c.name for c in coordinates if c.symbol.is_positive}
         initial: dict[str, float] = {}
         for k, v in (self.mapping((*path, "initial"), spec.get("initial", {})) or {}).items():
             if k not in state_names:
@@ -750,7 +787,8 @@ class _Loader:
                            _known("names", state_names))
                 continue
             number = self.number((*path, "initial", k), v)
-            if number is not None:
+            if number is not None and self.assumption_holds((*path, "initial", k), k, number,
+                                                            k in positive_coordinates, "coordinate"):
                 initial[k] = number
         functions = self.concrete_functions((*path, "functions"), spec.get("functions", {}), parameters)
         t_end = self.number((*path, "t_end"), spec["t_end"], positive=True) if "t_end" in spec else None

@@ -46,17 +46,40 @@ def _pfaffian(form: tuple[Any, ...], variables: tuple[Any, ...], tex: Any) -> st
     return out or "0"
 
 
-def analysis_context(derivation: Derivation, note: Notation) -> dict[str, Any] | None:
-    """Strings for the analysis sections (None when the derivation carries no analysis)."""
+def _contact(checks: Any, tex: Any) -> dict[str, Any]:
+    """A unilateral constraint's force at an equilibrium, for the templates: ``admissible`` False when one
+    would pull, None when a sign depends on the parameters, True when all push, and the multipliers there."""
+    if not checks:
+        return {"admissible": True, "contact": []}
+    verdicts = [c.admissible for c in checks]
+    admissible = False if False in verdicts else (None if None in verdicts else True)
+    return {"admissible": admissible,
+            "contact": [{"constraint": c.constraint, "multiplier": tex(sympy.Symbol(f"lambda_{c.constraint}")),
+                         "value": tex(c.multiplier), "admissible": c.admissible} for c in checks]}
+
+
+def _contact_json(checks: Any) -> dict[str, Any]:
+    if not checks:
+        return {}
+    verdicts = [c.admissible for c in checks]
+    return {"admissible": False if False in verdicts else (None if None in verdicts else True),
+            "contact": {c.constraint: to_json(c.multiplier) for c in checks}}
+
+
+def analysis_context(derivation: Derivation, note: Notation, math: str = "latex") -> dict[str, Any] | None:
+    """Strings for the analysis sections (None when the derivation carries no analysis); expressions in LaTeX,
+    or in presentation MathML when ``math`` is "mathml"."""
     analysis = derivation.analysis
     if analysis is None:
         return None
-    tex, text = note.latex, note.text
+    tex, text = (note.mathml if math == "mathml" else note.latex), note.text
     constraints = []
     for k in analysis.classification:
         entry: dict[str, Any] = {"name": k.name, "kind": k.kind, "kind_text": KINDS[k.kind], "note": k.note}
         if k.kind != "holonomic":
-            entry["form"] = _pfaffian(k.form, k.variables, tex)
+            entry["form"] = (_pfaffian(k.form, k.variables, tex) if math == "latex" else
+                             tex(sum((w * sympy.Symbol(f"d{x.name}") for w, x in zip(k.form, k.variables,
+                                                                                    strict=True)), sympy.Integer(0))))
             entry["exact"] = k.exact
             entry["factor"] = tex(k.factor) if k.factor is not None and k.factor != 1 else ""
         if k.kind == "integrable":
@@ -87,7 +110,8 @@ def analysis_context(derivation: Derivation, note: Notation) -> dict[str, Any] |
             "forces": [{"coordinate": tex(q), "value": tex(f)} for q, f in zip(r.independent, r.generalized_forces,
                                                                                 strict=True) if f != 0],
             "equations": [{"coordinate": tex(q), "lhs": tex(lhs), "rhs": tex(rhs)}
-                          for q, (lhs, rhs) in zip(r.independent, r.equation_sides, strict=True)],
+                          for q, (lhs, rhs) in zip(r.independent, r.equation_sides, strict=True)]
+            if r.equation_sides else [],
             "accelerations": [{"symbol": tex(c.acceleration), "tex": tex(r.accelerations[c.name])}
                               for c in derivation.problem.coordinates if c.name in r.accelerations],
             "agreement": r.agreement,
@@ -97,7 +121,7 @@ def analysis_context(derivation: Derivation, note: Notation) -> dict[str, Any] |
     conservation = analysis.conservation
     conserved = []
     for c in conservation.quantities:
-        symbol = tex(sympy.Symbol(c.name)) if c.kind == "momentum" else "h"
+        symbol = tex(sympy.Symbol(c.name)) if c.kind == "momentum" else tex(sympy.Symbol("h"))
         conserved.append({
             "name": c.name, "kind": c.kind, "symbol": symbol, "tex": tex(c.expression), "text": text(c.expression),
             "coordinate": tex(c.coordinate) if c.coordinate is not None else "",
@@ -110,7 +134,8 @@ def analysis_context(derivation: Derivation, note: Notation) -> dict[str, Any] |
         q = v.coordinate
         q0 = _at(q, derivation.problem.symbols)
         equilibria = []
-        for e in v.equilibria:
+        checks = analysis.effective_contact or ((),) * len(v.equilibria)
+        for e, check in zip(v.equilibria, checks, strict=True):
             power = e.condition.lhs == q or (isinstance(e.condition.lhs, sympy.Pow) and e.condition.lhs.base == q)
             equilibria.append({
                 "value": tex(e.value) if e.value is not None and not power else "",
@@ -125,6 +150,7 @@ def analysis_context(derivation: Derivation, note: Notation) -> dict[str, Any] |
                 "frequency_squared": (tex((e.frequency_squared_at if e.frequency_squared_at is not None
                                            else e.frequency_squared).xreplace({q: q0}))
                                       if e.frequency_squared is not None else ""),
+                **_contact(check, tex),
             })
         effective = {
             "coordinate": tex(q), "at": tex(q0), "velocity": tex(derivation.model.velocities[
@@ -141,7 +167,8 @@ def analysis_context(derivation: Derivation, note: Notation) -> dict[str, Any] |
     lin = analysis.linearization
     if lin is not None:
         modes = {"coordinates": [tex(q) for q in lin.coordinates], "equilibria": []}
-        for m in lin.modes:
+        checks = analysis.modes_contact or ((),) * len(lin.modes)
+        for m, check in zip(lin.modes, checks, strict=True):
             has_g, has_d = any(x != 0 for x in m.gyroscopic), any(x != 0 for x in m.damping)
             modes["equilibria"].append({
                 "point": [{"coordinate": tex(q), "value": tex(x)} for q, x in m.point],
@@ -149,7 +176,7 @@ def analysis_context(derivation: Derivation, note: Notation) -> dict[str, Any] |
                 "gyroscopic": tex(m.gyroscopic) if has_g else "", "damping": tex(m.damping) if has_d else "",
                 "squares": [tex(s) for s in m.squared_frequencies] if m.squared_frequencies is not None else [],
                 "frequencies": [tex(f) if f is not None else "" for f in m.frequencies] if m.frequencies else [],
-                "stable": m.stable, "note": m.note,
+                "stable": m.stable, "note": m.note, **_contact(check, tex),
             })
     return {
         "constraints": constraints,
@@ -234,8 +261,10 @@ def analysis_json(derivation: Derivation) -> dict[str, Any] | None:
                             "stability_condition": (to_json(e.stability_condition)
                                                     if e.stability_condition is not None else None),
                             "frequency_squared_at": (to_json(e.frequency_squared_at)
-                                                     if e.frequency_squared_at is not None else None)}
-                           for e in v.equilibria],
+                                                     if e.frequency_squared_at is not None else None),
+                            **_contact_json(check)}
+                           for e, check in zip(v.equilibria, analysis.effective_contact or ((),) * len(v.equilibria),
+                                               strict=True)],
         }
     lin = analysis.linearization
     if lin is None:
@@ -252,7 +281,8 @@ def analysis_json(derivation: Derivation) -> dict[str, Any] | None:
                 "squared_frequencies": ([to_json(s) for s in m.squared_frequencies]
                                         if m.squared_frequencies is not None else None),
                 "stable": m.stable,
-            } for m in lin.modes],
+                **_contact_json(check),
+            } for m, check in zip(lin.modes, analysis.modes_contact or ((),) * len(lin.modes), strict=True)],
         }
     return out
 
@@ -285,7 +315,7 @@ def analysis_summary(derivation: Derivation, note: Notation) -> list[str]:
     if v is not None:
         q, q0 = v.coordinate, _at(v.coordinate, derivation.problem.symbols)
         lines.append(f"  effective potential: V_eff({text(q)}) = {text(v.expression)}")
-        for e in v.equilibria:
+        for k, e in enumerate(v.equilibria):
             condition = e.condition.xreplace({q: q0})
             power = e.condition.lhs == q or (isinstance(e.condition.lhs, sympy.Pow) and e.condition.lhs.base == q)
             where = (f"{text(q0)} = {text(e.value)}" if e.value is not None and not power
@@ -302,15 +332,29 @@ def analysis_summary(derivation: Derivation, note: Notation) -> list[str]:
             if e.frequency_squared is not None:
                 square = e.frequency_squared_at if e.frequency_squared_at is not None else e.frequency_squared
                 line += f", ω² = {text(square.xreplace({q: q0}))}"
+            line += _contact_summary(analysis.effective_contact[k] if analysis.effective_contact else (), text)
             lines.append(line)
     lin = analysis.linearization
     if lin is not None:
         lines.append("  equilibria:")
-        for m in lin.modes:
+        for k, m in enumerate(lin.modes):
             point = ", ".join(f"{text(q)} = {text(x)}" for q, x in m.point)
             verdict = {True: "stable", False: "unstable", None: "stability not decided"}[m.stable]
             squares = ""
             if m.squared_frequencies is not None and m.stable:
                 squares = ", ω² = " + "; ".join(text(s) for s in m.squared_frequencies)
-            lines.append(f"    {point}: {verdict}{squares}")
+            contact = _contact_summary(analysis.modes_contact[k] if analysis.modes_contact else (), text)
+            lines.append(f"    {point}: {verdict}{squares}{contact}")
     return lines
+
+
+def _contact_summary(checks: Any, text: Any) -> str:
+    """`` (not admissible: surface would pull, λ = -g m)`` for a terminal line; empty when every force pushes."""
+    pulling = [c for c in checks if c.admissible is False]
+    if pulling:
+        return " (not admissible: " + "; ".join(f"{c.constraint} would pull, λ = {text(c.multiplier)}"
+                                                for c in pulling) + ")"
+    open_ = [c for c in checks if c.admissible is None]
+    if open_:
+        return " (only while " + "; ".join(f"{text(c.multiplier)} ≥ 0" for c in open_) + ")"
+    return ""

@@ -72,7 +72,9 @@ def label(verdict: Verdict, note: Notation, coordinates: tuple[str, ...] = ()) -
 
 def describe(verdict: Verdict, note: Notation) -> str:
     """The verdict in words."""
-    from lagsolve import check as c
+    import importlib
+
+    c = importlib.import_module("lagsolve.check")  # the module; the attribute ``lagsolve.check`` is the function
 
     reason = verdict.reason
     if reason == c.SYMBOLIC:

@@ -11,13 +11,19 @@ environment in :mod:`lagsolve.render.report`.
 
 from __future__ import annotations
 
+import re
 import unicodedata
-from collections.abc import Callable
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import sympy
+from markupsafe import Markup, escape
 from sympy.printing.latex import LatexPrinter
+from sympy.printing.mathml import MathMLPresentationPrinter
 from sympy.printing.str import StrPrinter
+
+from lagsolve.render.breaking import boxed, broken, equation, formula, matrix, vector
+from lagsolve.render.prose import description_segments, render_segments, segments
 
 _GREEK = {
     "alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "zeta": "ζ", "eta": "η",
@@ -67,11 +73,23 @@ class MechanicsLatexPrinter(LatexPrinter):
             inner = super()._print_Symbol(sympy.Symbol(base))
             return ("\\dot{%s}" if order == 1 else "\\ddot{%s}") % inner
         for prefix, head in (("lambda_", "\\lambda"), ("N_", "N")):
-            if expr.name.startswith(prefix) and "_" in expr.name[len(prefix):]:
-                # a multiplier or normal force named after a constraint with '_' in its name
-                label = expr.name[len(prefix):].replace("_", "\\_")
-                return f"{head}_{{\\mathrm{{{label}}}}}"
+            label = expr.name[len(prefix):]
+            if expr.name.startswith(prefix) and _worded(label):
+                # a multiplier or normal force named after its constraint: the label is a word, set upright
+                escaped = label.replace("_", "\\_")
+                return f"{head}_{{\\mathrm{{{escaped}}}}}"
+        head, sep, tail = expr.name.partition("_")
+        if sep and head and _worded(tail) and "_" not in tail:
+            return f"{super()._print_Symbol(sympy.Symbol(head))}_{{\\mathrm{{{tail}}}}}"
         return super()._print_Symbol(expr)
+
+    def _print_Mul(self, expr: Any) -> str:
+        flipped = _positive_denominators(expr)
+        return super()._print_Mul(expr) if flipped is expr else self._print(flipped)
+
+    def ordered_terms(self, expr: Any) -> list[Any]:
+        """The terms of a sum in the order this printer writes them."""
+        return list(self._as_ordered_terms(expr, order=None))
 
     def _print_Derivative(self, expr: Any) -> str:
         found = _single_function_derivative(expr)
@@ -80,6 +98,26 @@ class MechanicsLatexPrinter(LatexPrinter):
         inner, order = found
         name = self._print(sympy.Symbol(inner.func.__name__))
         return f"{name}{_prime(order)}\\left({self._print(inner.args[0])}\\right)"
+
+
+def _worded(label: str) -> bool:
+    """A subscript that is a word (``wire``, ``cart``, ``floor_1``), not a Greek letter or an index."""
+    letters = label.rstrip("0123456789")
+    return len(letters) > 1 and letters not in _GREEK and letters.replace("_", "").isalpha()
+
+
+def _positive_denominators(expr: Any) -> Any:
+    """``x/(-M - m)`` → ``-x/(M + m)``: a denominator whose terms are all negative gives up its sign."""
+    factors = list(sympy.Mul.make_args(expr))
+    sign = 1
+    for k, f in enumerate(factors):
+        if (isinstance(f, sympy.Pow) and f.exp.is_Integer and f.exp < 0 and isinstance(f.base, sympy.Add)
+                and all(t.could_extract_minus_sign() for t in f.base.args)):
+            factors[k] = sympy.Pow(-f.base, f.exp)
+            sign *= -1 if f.exp % 2 else 1
+    if all(a is b for a, b in zip(factors, sympy.Mul.make_args(expr), strict=True)):
+        return expr
+    return sympy.Mul(sign, *factors)
 
 
 def _greek(name: str, mark: str = "") -> str:
@@ -108,6 +146,10 @@ class MechanicsTextPrinter(StrPrinter):
             return self._print(base) + "⁰¹²³⁴⁵⁶⁷⁸⁹"[int(exp)]
         return super()._print_Pow(expr, rational)
 
+    def _print_Mul(self, expr: Any) -> str:
+        flipped = _positive_denominators(expr)
+        return super()._print_Mul(expr) if flipped is expr else self._print(flipped)
+
     def _print_Derivative(self, expr: Any) -> str:
         found = _single_function_derivative(expr)
         if found is None:
@@ -116,19 +158,87 @@ class MechanicsTextPrinter(StrPrinter):
         return f"{inner.func.__name__}{_prime(order) if order <= 3 else f'^({order})'}({self._print(inner.args[0])})"
 
 
+class MechanicsMathMLPrinter(MathMLPresentationPrinter):
+    """Presentation MathML with dots for rates, primes for declared functions and upright word subscripts."""
+
+    def __init__(self, rates: frozenset[str] = frozenset(), settings: dict | None = None) -> None:
+        super().__init__(settings or {})
+        self.rates = rates
+
+    def _element(self, tag: str, text: str | None = None, **attributes: str) -> Any:
+        node = self.dom.createElement(tag)
+        for key, value in attributes.items():
+            node.setAttribute(key, value)
+        if text is not None:
+            node.appendChild(self.dom.createTextNode(text))
+        return node
+
+    def _print_Symbol(self, sym: Any, style: str = "plain") -> Any:
+        base, order = _split_rate(sym.name)
+        if order and base in self.rates:
+            letters = base.rstrip("0123456789")
+            over = self._element("mover", accent="true")
+            over.appendChild(self._print(sympy.Symbol(letters or base)))
+            over.appendChild(self._element("mo", "\u02d9" if order == 1 else "\u00a8"))
+            if not letters or letters == base:
+                return over
+            sub = self._element("msub")  # θ̇ with its index below: the dot sits on the letter
+            sub.appendChild(over)
+            sub.appendChild(self._element("mn", base[len(letters):]))
+            return sub
+        head, sep, tail = sym.name.partition("_")
+        if sep and head and _worded(tail):
+            sub = self._element("msub")
+            sub.appendChild(self._print(sympy.Symbol(head)))
+            sub.appendChild(self._element("mi", tail, mathvariant="normal"))
+            return sub
+        return super()._print_Symbol(sym, style)
+
+    def _print_Mul(self, expr: Any) -> Any:
+        flipped = _positive_denominators(expr)
+        return super()._print_Mul(expr) if flipped is expr else self._print(flipped)
+
+    def parenthesize(self, item: Any, level: int, strict: bool = False) -> Any:
+        """f'(x) needs no parentheses of its own in a product, as in the LaTeX."""
+        if isinstance(item, sympy.Derivative) and _single_function_derivative(item) is not None:
+            return self._print(item)
+        return super().parenthesize(item, level, strict)
+
+    def _print_Derivative(self, expr: Any) -> Any:
+        found = _single_function_derivative(expr)
+        if found is None:
+            return super()._print_Derivative(expr)
+        inner, order = found
+        row = self._element("mrow")
+        name = self._element("msup")
+        name.appendChild(self._element("mi", inner.func.__name__))
+        name.appendChild(self._element("mo", "\u2032" * order) if order <= 3 else self._element("mn", f"({order})"))
+        row.appendChild(name)
+        row.appendChild(self._element("mo", "("))
+        row.appendChild(self._print(inner.args[0]))
+        row.appendChild(self._element("mo", ")"))
+        return row
+
+
 class Notation:
     """Printers bound to one problem's coordinates (which names get dots)."""
 
     def __init__(self, coordinates: list[str] | tuple[str, ...]) -> None:
         rates = frozenset(coordinates)
+        self.coordinates = tuple(coordinates)
         self._latex = MechanicsLatexPrinter(rates, {"mul_symbol": None})
         self._text = MechanicsTextPrinter(rates)
+        self._mathml = MechanicsMathMLPrinter(rates)
 
     def latex(self, expr: Any) -> str:
         return self._latex.doprint(expr)
 
     def text(self, expr: Any) -> str:
         return self._text.doprint(expr)
+
+    def mathml(self, expr: Any) -> str:
+        """Presentation MathML (without the ``<math>`` element), as browsers render it natively."""
+        return self._mathml.doprint(expr)
 
 
 def to_json(expr: Any) -> str:
@@ -149,7 +259,17 @@ def tex_escape(text: str) -> str:
     >>> tex_escape(r"\input{x} 50% & $1")
     '\\textbackslash{}input\\{x\\} 50\\% \\& \\$1'
     """
-    return "".join(_tex_char(ch) for ch in str(text) if ch in "\n\t" or ch.isprintable())
+    out = []
+    for k, piece in enumerate(_MARKED.split(str(text))):
+        if k % 2:  # a letter with a dot or two above it, or a superscript T (q̈, Aᵀ in the notes)
+            accent = {"\u0307": "\\dot", "\u0308": "\\ddot"}.get(piece[-1])
+            out.append(f"$\\{accent[1:]}{{{piece[0]}}}$" if accent else "$^{T}$")
+        else:
+            out.append("".join(_tex_char(ch) for ch in piece if ch in "\n\t" or ch.isprintable()))
+    return "".join(out)
+
+
+_MARKED = re.compile("([A-Za-z][\u0307\u0308]|\u1d40)")
 
 
 def _tex_char(ch: str) -> str:
@@ -159,7 +279,7 @@ def _tex_char(ch: str) -> str:
         return ch  # ASCII and Latin-1 letters work with inputenc/T1
     name = unicodedata.name(ch, "")
     if name.startswith("GREEK ") and " LETTER " in name:
-        letter = name.rsplit(" ", 1)[-1].lower()
+        letter = name.rsplit(" ", 1)[-1].lower().replace("lamda", "lambda")  # Unicode spells it LAMDA
         if "CAPITAL" in name:
             letter = letter.capitalize()
         if letter in _GREEK:
@@ -187,13 +307,186 @@ def md_escape(text: str) -> str:
     return "".join(out)
 
 
+_FENCE_RE = re.compile(r"^( {0,3})([`~])(?=\2\2)", re.MULTILINE)
+
+
 def md_prose(text: str) -> str:
-    """A description for the Markdown report: Markdown is kept, raw HTML and math delimiters are not."""
-    return str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace("$", "\\$")
+    r"""A description for the Markdown report: Markdown is kept, raw HTML, math delimiters and code
+    fences are not (a fence would turn the rest of the report into code).
+
+    >>> md_prose("See <b> $x$\n```python")
+    'See &lt;b&gt; \\$x\\$\n\\```python'
+    """
+    text = str(text).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;").replace("$", "\\$")
+    return _FENCE_RE.sub(r"\1\\\2", text)
 
 
-FILTERS: dict[str, Callable[[str], str]] = {
+def tex_lines(text: str) -> str:
+    r"""Preformatted user text (a simulation summary) as TeX lines: every character escaped, spaces kept
+    as ties so columns line up in ``\ttfamily``, each line ended by ``\\``. Unlike ``verbatim``, no
+    text can end the environment.
+
+    >>> print(tex_lines("a  b\n\\end{verbatim}"))
+    a~~b\\
+    \textbackslash{}end\{verbatim\}
+    """
+    lines = [tex_escape(line).replace(" ", "~") or "~" for line in str(text).rstrip("\n").split("\n")]
+    return "\\\\\n".join(lines)
+
+
+def md_code(text: str) -> str:
+    """Preformatted user text as a fenced Markdown code block whose fence no backtick run in it can close.
+
+    >>> print(md_code("a ``` b"))
+    ````text
+    a ``` b
+    ````
+    """
+    body = str(text).rstrip("\n")
+    longest = max((len(run) for run in re.findall(r"`+", body)), default=0)
+    fence = "`" * max(3, longest + 1)
+    return f"{fence}text\n{body}\n{fence}"
+
+
+_ASCII = {
+    _DOT: "_dot", _DDOT: "_ddot", "\u2212": "-", "\u2013": "-", "\u2014": "--", "\u2192": "->",
+    "\u00b7": "*", "\u2202": "d", "\u2264": "<=", "\u2265": ">=", "\u2260": "!=", "\u2026": "...",
+    "\u2713": "+", "\u2717": "X", "\u25cb": "o", "\u25a1": "[]", "\u1d40": "^T", "\u221a": "sqrt",
+    "\u00d7": "*", "\u00b1": "+/-",
+    "\u2248": "~", "\u221e": "oo", "\u2227": "^", "\u00a0": " ",
+}
+
+
+def ascii_text(text: str) -> str:
+    """Text in ASCII for a terminal that cannot show Unicode: ẍ → x_ddot, θ̇ → theta_dot, λ → lambda,
+    ² → **2, ✓ → +, ✗ → X; other accents are dropped and anything else unknown becomes '?'.
+
+    >>> ascii_text("λ_wire = m*(g + ẋ²*f''(x)) ✓ θ̇₀ −1 → é")
+    "lambda_wire = m*(g + x_dot**2*f''(x)) + theta_dot0 -1 -> e"
+    """
+    out: list[str] = []
+    exponent = False  # inside a run of superscripts: ⁻¹⁰ → **-10
+    for ch in unicodedata.normalize("NFD", str(text)):
+        name = "" if ch.isascii() else unicodedata.name(ch, "")
+        if name.startswith("SUPERSCRIPT ") and (name.endswith("MINUS") or unicodedata.digit(ch, None) is not None):
+            out.append(("" if exponent else "**") + ("-" if name.endswith("MINUS") else str(unicodedata.digit(ch))))
+            exponent = True
+            continue
+        exponent = False
+        if ch.isascii():
+            out.append(ch)
+        elif ch in _ASCII:
+            out.append(_ASCII[ch])
+        elif unicodedata.combining(ch):
+            continue
+        elif name.startswith("GREEK ") and " LETTER " in name:
+            letter = name.rsplit(" ", 1)[-1].lower().replace("lamda", "lambda")
+            out.append(letter.capitalize() if "CAPITAL" in name else letter)
+        elif name.startswith("SUBSCRIPT ") and unicodedata.digit(ch, None) is not None:
+            out.append(str(unicodedata.digit(ch)))
+        else:
+            out.append("?")
+    return "".join(out)
+
+
+def ascii_fallback(error: UnicodeError) -> tuple[str, int]:
+    """A codec error handler (``codecs.register_error``) writing :func:`ascii_text` for what the
+    stream's encoding cannot hold."""
+    if not isinstance(error, UnicodeEncodeError):
+        raise error
+    return ascii_text(error.object[error.start: error.end]), error.end
+
+
+def tex_prose(text: str, symbols: Mapping[str, Sequence[str]]) -> str:
+    """A note of the derivation for LaTeX: the quantities it names as math, the rest escaped."""
+    return "".join(f"${tex}$" if kind == "math" else tex_escape(tex) for kind, tex, _ in segments(text, symbols))
+
+
+def md_math_prose(text: str, symbols: Mapping[str, Sequence[str]]) -> str:
+    """A note of the derivation for Markdown: the quantities it names as GitHub math, the rest escaped."""
+    return "".join(f"$`{tex}`$" if kind == "math" else md_prose(tex) for kind, tex, _ in segments(text, symbols))
+
+
+def tex_description(text: str) -> str:
+    """A description from the file for LaTeX: its safe ``$...$`` math kept, everything else escaped."""
+    return render_segments(description_segments(text), tex_escape, lambda m: f"${m}$")
+
+
+def md_description(text: str) -> str:
+    """A description from the file for Markdown: its safe ``$...$`` math as GitHub math, the rest escaped."""
+    return render_segments(description_segments(text), lambda t: md_prose(t).replace("|", "\\|"),
+                           lambda m: f"$`{m}`$")
+
+
+def mathml_fragment(mathml: str) -> Markup:
+    """MathML printed by :class:`MechanicsMathMLPrinter` (from expressions, never from file text), unescaped."""
+    return Markup(mathml)  # noqa: S704 - SymPy's printer escapes text; names are validated identifiers
+
+
+def mathml_inline(mathml: str) -> Markup:
+    """An expression's MathML as inline math."""
+    return Markup("<math>{}</math>").format(mathml_fragment(mathml))
+
+
+_UNICODE_TEX = {**{f"\\{name}": letter for name, letter in _GREEK.items()}, "\\partial": "∂", "\\cdot": "·",
+                "\\times": "×", "\\le": "≤", "\\ge": "≥", "\\ne": "≠", "\\infty": "∞", "\\pm": "±"}
+
+
+def _tex_to_text(tex: str) -> str:
+    r"""Safe description math as readable Unicode for HTML: ``\dot{\theta}^2`` → ``θ̇²``, ``\sqrt{x}`` → ``√(x)``."""
+    out = re.sub(r"\\(dot|ddot)\s*\{?\s*(\\?[A-Za-z]+)\s*\}?",
+                 lambda m: m.group(2) + (_DDOT if m.group(1) == "ddot" else _DOT), tex)
+    for _ in range(4):  # nested groups, innermost first
+        out = re.sub(r"\\sqrt\s*\{([^{}]*)\}", r"√(\1)", out)
+        out = re.sub(r"\\[dt]?frac\s*\{([^{}]*)\}\s*\{([^{}]*)\}", r"(\1)/(\2)", out)
+    out = re.sub(r"\\(sin|cos|tan|cot|sec|csc|sinh|cosh|tanh|exp|log|ln|arcsin|arccos|arctan)\b\s*", r"\1 ", out)
+    for command, letter in sorted(_UNICODE_TEX.items(), key=lambda kv: -len(kv[0])):
+        out = re.sub(re.escape(command) + r"(?![A-Za-z])", letter, out)
+    out = out.replace("\\,", "\u2009").replace("\\;", " ").replace("\\!", "").replace("\\ ", " ")
+    out = re.sub(r"\^\{?(\d)\}?", lambda m: "⁰¹²³⁴⁵⁶⁷⁸⁹"[int(m.group(1))], out)
+    return re.sub(r"\\[A-Za-z]+\s*", "", out).replace("{", "").replace("}", "")
+
+
+def html_description(text: str) -> Markup:
+    """A description for the HTML report: text escaped, its safe ``$...$`` math in italics as Unicode."""
+    return Markup("").join(Markup('<i class="m">{}</i>').format(_tex_to_text(p)) if kind == "math" else escape(p)
+                           for kind, p in description_segments(text))
+
+
+def html_prose(text: str, symbols: Mapping[str, Sequence[str]]) -> Markup:
+    """A note of the derivation for HTML: the quantities it names in italics (Unicode), the rest escaped."""
+    return Markup("").join(Markup('<i class="m">{}</i>').format(uni) if kind == "math" else escape(uni)
+                           for kind, _, uni in segments(text, symbols))
+
+
+def symbol_table(names: dict[str, Any], note: Notation) -> dict[str, list[str]]:
+    """The problem's names (and ``x_dot``, ``p_x``, ``Q_x`` of each coordinate) → [LaTeX, text] (plain data)."""
+    table = {name: [note.latex(sym), note.text(sym)] for name, sym in names.items() if isinstance(sym, sympy.Symbol)}
+    for name in note.coordinates:
+        for extra in (f"{name}_dot", f"{name}_ddot", f"p_{name}", f"Q_{name}"):
+            sym = sympy.Symbol(extra)
+            table[extra] = [note.latex(sym), note.text(sym)]
+    return table
+
+
+FILTERS: dict[str, Callable[..., str]] = {
+    "m": mathml_inline,
+    "mml": mathml_fragment,
+    "html_prose": html_prose,
+    "html_description": html_description,
+    "tex_prose": tex_prose,
+    "md_math": md_math_prose,
+    "tex_description": tex_description,
+    "md_description": md_description,
     "tex": tex_escape,
+    "tex_lines": tex_lines,
+    "boxed": boxed,
+    "broken": broken,
+    "formula": formula,
+    "equation": equation,
+    "matrix": matrix,
+    "vector": vector,
     "md": md_escape,
     "md_prose": md_prose,
+    "md_code": md_code,
 }

@@ -31,7 +31,7 @@ def _figure(title: str, rows: int = 1, cols: int = 1, **kwargs: Any) -> tuple[An
 
     fig = Figure(figsize=kwargs.pop("figsize", (7.5, 2.2 + 2.4 * rows)), layout="constrained")
     axes = fig.subplots(rows, cols, squeeze=False, **kwargs)
-    fig.suptitle(title)
+    fig.suptitle(title, parse_math=False)  # user text: a "$" in a name is not mathtext
     return fig, axes
 
 
@@ -209,7 +209,7 @@ def animation_gif(trajectory: Trajectory, title: str, frames: int = 120) -> byte
     ax.set_xlim(*_padded(pos[:, [o for o, _ in _offsets(trajectory)]].ravel()))
     ax.set_ylim(*_padded(pos[:, [o + 1 for o, _ in _offsets(trajectory)]].ravel()))
     ax.set_aspect("equal", adjustable="box")
-    ax.set_title(title)
+    ax.set_title(title, parse_math=False)
     ax.grid(alpha=0.3)
     dots = [ax.plot([], [], "o", markersize=8, label=name)[0] for name, _ in trajectory.particles]
     trails = [ax.plot([], [], "-", linewidth=0.8, alpha=0.6)[0] for _ in trajectory.particles]

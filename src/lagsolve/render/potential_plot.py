@@ -64,7 +64,7 @@ def potential_figure(q: Sequence[float], v: Sequence[float],
     axes.set_xlabel(f"${coordinate}$")
     axes.set_ylabel(r"$V_{\mathrm{eff}}$")
     if title:
-        axes.set_title(title)
+        axes.set_title(title, parse_math=False)  # user text: a "$" in a name is not mathtext
     axes.grid(True, alpha=0.3)
     axes.legend()
     return figure
@@ -104,7 +104,7 @@ def potential_curve(derivation: Derivation, values: Mapping[str, float], momenta
     missing = expression.free_symbols - {q}
     if missing:
         raise ValueError(f"no value for {', '.join(sorted(map(str, missing)))}")
-    function = sympy.lambdify(q, expression, "math")
+    function = sympy.lambdify(q, expression, "math", dummify=True)
     points = []
     for e in effective.equilibria:
         if e.value is None:
@@ -142,9 +142,9 @@ def potential_curve(derivation: Derivation, values: Mapping[str, float], momenta
 def _numeric_equilibria(q: Any, expression: Any, grid: list[float]) -> list[tuple[float, float, bool | None]]:
     """Zeros of V_eff' between grid points where it changes sign (bisection), for equilibria
     known only as a condition."""
-    slope = sympy.lambdify(q, sympy.diff(expression, q), "math")
-    curvature = sympy.lambdify(q, sympy.diff(expression, q, 2), "math")
-    function = sympy.lambdify(q, expression, "math")
+    slope = sympy.lambdify(q, sympy.diff(expression, q), "math", dummify=True)
+    curvature = sympy.lambdify(q, sympy.diff(expression, q, 2), "math", dummify=True)
+    function = sympy.lambdify(q, expression, "math", dummify=True)
     found = []
     for a, b in zip(grid, grid[1:], strict=False):
         try:

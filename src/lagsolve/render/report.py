@@ -9,6 +9,7 @@ Nothing here simplifies: every expression arrives in display form.
 
 from __future__ import annotations
 
+import base64
 import json
 from importlib import resources
 from pathlib import Path
@@ -20,24 +21,26 @@ import sympy
 from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.render.analysis_report import analysis_context, analysis_json, analysis_summary, contract_json
-from lagsolve.render.notation import FILTERS, Notation, to_json
+from lagsolve.render.notation import FILTERS, Notation, symbol_table, to_json
 
 FORMAT_VERSION = 1
 #: above this many coordinates the matrix form is written one equation per row instead of as matrices
 LARGE = 3
-FORMATS = {"md": ("markdown", "report.md.j2"), "tex": ("latex", "report.tex.j2"), "json": (None, None)}
+FORMATS = {"md": ("markdown", "report.md.j2"), "tex": ("latex", "report.tex.j2"), "html": ("html", "report.html.j2"),
+           "json": (None, None)}
 
 
 # -- context ------------------------------------------------------------------------------------
 
 
-def context(derivation: Derivation) -> dict[str, Any]:
-    """Everything a template needs, as plain strings, lists and dicts."""
+def context(derivation: Derivation, math: str = "latex") -> dict[str, Any]:
+    """Everything a template needs, as plain strings, lists and dicts; expressions in LaTeX, or in presentation
+    MathML when ``math`` is "mathml" (the HTML report; the keys keep their names)."""
     problem = derivation.problem
     model = derivation.model
     names = [c.name for c in problem.coordinates]
     note = Notation(names)
-    tex, text = note.latex, note.text
+    tex, text = (note.mathml if math == "mathml" else note.latex), note.text
 
     def both(expr: Any) -> dict[str, str]:
         return {"tex": tex(expr), "text": text(expr), "json": to_json(expr)}
@@ -47,6 +50,7 @@ def context(derivation: Derivation) -> dict[str, Any]:
          "description": c.description}
         for c in problem.coordinates
     ]
+    unilateral = {c.name for c in problem.constraints if c.unilateral}
     constraints = []
     for c in derivation.constraints:
         velocity = sum((a * v for a, v in zip(c.coefficients, model.velocities, strict=True)), c.offset)
@@ -60,6 +64,7 @@ def context(derivation: Derivation) -> dict[str, Any]:
             "offset": tex(c.offset),
             "acceleration_rhs": tex(c.acceleration_rhs),
             "on": list(c.on),
+            "unilateral": c.name in unilateral,
         })
     equations = []
     for i, (lhs, rhs) in enumerate(derivation.equation_sides):
@@ -165,10 +170,14 @@ def context(derivation: Derivation) -> dict[str, Any]:
             for i in range(len(coords))] if len(coords) > LARGE else [],
         "accelerations": accelerations,
         "multipliers": multipliers,
+        "unilateral": [{"name": c.name, "multiplier": tex(c.multiplier)} for c in derivation.constraints
+                       if c.name in unilateral],
         "forces": forces,
         "friction": friction,
-        "analysis": analysis_context(derivation, note),
+        "analysis": analysis_context(derivation, note, math),
         "notes": [n.sentence() for n in derivation.notes],
+        "symbols": symbol_table(problem.symbols, note),
+        "math": math,
         "stage_notes": {n.stage: n.reason for n in derivation.notes},
     }
 
@@ -192,7 +201,7 @@ def environment(kind: str, extra: Path | None = None) -> jinja2.Environment:
     dirs = [str(d) for d in template_dirs(kind, extra) if d.is_dir()]
     options: dict[str, Any] = {
         "loader": jinja2.FileSystemLoader(dirs),
-        "autoescape": False,
+        "autoescape": kind == "html",
         "undefined": jinja2.StrictUndefined,
         "keep_trailing_newline": True,
         "trim_blocks": True,
@@ -201,18 +210,23 @@ def environment(kind: str, extra: Path | None = None) -> jinja2.Environment:
     if kind == "latex":
         options.update(block_start_string="((*", block_end_string="*))", variable_start_string="(((",
                        variable_end_string=")))", comment_start_string="((=", comment_end_string="=))")
-    env = jinja2.Environment(**options)  # noqa: S701 - output is Markdown/TeX, escaped by filters
+    env = jinja2.Environment(**options)  # noqa: S701 - Markdown/TeX are escaped by filters, HTML autoescaped
     env.filters.update(FILTERS)
     return env
 
 
 def render(derivation: Derivation, fmt: str, templates: Path | None = None,
-           simulation: dict[str, Any] | None = None, potential: dict[str, Any] | None = None) -> str:
-    """The report of ``derivation`` in ``fmt`` ("md", "tex" or "json")."""
+           simulation: dict[str, Any] | None = None, potential: dict[str, Any] | None = None,
+           files: dict[str, bytes] | None = None) -> str:
+    """The report of ``derivation`` in ``fmt`` ("md", "tex", "html" or "json").
+
+    ``files`` are the figures the report shows (name → PNG bytes): Markdown and LaTeX refer to them by
+    name, the HTML page carries them as ``data:`` URIs so that it is one self-contained file.
+    """
     if fmt == "json":
         return result_json(derivation)
     if fmt not in FORMATS:
-        raise RenderError(f"unknown format {fmt!r}; use md, tex or json")
+        raise RenderError(f"unknown format {fmt!r}; use {', '.join(FORMATS)}")
     kind, name = FORMATS[fmt]
     env = environment(kind or "", templates)
     try:
@@ -220,10 +234,29 @@ def render(derivation: Derivation, fmt: str, templates: Path | None = None,
     except jinja2.TemplateNotFound:
         searched = ", ".join(str(d) for d in template_dirs(kind or "", templates))
         raise RenderError(f"template {kind}/{name} not found; searched: {searched}") from None
+    if fmt == "html":
+        simulation, potential = _inlined(simulation, files or {}), _inlined(potential, files or {})
     try:
-        return template.render(**context(derivation), simulation=simulation, potential_plot=potential)
+        return template.render(**context(derivation, "mathml" if fmt == "html" else "latex"), simulation=simulation,
+                               potential_plot=potential)
     except jinja2.TemplateError as exc:
         raise RenderError(f"template {kind}/{name} failed: {exc}") from None
+
+
+def _inlined(figures: dict[str, Any] | None, files: dict[str, bytes]) -> dict[str, Any] | None:
+    """``figures`` (a simulation's or the potential plot's) with each PNG as a ``data:`` URI under ``data``."""
+    if figures is None:
+        return None
+
+    def uri(name: str) -> str:
+        return "data:image/png;base64," + base64.b64encode(files[name]).decode("ascii") if name in files else ""
+
+    out = dict(figures)
+    if "file" in out:
+        out["data"] = uri(out["file"])
+    if "figures" in out:
+        out["figures"] = [{**f, "data": uri(f["file"])} for f in out["figures"]]
+    return out
 
 
 # -- JSON and terminal summary --------------------------------------------------------------------
@@ -232,6 +265,7 @@ def render(derivation: Derivation, fmt: str, templates: Path | None = None,
 def result_dict(derivation: Derivation) -> dict[str, Any]:
     """The result contract (format section 2) as a dict of strings."""
     problem = derivation.problem
+    unilateral = {c.name for c in problem.constraints if c.unilateral}
     forces: dict[str, Any] | None = None if derivation.constraint_forces is None else {}
     for name, result in (derivation.constraint_forces or {}).items():
         entry: dict[str, Any] = {}
@@ -261,6 +295,7 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
                 "expression": to_json(c.expression),
                 "coefficients": {q.name: to_json(a) for q, a in zip(problem.coordinates, c.coefficients, strict=True)},
                 "offset": to_json(c.offset),
+                **({"unilateral": True} if c.name in unilateral else {}),
             }
             for c in derivation.constraints
         },

@@ -68,7 +68,11 @@ def summary(trajectory: Trajectory, name: str, timing: bool = True) -> str:
     lines.append(f"               {rates}")
     for event in trajectory.events:
         where = ", ".join(f"{k} = {v:.6g}" for k, v in event.state.items() if not k.endswith("_dot"))
-        if event.kind == "release":
+        if event.kind == "release" and event.time == trajectory.t[0] and event.action == "stopped":
+            lines.append(f"  event: constraint {event.name!r} would have to pull at the start, t = {event.time:.10g} "
+                         f"({where}), so contact is lost at once; stopped there (--after-release continue goes on "
+                         "without it)")
+        elif event.kind == "release":
             verb = "stopped there" if event.action == "stopped" else "continued without it"
             lines.append(f"  event: constraint {event.name!r} released at t = {event.time:.10g} ({where}); {verb}")
         else:
@@ -91,3 +95,33 @@ def summary(trajectory: Trajectory, name: str, timing: bool = True) -> str:
         if quantity != "energy" or not stats.get("energy_conserved"):
             lines.append(f"  {quantity} conserved: relative drift {drift:.3g}")
     return "\n".join(lines) + "\n"
+
+
+#: frames of the HTML page's animation (the trajectory is sampled down to at most this many)
+FRAMES = 400
+
+
+def animation(trajectory: Trajectory, frames: int = FRAMES) -> dict[str, Any] | None:
+    """Plain data for the HTML report's time slider: times, each particle's path in the plane of its first
+    two components, the relative drift of the Jacobi integral and each constraint force's magnitude,
+    at most ``frames`` samples (rounded to 5 significant digits). None without particles."""
+    if not trajectory.particles or len(trajectory.t) < 2:
+        return None
+    pick = np.unique(np.linspace(0, len(trajectory.t) - 1, min(frames, len(trajectory.t))).round().astype(int))
+
+    def values(column: Any) -> list[float]:
+        return [float(f"{v:.5g}") if np.isfinite(v) else 0.0 for v in np.asarray(column, dtype=float)[pick]]
+
+    particles = []
+    offset = 0
+    for name, dims in trajectory.particles:
+        xy = trajectory.positions[:, offset:offset + dims]
+        offset += dims
+        particles.append({"name": name, "x": values(xy[:, 0]),
+                          "y": values(xy[:, 1]) if dims > 1 else [0.0] * len(pick)})
+    h = np.asarray(trajectory.energy, dtype=float)
+    scale = max(abs(h[0]), np.max(np.abs(h)) * 1e-3, 1e-300)
+    series = [{"name": "relative drift of h", "values": values((h - h[0]) / scale)}] if np.all(np.isfinite(h)) else []
+    series += [{"name": f"|F_{c}|", "values": values(trajectory.magnitudes[:, j])}
+               for j, c in enumerate(trajectory.constraints)]
+    return {"t": values(trajectory.t), "particles": particles, "series": series}

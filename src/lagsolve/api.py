@@ -1,0 +1,393 @@
+r"""The public library API, for notebooks and tools: load, derive, simulate, check.
+
+Everything runs in this process and returns frozen results holding SymPy and NumPy objects:
+
+>>> import lagsolve
+>>> derivation = lagsolve.derive(FALLING)
+>>> derivation.accelerations["y"]
+-g
+>>> trajectory = lagsolve.simulate(derivation, t_end=1.0, values={"m": 1, "g": 9.81},
+...                                initial={"y": 0, "y_dot": 0}, samples=11)
+>>> round(float(trajectory.q[-1, 0]), 3)
+-4.905
+
+Nothing here prints, exits or writes files; every error is a :class:`~lagsolve.errors.LagsolveError`
+(:class:`~lagsolve.errors.SpecError` for invalid input).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from lagsolve.errors import Issue, SpecError
+
+if TYPE_CHECKING:
+    import numpy as np
+
+    from lagsolve.check import CheckReport
+    from lagsolve.mechanics.derivation import Derivation
+    from lagsolve.numeric.integrate import Event
+    from lagsolve.numeric.integrate import Trajectory as Motion
+    from lagsolve.problem.schema import Problem
+
+__all__ = ["Trajectory", "check", "derive", "load_problem", "simulate"]
+
+#: CPU seconds a derivation gets when the caller gives no budget (the command line's default)
+DEFAULT_BUDGET = 120.0
+
+#: a small problem (a mass falling under gravity) that the examples here use
+FALLING = """\
+name: falling mass
+parameters: {m: mass, g: gravity}
+coordinates: [y]
+particles: {p: {mass: m, position: [0, y]}}
+gravity: [0, -g]
+"""
+
+
+def load_problem(path_or_text: str | Path | bytes) -> Problem:
+    """Read and validate a problem, from a file or from YAML text.
+
+    Parameters
+    ----------
+    path_or_text : str, pathlib.Path or bytes
+        A :class:`~pathlib.Path`, or a string without a line break, is the path of a problem file;
+        a string with a line break (or bytes) is the YAML text itself.
+
+    Returns
+    -------
+    Problem
+        The validated problem (its symbols are SymPy objects).
+
+    Raises
+    ------
+    SpecError
+        Listing every problem found, each with file, line, field and a fix.
+
+    Examples
+    --------
+    >>> problem = load_problem(FALLING)
+    >>> [c.name for c in problem.coordinates]
+    ['y']
+    """
+    from lagsolve.problem import load
+
+    if isinstance(path_or_text, bytes) or (isinstance(path_or_text, str) and "\n" in path_or_text):
+        return load.load_text(path_or_text)
+    if isinstance(path_or_text, str | Path):
+        return load.load_problem(path_or_text)
+    raise SpecError([Issue("<argument>", 0, "", f"expected a path or YAML text, found {type(path_or_text).__name__}")])
+
+
+def _problem(source: Any) -> Problem:
+    from lagsolve.problem.schema import Problem
+
+    return source if isinstance(source, Problem) else load_problem(source)
+
+
+def derive(path_or_problem: str | Path | bytes | Problem, *, budget: float = DEFAULT_BUDGET,
+           analysis: bool = True) -> Derivation:
+    r"""Derive the equations of motion, multipliers and forces of constraint of a problem.
+
+    The equations come in the form
+
+    .. math:: M(q, t)\,\ddot q = F(q, \dot q, t) + A^T\lambda, \qquad A\,\ddot q = \beta,
+
+    and, where the solve succeeds, explicitly as :math:`\ddot q(q, \dot q, t)` and :math:`\lambda(q, \dot q, t)`.
+
+    Parameters
+    ----------
+    path_or_problem : str, pathlib.Path, bytes or Problem
+        A problem file, YAML text (see :func:`load_problem`) or a loaded problem.
+    budget : float
+        CPU seconds for the whole derivation. The matrix form always comes out; each later stage
+        (explicit solve, simplification, forces of constraint, analysis) runs with its share and,
+        when it runs out, leaves its fields ``None`` and a note in ``Derivation.notes``.
+    analysis : bool
+        False leaves out the analysis after the equations (conserved quantities, equilibria).
+
+    Returns
+    -------
+    Derivation
+        Frozen; ``accelerations``, ``multipliers`` (dicts of SymPy expressions by name),
+        ``constraint_forces``, ``mass_matrix`` (Matrix, shape (n, n)) and ``forcing``
+        (Matrix, shape (n, 1)). In a notebook it displays as its report.
+
+    Raises
+    ------
+    SpecError
+        The problem is invalid.
+    DerivationError
+        The accelerations and multipliers are not determined (singular system).
+
+    Notes
+    -----
+    - The budget is enforced in the calling thread only when it is the main thread (CPU-time
+      signals); elsewhere the stages run to the end.
+
+    Examples
+    --------
+    >>> derivation = derive(FALLING)
+    >>> derivation.mass_matrix
+    Matrix([[m]])
+    >>> derivation.forcing
+    Matrix([[-g*m]])
+    """
+    from lagsolve.mechanics.derivation import derive as run
+
+    if not budget > 0:
+        raise SpecError([Issue("<argument>", 0, "budget", f"expected a positive number of seconds, found {budget!r}")])
+    return run(_problem(path_or_problem), budget=budget, analysis=analysis)
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    r"""A simulated motion, with one row per sample time.
+
+    ``t`` has shape (samples,); ``q`` and ``qd`` shape (samples, n) in the order of ``coordinates``;
+    ``multipliers`` and ``magnitudes`` (of the forces of constraint) shape (samples, m) in the order
+    of ``constraints``; ``energy`` is the Jacobi integral :math:`h = \sum_i \dot q_i\,\partial L/\partial
+    \dot q_i - L`. :meth:`columns` gives every column by name (the CSV columns of ``lagsolve
+    simulate``), :meth:`to_dataframe` a pandas DataFrame, :meth:`plot` matplotlib figures.
+    ``motion`` is the integrator's full record.
+    """
+
+    name: str
+    source: str
+    summary: str
+    motion: Motion
+    labels: Mapping[str, str]
+
+    @property
+    def t(self) -> np.ndarray:
+        """Sample times, shape (samples,)."""
+        return self.motion.t
+
+    @property
+    def coordinates(self) -> tuple[str, ...]:
+        """Coordinate names, the columns of ``q`` and ``qd``."""
+        return self.motion.coordinates
+
+    @property
+    def constraints(self) -> tuple[str, ...]:
+        """Constraint names, the columns of ``multipliers`` and ``magnitudes``."""
+        return self.motion.constraints
+
+    @property
+    def q(self) -> np.ndarray:
+        """Coordinates, shape (samples, n)."""
+        return self.motion.q
+
+    @property
+    def qd(self) -> np.ndarray:
+        """Velocities, shape (samples, n)."""
+        return self.motion.qd
+
+    @property
+    def multipliers(self) -> np.ndarray:
+        """Lagrange multipliers, shape (samples, m)."""
+        return self.motion.multipliers
+
+    @property
+    def magnitudes(self) -> np.ndarray:
+        """Magnitudes of the forces of constraint, shape (samples, m)."""
+        return self.motion.magnitudes
+
+    @property
+    def energy(self) -> np.ndarray:
+        """The Jacobi integral h at each sample, shape (samples,)."""
+        return self.motion.energy
+
+    @property
+    def events(self) -> tuple[Event, ...]:
+        """Releases of unilateral constraints and stick–slip changes, in time order."""
+        return self.motion.events
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """Every column by name: ``t``, each coordinate, each ``<q>_dot``, ``lambda_<c>``, ``F_<c>``,
+        ``energy``, friction columns, ``residual`` and the conserved quantities (arrays of shape (samples,))."""
+        from lagsolve.render.trajectory import columns
+
+        return columns(self.motion)
+
+    def to_numpy(self) -> np.ndarray:
+        """The columns of :meth:`columns` side by side, shape (samples, columns)."""
+        import numpy as np
+
+        return np.column_stack(list(self.columns().values()))
+
+    def to_dataframe(self) -> Any:
+        """The columns as a :class:`pandas.DataFrame` indexed by sample (needs pandas).
+
+        Raises
+        ------
+        ImportError
+            pandas is not installed.
+        """
+        try:
+            import pandas
+        except ImportError as exc:
+            raise ImportError("Trajectory.to_dataframe needs pandas: pip install pandas") from exc
+        return pandas.DataFrame(self.columns())
+
+    def plot(self) -> dict[str, Any]:
+        """The figures of the run by name ("path", "coordinates", "phase", "forces", "conservation"),
+        as :class:`matplotlib.figure.Figure` objects (never shown; close them when done)."""
+        from lagsolve.render.plots import figures
+
+        return figures(self.motion, self.name, self.labels)
+
+    def _repr_html_(self) -> str:
+        from lagsolve.render.display import trajectory_html
+
+        return trajectory_html(self)
+
+
+def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t_end: float | None = None,
+             values: Mapping[str, float] | None = None, initial: Mapping[str, float] | None = None,
+             samples: int | None = None, method: str | None = None, rtol: float | None = None,
+             atol: float | None = None, max_step: float | None = None, after_release: str = "stop",
+             coordinates: str = "minimal", budget: float = 60.0) -> Trajectory:
+    r"""Integrate the equations of motion :math:`M\ddot q = F + A^T\lambda` from an initial state.
+
+    Parameters
+    ----------
+    path_or_derivation : str, pathlib.Path, bytes, Problem or Derivation
+        What to simulate. Given a problem, only its matrix form and the cheap analysis are derived
+        (``budget`` CPU seconds); given a :class:`Derivation`, its results are reused.
+    t_end : float, optional
+        End time (default: the file's ``simulation.t_end``).
+    values : mapping of str to float, optional
+        Parameter values, over the file's ``simulation.values``.
+    initial : mapping of str to float, optional
+        Initial coordinates and velocities (``x``, ``x_dot``), over the file's ``simulation.initial``;
+        dependent ones are completed from the constraints.
+    samples, method, rtol, atol, max_step : optional
+        Output times (default 1001), integrator (default DOP853), tolerances (1e-10, 1e-12), largest step.
+    after_release : {"stop", "continue"}
+        What happens when a unilateral constraint's force reaches zero.
+    coordinates : {"minimal", "full"}
+        Integrate the independent coordinates alone where the constraints are solved in closed form,
+        or every coordinate with projection onto the constraints.
+    budget : float
+        CPU seconds for the analysis that finds the conserved quantities to monitor.
+
+    Returns
+    -------
+    Trajectory
+        The sampled motion (NumPy arrays), with its summary.
+
+    Raises
+    ------
+    SpecError
+        An unknown parameter, a missing value or end time, or an initial state off the constraints.
+    SimulationError
+        The integration failed.
+
+    Examples
+    --------
+    >>> run = simulate(FALLING, t_end=2.0, values={"m": 1, "g": 1}, initial={"y": 0, "y_dot": 0}, samples=3)
+    >>> [round(float(y), 9) for y in run.columns()["y"]]
+    [0.0, -0.5, -2.0]
+    """
+    from lagsolve.mechanics.derivation import Derivation
+    from lagsolve.numeric.integrate import METHODS
+    from lagsolve.simulation import SimulationOptions, run_simulation
+
+    choices = {"method": (method, METHODS), "after_release": (after_release, ("stop", "continue")),
+               "coordinates": (coordinates, ("minimal", "full"))}
+    bad = [Issue("<argument>", 0, key, f"expected one of {', '.join(allowed)}, found {given!r}")
+           for key, (given, allowed) in choices.items() if given is not None and given not in allowed]
+    for key, value in (("t_end", t_end), ("rtol", rtol), ("atol", atol), ("max_step", max_step), ("budget", budget)):
+        if value is not None and not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
+            bad.append(Issue("<argument>", 0, key, f"expected a positive finite number, found {value!r}"))
+    if samples is not None and (isinstance(samples, bool) or not isinstance(samples, int)
+                                or not 2 <= samples <= 1_000_000):
+        bad.append(Issue("<argument>", 0, "samples", f"expected a whole number from 2 to 1000000, found {samples!r}"))
+    if bad:
+        raise SpecError(bad)
+    options = SimulationOptions(values=dict(values or {}), initial=dict(initial or {}), t_end=t_end, samples=samples,
+                                method=method, rtol=rtol, atol=atol, max_step=max_step, after_release=after_release,
+                                coordinates=coordinates, analysis_timeout=budget)
+    if isinstance(path_or_derivation, Derivation):
+        from lagsolve.mechanics.analysis import energy_reason
+        from lagsolve.mechanics.chart import minimal_chart
+
+        derivation = path_or_derivation
+        if derivation.form is None:
+            raise SpecError([Issue(derivation.problem.source, 0, "", "this derivation has no matrix form to simulate")])
+        if derivation.analysis is not None:
+            chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
+            energy_note = energy_reason(derivation.analysis.conservation)
+            result = run_simulation(derivation.form, derivation.conserved or {}, options, chart=chart,
+                                    chart_note=chart_note, energy_note=energy_note)
+        else:
+            result = _simulate_form(derivation.form, options)
+    else:
+        from lagsolve.mechanics.matrix_form import matrix_form
+
+        result = _simulate_form(matrix_form(_problem(path_or_derivation), display=False), options)
+    return _trajectory(result)
+
+
+def _simulate_form(form: Any, options: Any) -> Any:
+    from lagsolve.mechanics.analysis import monitored
+    from lagsolve.simulation import run_simulation
+
+    conserved, chart, chart_note, energy_note = monitored(form, options.analysis_timeout)
+    return run_simulation(form, conserved, options, None, "", chart, chart_note, energy_note)
+
+
+def _trajectory(result: Any) -> Trajectory:
+    from lagsolve.render.notation import Notation
+
+    problem_coordinates = result.trajectory.coordinates
+    notation = Notation(list(problem_coordinates))
+    import sympy
+
+    labels = {name: notation.latex(sympy.Symbol(name)) for name in problem_coordinates}
+    return Trajectory(result.name, result.source, result.summary, result.trajectory, labels)
+
+
+def check(path_or_derivation: str | Path | bytes | Problem | Derivation, *, budget: float = DEFAULT_BUDGET,
+          states: int = 24, seed: int = 0) -> CheckReport:
+    """Compare a problem's ``expected:`` answers with its derivation (``lagsolve check``).
+
+    Parameters
+    ----------
+    path_or_derivation : str, pathlib.Path, bytes, Problem or Derivation
+        A problem (derived first, with ``budget`` CPU seconds) or a finished derivation.
+    budget : float
+        CPU seconds for the derivation when one is needed.
+    states : int
+        Random states on the constraint surface a numeric comparison uses.
+    seed : int
+        Seed of those states (the same seed gives the same report).
+
+    Returns
+    -------
+    CheckReport
+        One verdict per expected quantity; ``passed`` is False when any is a mismatch.
+
+    Raises
+    ------
+    SpecError, DerivationError
+        As :func:`derive`.
+
+    Examples
+    --------
+    >>> report = check(FALLING + 'expected: {accelerations: {y: "-g"}}')
+    >>> report.passed, [v.status for v in report.verdicts]
+    (True, ['ok'])
+    """
+    from lagsolve.check import check as run
+    from lagsolve.mechanics.derivation import Derivation
+
+    derivation = path_or_derivation if isinstance(path_or_derivation, Derivation) else derive(
+        path_or_derivation, budget=budget)  # type: ignore[arg-type]
+    return run(derivation, states=states, seed=seed)
+

@@ -1,0 +1,207 @@
+"""JSON Schemas (draft 2020-12) of the problem file and of the JSON result (``lagsolve schema``).
+
+The input schema describes the shape the loader accepts (keys, nesting, which values are
+expressions); the loader checks more than a schema can say (declared names, expression grammar,
+sizes), so a file valid against the schema can still be refused, never the reverse. The output
+schema describes :func:`lagsolve.render.report.result_dict` (format section 2 and the additions
+in ``docs/format.md``). Plain data: nothing here imports SymPy.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+DRAFT = "https://json-schema.org/draft/2020-12/schema"
+KINDS = ("input", "output")
+
+_NAME = {"type": "string", "pattern": "^[A-Za-z][A-Za-z0-9_]*$"}
+_EXPR = {"type": ["string", "number"], "description": "an expression in the declared names (or a number)"}
+_VECTOR = {"type": "array", "items": {"$ref": "#/$defs/expression"}, "minItems": 2, "maxItems": 3}
+_TEXT = {"type": "string"}
+_POSITIVE = {"type": "number", "exclusiveMinimum": 0}
+
+
+def _closed(properties: dict[str, Any], required: tuple[str, ...] = ()) -> dict[str, Any]:
+    out: dict[str, Any] = {"type": "object", "properties": properties, "additionalProperties": False}
+    if required:
+        out["required"] = list(required)
+    return out
+
+
+def _names(detail: dict[str, Any]) -> dict[str, Any]:
+    """A list of names, or a mapping name → description (or → details)."""
+    return {"oneOf": [
+        {"type": "array", "items": {"$ref": "#/$defs/name"}},
+        {"type": "object", "propertyNames": {"$ref": "#/$defs/name"},
+         "additionalProperties": {"anyOf": [_TEXT, {"type": "null"}, detail]}},
+    ]}
+
+
+def _by_name(value: dict[str, Any]) -> dict[str, Any]:
+    return {"type": "object", "propertyNames": {"$ref": "#/$defs/name"}, "additionalProperties": value}
+
+
+def _one_or_many(item: dict[str, Any]) -> dict[str, Any]:
+    return {"anyOf": [item, {"type": "array", "items": item, "minItems": 1}]}
+
+
+def input_schema() -> dict[str, Any]:
+    """The schema of a problem file (format v1 and lagsolve's additions)."""
+    expr = {"$ref": "#/$defs/expression"}
+    vector = {"$ref": "#/$defs/vector"}
+    equilibrium = _closed({"value": expr, "stable": {"type": "boolean"}, "frequency": expr}, ("value",))
+    properties = {
+        "name": {"type": "string", "minLength": 1},
+        "description": _TEXT,
+        "time": {"$ref": "#/$defs/name"},
+        "parameters": _names(_closed({"description": _TEXT, "positive": {"type": "boolean"},
+                                      "real": {"type": "boolean"}, "value": {"type": "number"}})),
+        "functions": _names(_closed({})),
+        "coordinates": _names(_closed({"description": _TEXT, "positive": {"type": "boolean"}})),
+        "particles": _by_name(_closed({"mass": expr, "position": vector}, ("mass", "position"))),
+        "bodies": _by_name(_closed({
+            "mass": expr, "position": vector,
+            "inertia": {"anyOf": [expr, {"type": "array", "items": expr}]},
+            "angular_velocity": {"anyOf": [expr, {"type": "array", "items": expr}]},
+        }, ("mass", "position", "inertia", "angular_velocity"))),
+        "gravity": vector,
+        "kinetic": expr,
+        "potential": expr,
+        "dissipation": expr,
+        "forces": {"type": "array", "items": {"oneOf": [
+            _closed({"coordinate": {"$ref": "#/$defs/name"}, "value": expr}, ("coordinate", "value")),
+            _closed({"on": {"$ref": "#/$defs/name"}, "force": vector}, ("on", "force")),
+        ]}},
+        "constraints": _by_name({
+            **_closed({"holonomic": expr, "nonholonomic": expr, "on": _one_or_many({"$ref": "#/$defs/name"}),
+                       "unilateral": {"type": "boolean"},
+                       "at": {**vector, "description": "the point of the body named in 'on' where it acts"}}),
+            "oneOf": [{"required": ["holonomic"]}, {"required": ["nonholonomic"]}],
+        }),
+        "friction": _by_name(_closed({
+            "coefficient": expr, "static": expr, "on": {"$ref": "#/$defs/name"},
+            "normal": _one_or_many({"$ref": "#/$defs/name"}), "sliding": _one_or_many({"$ref": "#/$defs/name"}),
+        }, ("coefficient", "normal"))),
+        "expected": _closed({
+            "accelerations": _by_name(expr),
+            "multipliers": _by_name(expr),
+            "constraint_forces": _by_name({"anyOf": [expr, _closed({"vector": vector, "magnitude": expr})]}),
+            "reduced": _closed({"independent": {"type": "array", "items": {"$ref": "#/$defs/name"}},
+                                "accelerations": _by_name(expr)}),
+            "conserved": _by_name(expr),
+            "effective_potential": _closed({"coordinate": {"$ref": "#/$defs/name"}, "expression": expr,
+                                            "equilibria": {"type": "array", "items": equilibrium}},
+                                           ("coordinate",)),
+        }),
+        "simulation": _closed({
+            "values": _by_name({"type": "number"}),
+            "functions": {"type": "object", "additionalProperties": expr,
+                          "description": "concrete forms of declared functions: \"f(u)\": expression in u"},
+            "initial": _by_name({"type": "number"}),
+            "t_end": _POSITIVE,
+            "samples": {"type": "integer", "minimum": 2, "maximum": 1_000_000},
+            "method": {"enum": ["DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA"]},
+            "rtol": _POSITIVE,
+            "atol": _POSITIVE,
+        }),
+        "independent": {"type": "array", "items": {"$ref": "#/$defs/name"}, "minItems": 1},
+    }
+    return {
+        "$schema": DRAFT,
+        "$id": "https://lagsolve.invalid/schema/problem-v1.json",
+        "title": "lagsolve problem file (format v1)",
+        "type": "object",
+        "required": ["name", "coordinates"],
+        "properties": properties,
+        "additionalProperties": False,
+        "$defs": {"name": _NAME, "expression": _EXPR, "vector": _VECTOR},
+    }
+
+
+def output_schema() -> dict[str, Any]:
+    """The schema of a JSON result (``lagsolve derive --format json``)."""
+    text = {"type": "string"}
+    texts = {"type": "array", "items": text}
+    by_name = _by_name(text)
+    nullable_by_name = {"anyOf": [{"type": "null"}, by_name]}
+    force = {
+        "type": "object",
+        "properties": {
+            "vector": texts,
+            "magnitude": {"type": ["string", "null"]},
+            "particles": _by_name(_closed({"vector": texts, "magnitude": text}, ("vector", "magnitude"))),
+            "generalized": {**by_name, "description": "the generalized forces of constraint λ·a, when no "
+                                                      "physical force is known"},
+            "note": text,
+        },
+        "required": ["magnitude"],
+        "additionalProperties": False,
+    }
+    equilibrium = {"type": "object", "properties": {"value": text, "stable": {"type": ["boolean", "null"]},
+                                                    "frequency": {"type": ["string", "null"]}},
+                   "required": ["value"]}
+    properties = {
+        "format_version": {"const": 1},
+        "name": text,
+        "coordinates": texts,
+        "parameters": texts,
+        "kinetic": text,
+        "potential": text,
+        "lagrangian": text,
+        "constraints": _by_name(_closed({
+            "kind": {"enum": ["holonomic", "nonholonomic"]}, "expression": text, "coefficients": by_name,
+            "offset": text}, ("kind", "expression", "coefficients", "offset"))),
+        "equations": texts,
+        "mass_matrix": {"type": "array", "items": texts},
+        "forcing": texts,
+        "accelerations": nullable_by_name,
+        "multipliers": nullable_by_name,
+        "constraint_forces": {"anyOf": [{"type": "null"}, _by_name(force)]},
+        "friction": _by_name({"type": "object", "properties": {
+            "normal_force": text, "force": texts, "generalized": by_name, "valid_while": text, "case": text,
+            "normal_force_valid_while": {"type": ["string", "null"]},
+            "normal_force_equation": {"type": ["string", "null"]}}, "required": ["normal_force"]}),
+        "reduced": {"anyOf": [{"type": "null"}, {"type": "object", "properties": {
+            "independent": texts, "accelerations": by_name}, "required": ["independent", "accelerations"]}]},
+        "conserved": {"anyOf": [{"type": "null"}, by_name]},
+        "effective_potential": {"anyOf": [{"type": "null"}, {"type": "object", "properties": {
+            "coordinate": text, "expression": text, "equilibria": {"type": "array", "items": equilibrium}},
+            "required": ["coordinate", "expression"]}]},
+        "analysis": {"type": ["object", "null"], "description": "classification, reduction, reasons, equilibria "
+                                                                "(docs/format.md, Output)"},
+        "notes": {"type": "array", "items": _closed({"stage": text, "kind": text, "reason": text},
+                                                    ("stage", "kind", "reason"))},
+    }
+    return {
+        "$schema": DRAFT,
+        "$id": "https://lagsolve.invalid/schema/result-v1.json",
+        "title": "lagsolve result (format v1)",
+        "type": "object",
+        "required": ["format_version", "name", "coordinates", "kinetic", "potential", "lagrangian", "equations",
+                     "accelerations", "multipliers", "constraint_forces", "reduced", "conserved",
+                     "effective_potential"],
+        "properties": properties,
+        "additionalProperties": False,
+        "$defs": {"name": _NAME},
+    }
+
+
+def schema(kind: str) -> dict[str, Any]:
+    """The schema named ``kind`` ("input" or "output").
+
+    Raises
+    ------
+    ValueError
+        ``kind`` is neither.
+    """
+    if kind == "input":
+        return input_schema()
+    if kind == "output":
+        return output_schema()
+    raise ValueError(f"unknown schema {kind!r}; use one of: {', '.join(KINDS)}")
+
+
+def schema_json(kind: str) -> str:
+    """:func:`schema` as indented JSON text."""
+    return json.dumps(schema(kind), indent=2) + "\n"

@@ -1,0 +1,43 @@
+"""Notes of the derivation with their quantities as math; descriptions with safe $...$ math only."""
+
+from __future__ import annotations
+
+from lagsolve.render.notation import md_description, md_math_prose, tex_description, tex_prose
+from lagsolve.render.prose import description_segments, safe_math, segments
+
+SYMBOLS = {"phi": [r"\phi", "φ"], "Q_phi": [r"Q_{\phi}", "Q_φ"], "x": ["x", "x"], "l": ["l", "l"]}
+
+
+def test_names_rates_and_relations_become_math() -> None:
+    """dL/dphi, Q_phi = 0 and the problem's names are set as math, the words stay text."""
+    assert tex_prose("phi is cyclic: dL/dphi = 0, Q_phi = 0", SYMBOLS) == (
+        r"$\phi$ is cyclic: $\partial L/\partial \phi = 0$, $Q_{\phi} = 0$")
+
+
+def test_the_work_sentence_has_no_ascii_names() -> None:
+    """'sum of Q_i q_i_dot' is written as the sum it is."""
+    out = tex_prose("energy: not conserved, friction does work (sum of Q_i q_i_dot is not 0)", SYMBOLS)
+    assert r"$\sum_i Q_i\,\dot q_i$ is not 0" in out and "q\\_i\\_dot" not in out
+
+
+def test_articles_and_numbers_stay_words() -> None:
+    """'a' before a word and a count like '2 coordinates' are not math."""
+    assert tex_prose("a generalized force acts on x at rest", SYMBOLS) == "a generalized force acts on $x$ at rest"
+    assert segments("2 coordinates are left", SYMBOLS) == [("text", "2 coordinates are left",
+                                                            "2 coordinates are left")]
+
+
+def test_an_expression_in_a_note_gets_exponents() -> None:
+    """x**2 in a note is printed x^{2}."""
+    assert "$-l^{2}/2 + x^{2}/2 = 0$" in tex_prose("constraint 'rod' (-l**2/2 + x**2/2 = 0) is not solved", SYMBOLS)
+    assert "$`-l^{2}/2 + x^{2}/2 = 0`$" in md_math_prose("(-l**2/2 + x**2/2 = 0)", SYMBOLS)
+
+
+def test_description_math_is_kept_when_safe() -> None:
+    r"""$\dot\theta^2$ is math; $\input{x}$ and an unpaired $ are literal text."""
+    assert description_segments(r"rate $\dot\theta^2$ here") == [("text", "rate "), ("math", r"\dot\theta^2"),
+                                                                  ("text", " here")]
+    assert tex_description(r"$\input{/etc/passwd}$") == r"\$\textbackslash{}input\{/etc/passwd\}\$"
+    assert tex_description("costs $5") == r"costs \$5"
+    assert md_description(r"angle $\theta$ | <b>") == r"angle $`\theta`$ \| &lt;b&gt;"
+    assert not safe_math(r"\write18{rm}") and not safe_math("a}{") and safe_math(r"\frac{a}{b}")

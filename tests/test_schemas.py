@@ -1,0 +1,80 @@
+"""`lagsolve.schemas`: every shipped problem and JSON result is valid against the published JSON Schemas."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from ruamel.yaml import YAML
+
+from lagsolve.schemas import input_schema, output_schema, schema
+
+jsonschema = pytest.importorskip("jsonschema")
+
+ROOT = Path(__file__).resolve().parents[1]
+PROBLEMS = sorted((ROOT / "problems").glob("*.yaml"))
+GOLDEN = sorted((ROOT / "tests" / "golden").glob("*.json"))
+
+
+def _validator(data: dict) -> object:
+    jsonschema.Draft202012Validator.check_schema(data)
+    return jsonschema.Draft202012Validator(data)
+
+
+def _errors(validator: object, instance: object) -> list[str]:
+    return [f"{list(e.absolute_path)}: {e.message}" for e in validator.iter_errors(instance)]  # type: ignore[attr-defined]
+
+
+def test_schemas_are_valid_draft_2020_12() -> None:
+    """Both schemas are themselves valid JSON Schemas of draft 2020-12."""
+    for kind in ("input", "output"):
+        assert schema(kind)["$schema"] == "https://json-schema.org/draft/2020-12/schema"
+        _validator(schema(kind))
+
+
+def test_unknown_kind_is_a_value_error() -> None:
+    """Asking for another schema names the ones there are."""
+    with pytest.raises(ValueError, match="unknown schema 'both'; use one of: input, output"):
+        schema("both")
+
+
+@pytest.mark.parametrize("path", PROBLEMS, ids=lambda p: p.stem)
+def test_shipped_problem_is_valid(path: Path) -> None:
+    """Each problems/*.yaml, read as plain YAML data, is valid against the input schema."""
+    data = YAML(typ="safe", pure=True).load(path.read_text(encoding="utf-8"))
+    assert _errors(_validator(input_schema()), data) == []
+
+
+def test_input_schema_refuses_what_the_loader_refuses() -> None:
+    """An unknown key, a missing coordinates list and a constraint of both kinds are schema errors."""
+    validator = _validator(input_schema())
+    assert _errors(validator, {"name": "x", "coordinates": ["q"], "particle": {}})
+    assert _errors(validator, {"name": "x"})
+    assert _errors(validator, {"name": "x", "coordinates": ["q"],
+                               "constraints": {"c": {"holonomic": "q", "nonholonomic": "q_dot"}}})
+
+
+@pytest.mark.parametrize("path", GOLDEN, ids=lambda p: p.stem)
+def test_golden_result_is_valid(path: Path) -> None:
+    """Each tests/golden/*.json is valid against the output schema."""
+    assert _errors(_validator(output_schema()), json.loads(path.read_text(encoding="utf-8"))) == []
+
+
+@pytest.mark.parametrize("name", ["bead", "atwood", "rolling_coin", "central_force"])
+def test_rendered_result_is_valid(name: str) -> None:
+    """A result rendered now (with mass_matrix, forcing and notes) is valid against the output schema."""
+    from lagsolve.mechanics.derivation import derive
+    from lagsolve.problem.load import load_problem
+    from lagsolve.render.report import result_json
+
+    data = json.loads(result_json(derive(load_problem(ROOT / "problems" / f"{name}.yaml"))))
+    assert {"mass_matrix", "forcing", "notes"} <= set(data)
+    assert _errors(_validator(output_schema()), data) == []
+
+
+def test_output_schema_refuses_a_wrong_version() -> None:
+    """A result of another format version is refused."""
+    data = json.loads(GOLDEN[0].read_text(encoding="utf-8"))
+    data["format_version"] = 2
+    assert _errors(_validator(output_schema()), data)
