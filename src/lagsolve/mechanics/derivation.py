@@ -195,6 +195,10 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     shown = stages.run("display simplification", _display, form, elimination, raw_acc, raw_lam, tidy, show_sum)
     if shown is None:
         shown = _display(form, elimination, raw_acc, raw_lam, _plain, _plain)
+    # the forces of constraint are found from the multipliers with a coupled N still a symbol (compact: |λ| |d|),
+    # and the closed form is put in afterwards, like everywhere else
+    multipliers = shown["multipliers"]
+    closed: dict[Any, Any] = {}
     if len(decoupled) < len(substituted) and raw_lam is not None and raw_acc is not None:
         closed = {N: _shown_normal(v, elimination) for N, v in substituted.items() if N not in decoupled}
         raw_lam = tuple(lam.xreplace(closed) for lam in raw_lam)
@@ -202,7 +206,6 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
         for key in ("accelerations", "multipliers"):
             if shown[key] is not None:
                 shown[key] = {k: v.xreplace(closed) for k, v in shown[key].items()}
-    multipliers = shown["multipliers"]
     forces = None
     if not constraints:
         forces = {}
@@ -211,7 +214,8 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
         stages.skip("forces of constraint", "needs the explicit multipliers, which were not found (see above)")
     else:
         forces = stages.run("forces of constraint", lambda: {
-            c.name: _constraint_force(reactions[c.name], multipliers[c.name], c, elimination) for c in constraints})
+            c.name: _closed_in(_constraint_force(reactions[c.name], multipliers[c.name], c, elimination), closed)
+            for c in constraints})
     friction = tuple(_friction_result(f, found.get(f.name), substituted, elimination) for f in frictions)
     derivation = Derivation(
         problem=problem, model=model, constraints=shown["constraints"], force_terms=shown["force_terms"],
@@ -248,6 +252,21 @@ def _solve(lagrange: LagrangeTerms) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
 def _plain(expr: Any) -> Any:
     """The display form when display simplification ran out of budget: the expression as derived."""
     return expr if isinstance(expr, sympy.Basic) else sympy.Integer(expr)
+
+
+def _closed_in(force: ConstraintForce, closed: dict[Any, Any]) -> ConstraintForce:
+    """``force`` with the closed forms of the coupled normal forces put in."""
+    if not closed:
+        return force
+
+    def put(e: Any) -> Any:
+        return e.xreplace(closed) if isinstance(e, sympy.Basic) else e
+
+    return dataclasses.replace(
+        force, vector=None if force.vector is None else tuple(put(v) for v in force.vector),
+        magnitude=put(force.magnitude) if force.magnitude is not None else None,
+        particles=tuple((p, tuple(put(v) for v in vec), put(mag)) for p, vec, mag in force.particles),
+        generalized=tuple(put(v) for v in force.generalized))
 
 
 def _friction_result(term: FrictionTerm, found: NormalForce | None, substituted: dict[Any, Any],

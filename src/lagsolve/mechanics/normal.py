@@ -139,14 +139,16 @@ def normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, .
                     f"friction {f.name!r}: constraint {name!r} has no known force on {f.particle!r} "
                     f"({reactions[name].note or 'it acts on other particles'}), so the normal force is unknown")
             parts[f.name].append((sympy.Matrix(pushes[0].direction), multipliers[index[name]]))
-    # coupling on the constraint surface: which contacts' N change which multipliers
+    # coupling on the constraint surface: which contacts' N change which multipliers. The values below are
+    # written with the elimination alone (shorter than with the surface's velocities put in); they hold on the
+    # surface either way, and a coefficient that vanishes there has been found so already.
     depends = {f.name: [N for N in symbols if not all(surface.is_zero(sympy.diff(lam, N)) for _, lam in parts[f.name])]
                for f in frictions}
     out: dict[str, NormalForce] = {}
     known: dict[Any, Any] = {}
     for f in frictions:
         if not depends[f.name]:
-            pieces = [(u, surface.apply(lam.xreplace(zero_n))) for u, lam in parts[f.name]]
+            pieces = [(u, elimination.apply(lam.xreplace(zero_n))) for u, lam in parts[f.name]]
             value = _length(pieces)
             known[f.normal] = value
             out[f.name] = NormalForce(value, "decoupled: on the constraint surface the multipliers do not depend "
@@ -159,10 +161,10 @@ def normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, .
     b_vec: dict[tuple[str, Any], sympy.Matrix] = {}
     for f in coupled:
         rows = parts[f.name][0][0].rows
-        a_vec[f.name] = sum((u * surface.apply(lam.xreplace(zero_n).xreplace(known)) for u, lam in parts[f.name]),
+        a_vec[f.name] = sum((u * elimination.apply(lam.xreplace(zero_n).xreplace(known)) for u, lam in parts[f.name]),
                             sympy.zeros(rows, 1))
         for g in coupled:
-            b_vec[f.name, g.normal] = sum((u * surface.apply(sympy.diff(lam, g.normal).xreplace(known))
+            b_vec[f.name, g.normal] = sum((u * elimination.apply(sympy.diff(lam, g.normal).xreplace(known))
                                            for u, lam in parts[f.name]), sympy.zeros(rows, 1))
     for f in coupled:
         total = a_vec[f.name] + sum((b_vec[f.name, g.normal] * g.normal for g in coupled), sympy.zeros(
@@ -176,8 +178,8 @@ def normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, .
             # N = |a + b N| with scalars along the one constraint's force
             length = norm(list(parts[f.name][0][0]))
             lam = parts[f.name][0][1]
-            a_s = tidy(length * surface.apply(lam.xreplace(zero_n).xreplace(known)))
-            b_s = tidy(_unit_signs(length * surface.apply(sympy.diff(lam, f.normal))))
+            a_s = tidy(length * elimination.apply(lam.xreplace(zero_n).xreplace(known)))
+            b_s = tidy(_unit_signs(length * elimination.apply(sympy.diff(lam, f.normal))))
             known_sign, core = sign_core(a_s)
             sign_a = sympy.Integer(known_sign) if known_sign is not None and core == 1 else sympy.sign(core)
             value = tidy(sympy.Abs(a_s)) / tidy(1 - b_s * sign_a)
