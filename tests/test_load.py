@@ -286,6 +286,22 @@ def test_bad_contact_points_are_refused(constraint: str, field: str, words: str)
     assert all(i.line > 0 for i in issues)
 
 
+def test_a_point_of_a_3d_body_is_refused_with_the_alternative() -> None:
+    """'at:' is for planar bodies: a 3-D body's point is refused, and the fix says what is reported without it."""
+    text = """\
+name: Top
+parameters: [M, I1, I3, g, l]
+coordinates: [theta, phi, psi]
+bodies:
+  top: {mass: M, position: [0, 0, l*cos(theta)], inertia: [I1, I1, I3], angular_velocity: [theta_dot, phi_dot, psi_dot]}
+constraints:
+  tip: {holonomic: theta - 1, on: top, at: [0, 0, 0]}
+"""
+    issues = issues_of(text)
+    assert any(i.where == "constraints.tip.at" and "3-D body" in i.message and "generalized" in i.hint
+               for i in issues), issues
+
+
 def test_seed_problems_load() -> None:
     """Every problem shipped in problems/ is valid."""
     paths = sorted((ROOT / "problems").glob("*.yaml"))
