@@ -115,9 +115,8 @@ def _at_point(problem: Problem, model: Model, terms: ConstraintTerms, body: str,
                         f"λ·a is not the generalized force of a force at the point {[str(c) for c in point]} of "
                         f"{body!r}, so no physical force is claimed; check 'at:' (and that the body's "
                         "angular velocity is counter-clockwise positive)")
-    where = ", ".join(str(c) for c in point)
     return Reaction(terms.name, (ParticleForce(body, tuple(tidy(c) for c in direction)),), False,
-                    f"the force on {body} at the point ({where})")
+                    f"the force on {body} at the point given under 'at:'")
 
 
 def _least_norm(J: sympy.Matrix, a: sympy.Matrix) -> sympy.Matrix | None:
