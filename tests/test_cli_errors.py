@@ -246,3 +246,39 @@ def test_output_cannot_escape_the_output_folder(tmp_path: Path,
                      if p.is_file())
     assert written == ["evil.yaml", "work/out/evil/evil.json", "work/out/evil/evil.md",
                        "work/out/evil/evil.tex"]
+
+
+PENDULUM = """\
+name: Pendulum in Cartesian coordinates
+parameters: {m: mass, g: gravity, L: length}
+coordinates: [x, y]
+particles:
+  bob: {mass: m, position: [x, y]}
+gravity: [0, -g]
+constraints:
+  rod: {holonomic: CONSTRAINT}
+"""
+
+
+@pytest.mark.parametrize("command", ["derive", "check", "simulate"])
+def test_degenerate_constraint_exits_2_with_the_fix(tmp_path: Path, command: str) -> None:
+    """(x² + y² − L²)² = 0 would give 0/0 accelerations: every command refuses it with file, line, field and the
+    constraint to write instead."""
+    path = write(tmp_path, "rod.yaml", PENDULUM.replace("CONSTRAINT", "(x**2 + y**2 - L**2)**2"))
+    result = CliRunner().invoke(main, [command, str(path), "-o", str(tmp_path / "out")] if command != "check"
+                                else [command, str(path)])
+    assert result.exit_code == 2, result.output
+    assert result.stderr == (f"error: {path}:8: constraints.rod.holonomic: the gradient of rod vanishes where rod = 0; "
+                             "write it as x**2 + y**2 - L**2 = 0\n")
+    assert "Traceback" not in result.output
+
+
+def test_redundant_constraints_exit_2_naming_them(tmp_path: Path) -> None:
+    """The rod given twice (once scaled) is redundant: exit 2, both constraints named, the second to remove."""
+    text = PENDULUM.replace("CONSTRAINT", "x**2 + y**2 - L**2") + "  rod_again: {holonomic: 2*x**2 + 2*y**2 - 2*L**2}\n"
+    path = write(tmp_path, "twice.yaml", text)
+    result, _ = derive(str(path), "-o", str(tmp_path / "out"))
+    assert result.exit_code == 2, result.output
+    assert f"error: {path}:9: constraints.rod_again.holonomic: the constraints rod, rod_again are redundant" \
+        in result.stderr
+    assert "remove rod_again" in result.stderr

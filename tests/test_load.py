@@ -252,6 +252,56 @@ constraints:
     assert problem.constraints[0].on == ()
 
 
+DISK = """\
+name: Rolling disk
+parameters: [M, R, J, g]
+coordinates: [X, Y, phi]
+bodies:
+  disk: {mass: M, position: [X, Y], inertia: J, angular_velocity: -phi_dot}
+gravity: [0, -g]
+constraints:
+  rolling: CONSTRAINT
+"""
+
+
+def test_constraint_on_a_body_at_a_point() -> None:
+    """'on: disk' with 'at: [X, Y - R]' names the point of the body where the constraint acts."""
+    problem = load(DISK.replace("CONSTRAINT", "{holonomic: X - R*phi, on: disk, at: [X, Y - R]}"))
+    (c,) = problem.constraints
+    s = problem.symbols
+    assert c.on == ("disk",) and c.at == (s["X"], s["Y"] - s["R"])
+
+
+@pytest.mark.parametrize(("constraint", "field", "words"), [
+    ("{holonomic: X - R*phi, on: disk}", "constraints.rolling.on", "needs the point where it acts"),
+    ("{holonomic: X - R*phi, at: [X, Y - R]}", "constraints.rolling.on", "'on:' must name that body"),
+    ("{holonomic: X - R*phi, on: disk, at: [X, Y, 0]}", "constraints.rolling.at", "has 3 components"),
+    ("{holonomic: X - R*phi, on: disk, at: [X, Y - X_dot]}", "constraints.rolling.at[1]", "velocities"),
+])
+def test_bad_contact_points_are_refused(constraint: str, field: str, words: str) -> None:
+    """A point without its body, a body without its point, a point of the wrong size or one that moves with the
+    velocities: each is refused with the field and a fix."""
+    issues = issues_of(DISK.replace("CONSTRAINT", constraint))
+    assert any(i.where == field and words in i.message for i in issues), issues
+    assert all(i.line > 0 for i in issues)
+
+
+def test_a_point_of_a_3d_body_is_refused_with_the_alternative() -> None:
+    """'at:' is for planar bodies: a 3-D body's point is refused, and the fix says what is reported without it."""
+    text = """\
+name: Top
+parameters: [M, I1, I3, g, l]
+coordinates: [theta, phi, psi]
+bodies:
+  top: {mass: M, position: [0, 0, l*cos(theta)], inertia: [I1, I1, I3], angular_velocity: [theta_dot, phi_dot, psi_dot]}
+constraints:
+  tip: {holonomic: theta - 1, on: top, at: [0, 0, 0]}
+"""
+    issues = issues_of(text)
+    assert any(i.where == "constraints.tip.at" and "3-D body" in i.message and "generalized" in i.hint
+               for i in issues), issues
+
+
 def test_seed_problems_load() -> None:
     """Every problem shipped in problems/ is valid."""
     paths = sorted((ROOT / "problems").glob("*.yaml"))

@@ -227,21 +227,22 @@ def test_several_particles_without_on_gets_a_note():
     assert "on:" in react.note
 
 
-def test_no_particles_uses_the_generalized_force():
-    """Without particles the magnitude is |lambda| sqrt(sum a_i^2), here the bead's
-    m |g + f'' x_dot^2| / sqrt(1 + f'^2)."""
+def test_no_particles_gives_the_generalized_forces_and_no_magnitude():
+    """Without particles no physical force is known: the result is the generalized forces of constraint
+    lambda*a (here the bead's lambda*(-f'(x), 1)), labelled as such, and no magnitude."""
     problem = problem_text(NO_PARTICLES)
     _, _, react = reaction_of(problem, "wire")
     assert react.generalized and react.particles == ()
     derivation = derived_text(NO_PARTICLES)
     s = names(derivation.problem)
-    m, g, x, xd, f = s["m"], s["g"], s["x"], s["x_dot"], s["f"]
-    fp, fpp = sympy.Derivative(f(x), x), sympy.Derivative(f(x), (x, 2))
+    x, f = s["x"], s["f"]
     force = derivation.constraint_forces["wire"]
-    assert force.vector is None
-    magnitude = m * sympy.Abs(g + fpp * xd**2) / sympy.sqrt(1 + fp**2)
-    assert_same(force.magnitude, magnitude, functions={f: _wire})
-    assert exactly_equal(force.magnitude, magnitude)
+    assert force.vector is None and force.magnitude is None
+    lam = derivation.multipliers["wire"]
+    assert len(force.generalized) == 2
+    assert_same(force.generalized[0], -lam * sympy.Derivative(f(x), x), functions={f: _wire})
+    assert_same(force.generalized[1], lam, functions={f: _wire})
+    assert "generalized forces of constraint" in force.note
 
 
 ROLLING_DISK = """
@@ -263,13 +264,76 @@ def test_body_only_problem_note_does_not_claim_particles():
     assert "several particles" not in react.note
 
 
-def test_body_only_problem_gets_the_generalized_magnitude():
-    """A body-only problem gets the magnitude |lambda| sqrt(1 + R^2) that the format gives."""
+def test_body_without_a_point_gets_no_magnitude_that_mixes_force_and_torque():
+    """A body-only problem without 'at:' gets the generalized forces (lambda, -R lambda): a force along x and a
+    torque about the centre, and never a 'magnitude' |lambda| sqrt(1 + R^2) mixing the two."""
     derivation = derived_text(ROLLING_DISK)
     s = names(derivation.problem)
     big_m, big_r, ic, g, al = (s[k] for k in ("M", "R", "Ic", "g", "alpha"))
     lam = -ic * big_m * g * sympy.sin(al) / (ic + big_m * big_r**2)
     assert exactly_equal(derivation.multipliers["roll"], lam)
-    magnitude = derivation.constraint_forces["roll"].magnitude
-    assert magnitude is not None
-    assert_same(magnitude, sympy.Abs(lam) * sympy.sqrt(1 + big_r**2))
+    force = derivation.constraint_forces["roll"]
+    assert force.magnitude is None and force.vector is None
+    assert exactly_equal(force.generalized[0], lam)
+    assert exactly_equal(force.generalized[1], -big_r * lam)
+
+
+def test_rolling_disk_contact_force_is_the_friction_found_by_newton():
+    """problems/rolling_incline.yaml names the contact point: the force there is the friction at the contact.
+    Newton for the disk, m s_ddot = m g sin(alpha) - f and (m R^2/2) phi_ddot = f R with s_ddot = R phi_ddot,
+    solved here with sympy.solve, gives f = m g sin(alpha)/3 up the slope, direction (-cos(alpha), sin(alpha))."""
+    derivation = derived_file("rolling_incline")
+    s = names(derivation.problem)
+    m, g, big_r, al = (s[k] for k in ("m", "g", "R", "alpha"))
+    sdd, phdd, f = sympy.symbols("sdd phdd f")
+    newton = sympy.solve([m * sdd - (m * g * sympy.sin(al) - f), m * big_r**2 / 2 * phdd - f * big_r,
+                          sdd - big_r * phdd], [sdd, phdd, f], dict=True)[0]
+    friction = newton[f]
+    assert sympy.simplify(friction - m * g * sympy.sin(al) / 3) == 0
+    force = derivation.constraint_forces["roll"]
+    up_the_slope = (-sympy.cos(al), sympy.sin(al))
+    for got, want in zip(force.vector, up_the_slope, strict=True):
+        assert sympy.simplify(got - friction * want) == 0
+    assert sympy.simplify(force.magnitude - m * g * sympy.Abs(sympy.sin(al)) / 3) == 0
+    assert sympy.simplify(derivation.accelerations["s"] - newton[sdd]) == 0
+
+
+def test_physical_pendulum_axle_force_is_m_a_minus_the_weight():
+    """With the axle named as the point of the body, the two constraint forces add up to Newton's axle force
+    m a_cm - m g, with a_cm from the textbook theta_ddot = -m g d sin(theta)/(Ic + m d^2)."""
+    derivation = derived_file("physical_pendulum")
+    s = names(derivation.problem)
+    m, ic, d, g, th, thd = (s[k] for k in ("m", "Ic", "d", "g", "theta", "theta_dot"))
+    thdd = -m * g * d * sympy.sin(th) / (ic + m * d**2)
+    # the centre is the axle plus d (sin(theta), -cos(theta))
+    a_cm = (d * sympy.cos(th) * thdd - d * sympy.sin(th) * thd**2,
+            d * sympy.sin(th) * thdd + d * sympy.cos(th) * thd**2)
+    axle = (m * a_cm[0], m * a_cm[1] + m * g)
+    forces = derivation.constraint_forces
+    for k in range(2):
+        total = forces["axle_x"].vector[k] + forces["axle_y"].vector[k]
+        assert sympy.simplify(total - axle[k]) == 0
+
+
+def test_point_where_the_constraint_cannot_act_gets_a_note():
+    """Rolling named at the disk's centre is not a force there (the centre's velocity does not feel phi), so no
+    force is claimed and the note says to check 'at:'."""
+    text = ROLLING_DISK.replace("roll: {holonomic: x - R*phi}", "roll: {holonomic: x - R*phi, on: disk, at: [x, 0]}")
+    _, _, react = reaction_of(problem_text(text), "roll")
+    assert react.particles == () and "at:" in react.note
+
+
+def test_point_velocity_jacobian_includes_the_rotation():
+    """v_P = v_C + omega z x (P - C): for the contact point (x, -R) of a disk turning at -phi_dot it is
+    (x_dot - R phi_dot, 0), which vanishes when it rolls."""
+    from lagsolve.mechanics.reactions import point_velocity_jacobian
+
+    text = ROLLING_DISK.replace("angular_velocity: phi_dot", "angular_velocity: -phi_dot").replace(
+        "roll: {holonomic: x - R*phi}", "roll: {holonomic: x - R*phi, on: disk, at: [x, -R]}")
+    problem = problem_text(text)
+    model = build_model(problem)
+    s = names(problem)
+    J = point_velocity_jacobian(problem, model, "disk", problem.constraints[0].at)
+    assert (J - sympy.Matrix([[1, -s["R"]], [0, 0]])).is_zero_matrix
+    force = derived_text(text).constraint_forces["roll"]
+    assert force.vector is not None and force.vector[1] == 0

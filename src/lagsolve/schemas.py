@@ -75,7 +75,8 @@ def input_schema() -> dict[str, Any]:
         ]}},
         "constraints": _by_name({
             **_closed({"holonomic": expr, "nonholonomic": expr, "on": _one_or_many({"$ref": "#/$defs/name"}),
-                       "unilateral": {"type": "boolean"}}),
+                       "unilateral": {"type": "boolean"},
+                       "at": {**vector, "description": "the point of the body named in 'on' where it acts"}}),
             "oneOf": [{"required": ["holonomic"]}, {"required": ["nonholonomic"]}],
         }),
         "friction": _by_name(_closed({
@@ -130,6 +131,8 @@ def output_schema() -> dict[str, Any]:
             "vector": texts,
             "magnitude": {"type": ["string", "null"]},
             "particles": _by_name(_closed({"vector": texts, "magnitude": text}, ("vector", "magnitude"))),
+            "generalized": {**by_name, "description": "the generalized forces of constraint λ·a, when no "
+                                                      "physical force is known"},
             "note": text,
         },
         "required": ["magnitude"],
@@ -157,7 +160,8 @@ def output_schema() -> dict[str, Any]:
         "constraint_forces": {"anyOf": [{"type": "null"}, _by_name(force)]},
         "friction": _by_name({"type": "object", "properties": {
             "normal_force": text, "force": texts, "generalized": by_name, "valid_while": text, "case": text,
-            "normal_force_valid_while": {"type": ["string", "null"]}}, "required": ["normal_force"]}),
+            "normal_force_valid_while": {"type": ["string", "null"]},
+            "normal_force_equation": {"type": ["string", "null"]}}, "required": ["normal_force"]}),
         "reduced": {"anyOf": [{"type": "null"}, {"type": "object", "properties": {
             "independent": texts, "accelerations": by_name}, "required": ["independent", "accelerations"]}]},
         "conserved": {"anyOf": [{"type": "null"}, by_name]},

@@ -24,35 +24,42 @@ from lagsolve.mechanics.lagrange import LagrangeTerms, solve_augmented
 from lagsolve.mechanics.linsolve import SIZE_LIMIT
 from lagsolve.mechanics.matrix_form import MatrixForm, matrix_form
 from lagsolve.mechanics.model import Model
+from lagsolve.mechanics.normal import NormalForce, normal_forces
 from lagsolve.mechanics.reactions import Reaction
 from lagsolve.mechanics.reduce import Elimination, eliminate
-from lagsolve.mechanics.simplify import compound_angles, norm, root_of_sum_of_squares, tidy, tidy_sum, tidy_sum_light
+from lagsolve.mechanics.simplify import compound_angles, norm, tidy, tidy_sum, tidy_sum_light
 from lagsolve.mechanics.stages import DEFAULT_BUDGET, StageNote, Stages, StageTimeout, cpu_limit
 from lagsolve.problem.schema import Problem
 
 
 @dataclass(frozen=True)
 class ConstraintForce:
-    """Result for one constraint: the force on its particle (``vector``, ``magnitude``),
-    per-particle forces when it acts on several, and a ``note`` when no force is claimed."""
+    """Result for one constraint: the force on its particle, or at the named point of a body (``vector``,
+    ``magnitude``), per-particle forces when it acts on several, and a ``note`` when no force is claimed
+    (then, with no particles at all, the generalized forces of constraint λ·a, ``generalized``)."""
 
     name: str
     vector: tuple[Any, ...] | None
     magnitude: Any | None
     particles: tuple[tuple[str, tuple[Any, ...], Any], ...]
     note: str
+    generalized: tuple[Any, ...] = ()  # λ·a per coordinate, when no physical force is known (no point named)
 
 
 @dataclass(frozen=True)
 class FrictionResult:
     """A friction contact (``term``, with the symbol N in its forces), the closed form of N (the
-    symbol itself when only an implicit equation exists), which ``case`` applies and why, and
-    the condition under which that form is valid."""
+    symbol itself when only an implicit equation exists), which ``case`` applies and why, the
+    condition under which that form is valid, the equation N solves (``system``), and the friction
+    force and its generalized forces with the closed form put in."""
 
     term: FrictionTerm
     normal_force: Any
     case: str = ""
     valid_while: Any = None
+    system: Any = None  # the equation N solves, Eq(N, |a + B N|)
+    force: tuple[Any, ...] | None = None  # the friction force with N put in (None: as in ``term``)
+    generalized: tuple[Any, ...] | None = None  # its generalized forces with N put in
 
 
 @dataclass(frozen=True)
@@ -163,30 +170,42 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     raw_acc, raw_lam = solved if solved is not None else (None, None)
     elimination = eliminate(constraints, model)
 
-    normals: dict[Any, Any] = {}
-    cases: dict[str, tuple[str, Any]] = {}
+    found: dict[str, NormalForce] = {}
     if frictions and raw_lam is None:
         stages.skip("normal forces", "needs the explicit multipliers, which were not found (see above)")
     elif frictions:
-        found = stages.run("normal forces", _normal_forces, frictions, raw_lam, constraints, reactions, elimination)
-        if found is not None:
-            normals, cases = found
+        found = stages.run("normal forces", normal_forces, frictions, raw_lam, constraints, reactions, model,
+                           elimination) or {}
     else:
         stages.skip("normal forces", "no friction acts", "n/a")
-    # decoupled normal forces are substituted; coupled ones stay symbols N in the results (as a worked
-    # solution writes them), with their closed form given once, in the friction results
-    substituted = {f.normal: normals[f.normal] for f in frictions
-                   if f.normal in normals and cases[f.name][1] is None}
+    # every normal force with a closed form is substituted in the results (q̈, λ, the forces); the
+    # closed form itself is given once, in the friction results. Only an implicit N stays a symbol.
+    # Decoupled ones go in before display simplification (they simplify with the rest); a coupled one
+    # after it, into the tidied results, which keeps them readable: λ = λ₀ + Λ N with N written out.
+    substituted = {f.normal: found[f.name].value for f in frictions
+                   if f.name in found and found[f.name].value is not None}
+    decoupled = {N: v for N, v in substituted.items() if not any(found[f.name].valid_while is not None
+                                                                 for f in frictions if f.normal == N)}
     if raw_lam is not None and raw_acc is not None:
-        raw_lam = tuple(lam.xreplace(substituted) for lam in raw_lam)
-        raw_acc = tuple(a.xreplace(substituted) for a in raw_acc)
+        raw_lam = tuple(lam.xreplace(decoupled) for lam in raw_lam)
+        raw_acc = tuple(a.xreplace(decoupled) for a in raw_acc)
 
     # a large system gets a lighter display simplification of its many equation pieces (one rewriting each)
     show_sum = tidy_sum if len(model.coordinates) <= LARGE_SYSTEM else tidy_sum_light
     shown = stages.run("display simplification", _display, form, elimination, raw_acc, raw_lam, tidy, show_sum)
     if shown is None:
         shown = _display(form, elimination, raw_acc, raw_lam, _plain, _plain)
+    # the forces of constraint are found from the multipliers with a coupled N still a symbol (compact: |λ| |d|),
+    # and the closed form is put in afterwards, like everywhere else
     multipliers = shown["multipliers"]
+    closed: dict[Any, Any] = {}
+    if len(decoupled) < len(substituted) and raw_lam is not None and raw_acc is not None:
+        closed = {N: _shown_normal(v, elimination) for N, v in substituted.items() if N not in decoupled}
+        raw_lam = tuple(lam.xreplace(closed) for lam in raw_lam)
+        raw_acc = tuple(a.xreplace(closed) for a in raw_acc)
+        for key in ("accelerations", "multipliers"):
+            if shown[key] is not None:
+                shown[key] = {k: v.xreplace(closed) for k, v in shown[key].items()}
     forces: dict[str, ConstraintForce] | None = None
     if not constraints:
         forces = {}
@@ -195,9 +214,9 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
         stages.skip("forces of constraint", "needs the explicit multipliers, which were not found (see above)")
     else:
         forces = stages.run("forces of constraint", lambda: {
-            c.name: _constraint_force(reactions[c.name], multipliers[c.name], c, elimination) for c in constraints})
-    friction = tuple(FrictionResult(f, _shown_normal(normals.get(f.normal, f.normal), elimination),
-                                    *cases.get(f.name, ("", None))) for f in frictions)
+            c.name: _closed_in(_constraint_force(reactions[c.name], multipliers[c.name], c, elimination), closed)
+            for c in constraints})
+    friction = tuple(_friction_result(f, found.get(f.name), substituted, elimination) for f in frictions)
     derivation = Derivation(
         problem=problem, model=model, constraints=shown["constraints"], force_terms=shown["force_terms"],
         lagrange=lagrange, elimination=elimination, raw_accelerations=raw_acc, raw_multipliers=raw_lam,
@@ -233,6 +252,33 @@ def _solve(lagrange: LagrangeTerms) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
 def _plain(expr: Any) -> Any:
     """The display form when display simplification ran out of budget: the expression as derived."""
     return expr if isinstance(expr, sympy.Basic) else sympy.Integer(expr)
+
+
+def _closed_in(force: ConstraintForce, closed: dict[Any, Any]) -> ConstraintForce:
+    """``force`` with the closed forms of the coupled normal forces put in."""
+    if not closed:
+        return force
+
+    def put(e: Any) -> Any:
+        return e.xreplace(closed) if isinstance(e, sympy.Basic) else e
+
+    return dataclasses.replace(
+        force, vector=None if force.vector is None else tuple(put(v) for v in force.vector),
+        magnitude=put(force.magnitude) if force.magnitude is not None else None,
+        particles=tuple((p, tuple(put(v) for v in vec), put(mag)) for p, vec, mag in force.particles),
+        generalized=tuple(put(v) for v in force.generalized))
+
+
+def _friction_result(term: FrictionTerm, found: NormalForce | None, substituted: dict[Any, Any],
+                     elimination: Elimination) -> FrictionResult:
+    """The friction results of one contact: N (its closed form, or the symbol with the system it solves),
+    and the friction force and its generalized forces with every closed-form N put in."""
+    if found is None:
+        return FrictionResult(term, term.normal)
+    value = term.normal if found.value is None else _shown_normal(found.value, elimination)
+    force = tuple(_shown_normal(v.xreplace(substituted), elimination) for v in term.force)
+    generalized = tuple(_shown_normal(v.xreplace(substituted), elimination) for v in term.generalized)
+    return FrictionResult(term, value, found.case, found.valid_while, found.system, force, generalized)
 
 
 def _shown_normal(value: Any, elimination: Elimination) -> Any:
@@ -282,73 +328,6 @@ def _display(form: MatrixForm, elimination: Elimination, raw_acc: tuple[Any, ...
     }
 
 
-def _normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, ...],
-                   constraints: tuple[ConstraintTerms, ...], reactions: dict[str, Reaction],
-                   elimination: Elimination) -> tuple[dict[Any, Any], dict[str, tuple[str, Any]]]:
-    r"""Each friction contact's normal force :math:`N = |\sum_j \mathbf f_j|`, and which case applies.
-
-    The multipliers are affine in the normal forces, :math:`\lambda = \lambda_0 + \Lambda N`
-    (the friction forces are), so with :math:`\mathbf a = \sum_j \lambda_{0j}\mathbf u_j` and
-    :math:`\mathbf b = \sum_j \Lambda_j\mathbf u_j` the normal force solves :math:`N = |\mathbf a + \mathbf b N|`:
-
-    * **decoupled** (:math:`\mathbf b = 0`: friction along a direction the constraints do not
-      feel — a bead in a tube, on a wire, a block on a fixed incline): :math:`N = |\mathbf a|`;
-    * **coupled, one contact**: the quadratic :math:`(1 - b^2)N^2 - 2(\mathbf a\cdot\mathbf b)N - a^2 = 0`
-      has the one non-negative root
-      :math:`N = \big(\mathbf a\cdot\mathbf b + \sqrt{(\mathbf a\cdot\mathbf b)^2 + (1 - b^2)a^2}\big)/(1 - b^2)`
-      while :math:`b^2 < 1` (the sign of the sliding rate is part of :math:`\mathbf b`: one
-      formula covers both sign cases);
-    * **coupled, several contacts**: no closed form is attempted; N stays a symbol in the
-      results and ``simulate`` solves the implicit system at every step.
-    """
-    out: dict[Any, Any] = {}
-    cases: dict[str, tuple[str, Any]] = {}
-    index = {c.name: j for j, c in enumerate(constraints)}
-    symbols = [f.normal for f in frictions]
-    coupled_any = any(tidy(sympy.diff(lam, N)) != 0 for lam in multipliers for N in symbols)
-    for f in frictions:
-        parts = []
-        for name in f.constraints:
-            react = reactions[name]
-            pushes = [p for p in react.particles if p.particle == f.particle]
-            if not pushes:
-                raise DerivationError(
-                    f"friction {f.name!r}: constraint {name!r} has no known force on {f.particle!r} "
-                    f"({react.note or 'it acts on other particles'}), so the normal force is unknown"
-                )
-            parts.append((sympy.Matrix(pushes[0].direction), multipliers[index[name]]))
-        if not coupled_any:
-            parts = [(u, elimination.apply(lam)) for u, lam in parts]
-            orthogonal = all(tidy((a.T * b)[0]) == 0 for i, (a, _) in enumerate(parts) for b, _ in parts[i + 1:])
-            if orthogonal:
-                # |sum f_j| = sqrt(sum |f_j|^2): keeps each force's factored form (the textbook's N)
-                out[f.normal] = root_of_sum_of_squares([lam * norm(list(u)) for u, lam in parts])
-            else:
-                total = sum((u * lam for u, lam in parts), sympy.zeros(parts[0][0].rows, 1))
-                out[f.normal] = norm(list(total))
-            cases[f.name] = ("decoupled: the multipliers do not depend on the friction, so N follows from them "
-                             "in closed form", None)
-        elif len(frictions) == 1:
-            zero = {f.normal: 0}
-            a = sum((u * lam.xreplace(zero) for u, lam in parts), sympy.zeros(parts[0][0].rows, 1))
-            b = sum((u * sympy.diff(lam, f.normal) for u, lam in parts), sympy.zeros(parts[0][0].rows, 1))
-            # sign(v)**2 = 1 while sliding, the case this formula is for
-            aa, ab, bb = (tidy(_unit_signs(elimination.apply(e))) for e in ((a.T * a)[0], (a.T * b)[0], (b.T * b)[0]))
-            out[f.normal] = tidy(_unit_signs((ab + sympy.sqrt(ab**2 + (1 - bb) * aa)) / (1 - bb)))
-            cases[f.name] = ("coupled: the friction changes the multipliers, so N solves N = |a + b N|, a quadratic "
-                             "with one non-negative root", sympy.StrictLessThan(bb, 1))
-        else:
-            cases[f.name] = ("coupled, with several contacts: N stays implicit in the results (N = |a + B N|) and "
-                             "simulate solves it at every step", None)
-    return out, cases
-
-
-def _unit_signs(expr: Any) -> Any:
-    """Even powers of sign(v) are 1 where v ≠ 0 (while a contact slides)."""
-    return expr.replace(lambda e: e.is_Pow and isinstance(e.base, sympy.sign) and e.exp.is_even,
-                          lambda e: sympy.Integer(1))
-
-
 def _eliminated_accelerations(constraints: tuple[ConstraintTerms, ...], model: Model,
                               elimination: Elimination) -> dict[Any, Any]:
     """q̈_k of each eliminated variable, from its constraint at acceleration level."""
@@ -367,10 +346,11 @@ def _eliminated_accelerations(constraints: tuple[ConstraintTerms, ...], model: M
 def _constraint_force(react: Reaction, multiplier: Any, terms: ConstraintTerms,
                       elimination: Elimination) -> ConstraintForce:
     if not react.particles:
-        magnitude = None
+        generalized: tuple[Any, ...] = ()
         if react.generalized:
-            magnitude = norm([elimination.apply(multiplier * a) for a in terms.coefficients])
-        return ConstraintForce(react.name, None, magnitude, (), react.note)
+            # the generalized forces λ a: a force for a length, a torque for an angle; no magnitude mixes them
+            generalized = tuple(tidy(elimination.apply(multiplier * a)) for a in terms.coefficients)
+        return ConstraintForce(react.name, None, None, (), react.note, generalized)
     per_particle = []
     for p in react.particles:
         vector = tuple(tidy(elimination.apply(multiplier * d)) for d in p.direction)

@@ -20,6 +20,7 @@ from lagsolve.mechanics.forces import ForceTerm, FrictionTerm, force_terms, fric
 from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms
 from lagsolve.mechanics.model import Model, build_model
 from lagsolve.mechanics.reactions import Reaction, reaction
+from lagsolve.mechanics.regularity import check_constraints
 from lagsolve.problem.schema import Problem
 
 
@@ -51,6 +52,7 @@ def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
     """
     model = build_model(problem, tidy=True if display else None)
     constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
+    check_constraints(problem, model, constraints)  # degenerate or redundant ones: refused with a fix
     loads = force_terms(problem, model)
     frictions = tuple(friction_term(f, problem, model) for f in problem.friction)
     n = len(model.coordinates)

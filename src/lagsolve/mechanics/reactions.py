@@ -6,8 +6,16 @@ The generalized force of constraint :math:`j` is :math:`\lambda_j a_j`. On the p
 particles. We take the least-norm solution :math:`\mathbf f = \lambda_j\,(J^T)^+ a_j`, which is
 :math:`(JJ^T)^{-1}J\lambda_j a_j` (the format's formula) when :math:`JJ^T` is invertible, and check
 :math:`J^T\mathbf f = \lambda_j a_j`: when that fails the constraint also acts on something
-not named in ``on`` and no force is claimed. With no particles at all the magnitude is
-:math:`|\lambda_j|\sqrt{\sum_i a_{ji}^2}` (exact when the coordinates are Cartesian).
+not named in ``on`` and no force is claimed.
+
+A constraint on a rigid body names the point :math:`P` where it acts (``on: disk``,
+``at: [X, Y - R]``). Then :math:`J` is that point's velocity Jacobian,
+:math:`\partial\mathbf v_P/\partial\dot q` with
+:math:`\mathbf v_P = \dot{\mathbf r}_C + \boldsymbol\omega\times(\mathbf r_P - \mathbf r_C)` (for a planar body
+:math:`\omega` is the component along :math:`z`, counter-clockwise positive): rolling without slipping
+gives the friction force at the contact. Without a point (a body, or no particles at all) no
+physical force is claimed: the generalized forces of constraint :math:`\lambda_j a_j` are the
+result (a force for a length, a torque for an angle), and no magnitude mixes the two.
 """
 
 from __future__ import annotations
@@ -49,9 +57,11 @@ class Reaction:
 def reaction(problem: Problem, model: Model, terms: ConstraintTerms) -> Reaction:
     """Direction and size of the force of one constraint, per unit multiplier."""
     a = sympy.Matrix(terms.coefficients)
+    spec = next((c for c in problem.constraints if c.name == terms.name), None)
+    if spec is not None and spec.at is not None:
+        return _at_point(problem, model, terms, spec.on[0], spec.at)
     if not problem.particles:
-        return Reaction(terms.name, (), True,
-                        "no particles: magnitude taken as |λ|·|a| (exact for Cartesian coordinates)")
+        return Reaction(terms.name, (), True, GENERALIZED)
     if not terms.on:
         return Reaction(terms.name, (), False,
                         "the problem has several particles and the constraint does not say which one it "
@@ -71,6 +81,42 @@ def reaction(problem: Problem, model: Model, terms: ConstraintTerms) -> Reaction
         row += block.rows
         forces.append(ParticleForce(p, tuple(tidy(c) for c in part)))
     return Reaction(terms.name, tuple(forces), False, "")
+
+
+#: the note of a constraint whose physical force is not known: its generalized forces are given instead
+GENERALIZED = ("generalized forces of constraint λ·a, one per coordinate (a force for a length, a torque for an "
+               "angle), so no magnitude is given; for the physical force name the body and the point where the "
+               "constraint acts with 'on:' and 'at:'")
+
+
+def point_velocity_jacobian(problem: Problem, model: Model, body: str, point: tuple[Any, ...]) -> sympy.Matrix:
+    r""":math:`\partial\mathbf v_P/\partial\dot q` of the point ``point`` of the planar ``body``:
+    column :math:`i` is :math:`\partial\mathbf r_C/\partial q_i + (\partial\omega/\partial\dot q_i)\,
+    \hat z\times(\mathbf r_P - \mathbf r_C)`."""
+    b = problem.body(body)
+    centre = sympy.Matrix(b.position)
+    r = sympy.Matrix(point) - centre
+    turn = sympy.Matrix([-r[1], r[0]])  # z × r
+    omega = b.angular_velocity[0]
+    columns = [sympy.diff(centre, q) + sympy.diff(omega, v) * turn
+               for q, v in zip(model.coordinates, model.velocities, strict=True)]
+    return sympy.Matrix.hstack(*columns)
+
+
+def _at_point(problem: Problem, model: Model, terms: ConstraintTerms, body: str,
+              point: tuple[Any, ...]) -> Reaction:
+    """The force of a constraint acting at ``point`` of ``body``: J_Pᵀ f = a with J_P the point's velocity
+    Jacobian (least norm: the components the constraint does not fix are zero)."""
+    J = point_velocity_jacobian(problem, model, body, point)
+    a = sympy.Matrix(terms.coefficients)
+    direction = _least_norm(J, a)
+    if direction is None or any(tidy(e) != 0 for e in (J.T * direction - a)):
+        return Reaction(terms.name, (), False,
+                        f"λ·a is not the generalized force of a force at the point {[str(c) for c in point]} of "
+                        f"{body!r}, so no physical force is claimed; check 'at:' (and that the body's "
+                        "angular velocity is counter-clockwise positive)")
+    return Reaction(terms.name, (ParticleForce(body, tuple(tidy(c) for c in direction)),), False,
+                    f"the force on {body} at the point given under 'at:'")
 
 
 def _least_norm(J: sympy.Matrix, a: sympy.Matrix) -> sympy.Matrix | None:

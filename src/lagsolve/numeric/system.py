@@ -304,9 +304,7 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
         react = form.reactions[c.name]
         if react.particles:
             scales.append(norm(list(react.particles[0].direction)))
-        elif react.generalized:
-            scales.append(norm(list(c.coefficients)))
-        else:
+        else:  # no physical force known (no particle, or no point of a body named): no magnitude
             scales.append(sympy.nan)
     holonomic = tuple(j for j, c in enumerate(form.constraints) if c.kind == "holonomic")
     psi = [form.constraints[j].expression for j in holonomic]

@@ -295,7 +295,7 @@ class _Loader:
 
         particle_names = self.declared_particles
         forces = self.forces(data.get("forces", []), base, particles, coordinates)
-        constraints = self.constraints(data.get("constraints", {}), base, particle_names)
+        constraints = self.constraints(data.get("constraints", {}), base, particle_names, bodies, positions)
         friction = self.friction(data.get("friction", {}), base, particle_names, constraints, coordinates)
         expected = self.expected(data.get("expected", {}), constraints)
         simulation = self.simulation(data["simulation"], parameters, coordinates) if "simulation" in data else None
@@ -495,7 +495,8 @@ class _Loader:
                 self.issue(path, "a force needs 'coordinate' (a generalized force) or 'on' (a force on a particle)")
         return out
 
-    def constraints(self, value: Any, names: gateway.Namespace, particles: list[str]) -> list[Constraint]:
+    def constraints(self, value: Any, names: gateway.Namespace, particles: list[str], bodies: list[Body],
+                    points: gateway.Namespace) -> list[Constraint]:
         out: list[Constraint] = []
         value = self.mapping(("constraints",), value, "a mapping name: constraint")
         if value is None:
@@ -509,7 +510,7 @@ class _Loader:
                 self.issue(path, problem)
                 continue
             spec = self.mapping(path, spec)
-            if spec is None or not self.keys(path, spec, ("holonomic", "nonholonomic", "on", "unilateral")):
+            if spec is None or not self.keys(path, spec, ("holonomic", "nonholonomic", "on", "unilateral", "at")):
                 continue
             unilateral = False
             if "unilateral" in spec:
@@ -519,19 +520,27 @@ class _Loader:
                 self.issue(path, "give exactly one of 'holonomic: psi(q, t)' or 'nonholonomic: a.q_dot + b'")
                 continue
             kind = kinds[0]
-            on = self.constraint_on(path, spec, particles)
+            body = next((b for b in bodies if spec.get("on") == b.name), None)
+            at = None
+            if body is not None or "at" in spec:
+                at = self.contact_point(path, spec, body, points)
+                if at is None:
+                    continue
+                on: tuple[str, ...] | None = (body.name,) if body is not None else None
+            else:
+                on = self.constraint_on(path, spec, particles)
             if on is None:
                 continue
-            body = self.expression((*path, kind), spec[kind], names)
-            if body is None:
+            psi = self.expression((*path, kind), spec[kind], names)
+            if psi is None:
                 continue
-            used = body.free_symbols & velocities
+            used = psi.free_symbols & velocities
             if kind == "holonomic" and used:
                 self.issue((*path, kind), "a holonomic constraint cannot contain velocities (found "
                            + ", ".join(sorted(str(s) for s in used)) + ")",
                            "write it under 'nonholonomic:' instead")
                 continue
-            if kind == "holonomic" and not body.free_symbols & positions:
+            if kind == "holonomic" and not psi.free_symbols & positions:
                 self.issue((*path, kind), "this constraint contains no coordinate, so it cannot "
                            "restrict the motion", "write psi(q, t) in terms of the coordinates")
                 continue
@@ -541,14 +550,37 @@ class _Loader:
                                "write a position constraint under 'holonomic:'")
                     continue
                 bad = [str(v) for v in sorted(used, key=str)
-                       if sympy.diff(body, v).free_symbols & velocities]
+                       if sympy.diff(psi, v).free_symbols & velocities]
                 if bad:
                     self.issue((*path, kind), "velocity constraint is not linear in the velocities ("
                                + ", ".join(bad) + ")",
                                "write it as a_1*q1_dot + a_2*q2_dot + ... + b with a and b free of velocities")
                     continue
-            out.append(Constraint(cname, kind, body, on, self.line((*path, kind)), unilateral))
+            out.append(Constraint(cname, kind, psi, on, self.line((*path, kind)), unilateral, at))
         return out
+
+    def contact_point(self, path: tuple, spec: dict, body: Body | None,
+                      positions: gateway.Namespace) -> tuple[Any, ...] | None:
+        """``on: disk`` with ``at: [X, Y - R]``: the point of a planar body where a constraint acts."""
+        if body is None:
+            self.issue((*path, "on"), "'at:' names a point of a body; 'on:' must name that body",
+                       _known("bodies", [n for n in (self.data.get("bodies") or {}) if isinstance(n, str)]))
+            return None
+        if "at" not in spec:
+            self.issue((*path, "on"), f"a constraint on the body {body.name!r} needs the point where it acts",
+                       f"add 'at: [x, y]', the contact point in the problem's coordinates (the centre of "
+                       f"{body.name!r} is {[str(c) for c in body.position]})")
+            return None
+        if not body.planar:
+            self.issue((*path, "at"), f"{body.name!r} is a 3-D body; 'at:' is supported for planar bodies",
+                       "leave 'on:' and 'at:' out: the generalized forces of constraint are then reported")
+            return None
+        point = self.vector((*path, "at"), spec["at"], positions)
+        if point is not None and len(point) != len(body.position):
+            self.issue((*path, "at"), f"the point has {len(point)} components but {body.name!r} has "
+                       f"{len(body.position)}", "give it as many components as the body's position")
+            return None
+        return point
 
     def constraint_on(self, path: tuple, spec: dict, particles: list[str]) -> tuple[str, ...] | None:
         if "on" not in spec:

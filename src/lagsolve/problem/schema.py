@@ -75,9 +75,10 @@ class Constraint:
     name: str
     kind: str  # "holonomic" | "nonholonomic"
     expression: Expr
-    on: tuple[str, ...]  # particles it acts on; empty when unknown
+    on: tuple[str, ...]  # particles it acts on (or the one body, with ``at``); empty when unknown
     line: int
     unilateral: bool = False  # holds only while its force pushes (lambda >= 0); see docs/format.md
+    at: tuple[Expr, ...] | None = None  # the point of the body ``on[0]`` where it acts (problem coordinates)
 
 
 @dataclass(frozen=True)
@@ -175,6 +176,12 @@ class Problem:
         """The file's stem: ``problems/bead.yaml`` → ``bead`` (names output files)."""
         stem = self.source.replace("\\", "/").rsplit("/", 1)[-1]
         return stem.rsplit(".", 1)[0] if "." in stem else stem
+
+    def body(self, name: str) -> Body:
+        for b in self.bodies:
+            if b.name == name:
+                return b
+        raise KeyError(name)
 
     def particle(self, name: str) -> Particle:
         for p in self.particles:

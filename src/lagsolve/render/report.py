@@ -110,6 +110,8 @@ def context(derivation: Derivation, math: str = "latex") -> dict[str, Any]:
             "particles": [{"name": p, "vector": [tex(v) for v in vec], "magnitude": both(mag)}
                           for p, vec, mag in result.particles] if len(result.particles) > 1 else [],
             "note": result.note,
+            "generalized": [{"coordinate": coords[i]["tex"], "coordinate_text": coords[i]["name"],
+                             "value": both(v)} for i, v in enumerate(result.generalized) if v != 0],
         })
     friction = [
         {"name": f.term.name, "particle": f.term.particle, "coefficient": tex(f.term.coefficient),
@@ -117,7 +119,10 @@ def context(derivation: Derivation, math: str = "latex") -> dict[str, Any]:
          "force": [tex(v) for v in f.term.force],
          "generalized": [{"coordinate": coords[i]["tex"], "value": tex(v)}
                          for i, v in enumerate(f.term.generalized) if v != 0],
-         "valid_while": tex(f.term.valid_while), "normal_force": both(f.normal_force),
+         "valid_while": tex(f.term.valid_while),
+         # an implicit N is shown by the equation it solves, N = |a + B N|, not as "N = N"
+         "normal_force": both(f.system.rhs if f.normal_force == f.term.normal and f.system is not None
+                              else f.normal_force),
          "case": f.case, "condition": tex(f.valid_while) if f.valid_while is not None else "",
          "static": next((tex(g.static if g.static is not None else g.coefficient)
                          for g in problem.friction if g.name == f.term.name), "")}
@@ -270,6 +275,9 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
         if len(result.particles) > 1:
             entry["particles"] = {p: {"vector": [to_json(v) for v in vec], "magnitude": to_json(mag)}
                                   for p, vec, mag in result.particles}
+        if result.generalized:
+            entry["generalized"] = {q.name: to_json(v)
+                                    for q, v in zip(problem.coordinates, result.generalized, strict=True)}
         if result.note:
             entry["note"] = result.note
         forces[name] = entry  # type: ignore[index]
@@ -302,12 +310,13 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
         "friction": {
             f.term.name: {
                 "normal_force": to_json(f.normal_force),
-                "force": [to_json(v) for v in f.term.force],
+                "force": [to_json(v) for v in (f.force or f.term.force)],
                 "generalized": {q.name: to_json(v)
-                                for q, v in zip(problem.coordinates, f.term.generalized, strict=True)},
+                                for q, v in zip(problem.coordinates, f.generalized or f.term.generalized, strict=True)},
                 "valid_while": to_json(f.term.valid_while),
                 "case": f.case,
                 "normal_force_valid_while": to_json(f.valid_while) if f.valid_while is not None else None,
+                "normal_force_equation": to_json(f.system) if f.system is not None else None,
             }
             for f in derivation.friction
         },
@@ -344,6 +353,10 @@ def summary(derivation: Derivation) -> str:
     if ctx["forces"]:
         lines.append("  forces of constraint (magnitude):")
         for f in ctx["forces"]:
+            if f["generalized"]:
+                parts = ", ".join(f"Q_{g['coordinate_text']} = {g['value']['text']}" for g in f["generalized"])
+                lines.append(f"    {f['name']}: generalized forces of constraint (no point named): {parts}")
+                continue
             value = f["magnitude"]["text"] if f["magnitude"] else "— " + f["note"]
             lines.append(f"    |F_{f['name']}| = {value}")
     for f in ctx["friction"]:
