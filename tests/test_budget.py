@@ -111,3 +111,54 @@ def test_spec_errors_are_picklable() -> None:
     err = SpecError([Issue("f.yaml", 3, "name", "bad", "fix it")])
     again = pickle.loads(pickle.dumps(err))
     assert str(again.issues[0]) == "f.yaml:3: name: bad; fix it"
+
+
+def _descendants(pid: int) -> set[int]:
+    """Every process below ``pid`` (read from /proc)."""
+    import os
+
+    children: dict[int, list[int]] = {}
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/stat", encoding="ascii") as stat:
+                    parent = int(stat.read().split(") ")[-1].split()[1])
+            except (OSError, ValueError, IndexError):
+                continue
+            children.setdefault(parent, []).append(int(entry))
+    found: set[int] = set()
+    todo = [pid]
+    while todo:
+        for child in children.get(todo.pop(), []):
+            if child not in found:
+                found.add(child)
+                todo.append(child)
+    return found
+
+
+@pytest.mark.parametrize("signum", ["SIGTERM", "SIGINT"])
+def test_a_signal_to_the_command_alone_leaves_no_worker(signum: str, tmp_path) -> None:  # noqa: ANN001
+    """SIGTERM or SIGINT sent to the lagsolve process alone (not its group) takes its workers with it."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    bead = Path(__file__).resolve().parents[1] / "problems" / "bead.yaml"
+    command = [sys.executable, "-m", "lagsolve", "simulate", str(bead), "--t-end", "1e7", "--timeout", "600"]
+    process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=tmp_path)
+    workers: set[int] = set()
+    for _ in range(200):  # until the budgeted worker has started (at most 20 s)
+        workers = _descendants(process.pid)
+        if workers:
+            break
+        time.sleep(0.1)
+    assert workers, "the worker never started"
+    os.kill(process.pid, getattr(signal, signum))
+    process.wait(timeout=30)
+    for _ in range(100):
+        if not any(_alive(pid) for pid in workers):
+            break
+        time.sleep(0.05)
+    assert not any(_alive(pid) for pid in workers)
