@@ -12,7 +12,7 @@ import lagsolve.problem.load  # noqa: F401  (import SymPy before any timing star
 from lagsolve.cli import main
 
 #: An invalid file must be refused at once: a guard against hangs, not a benchmark.
-FAST = 2.0
+FAST = 2.0  # CPU seconds for a refusal; a hang would take far longer
 
 BEAD = """\
 name: Bead on a wire
@@ -134,9 +134,9 @@ def write(folder: Path, name: str, content: str | bytes) -> Path:
 
 
 def derive(*args: str) -> tuple[Result, float]:
-    start = time.perf_counter()
+    start = time.process_time()
     result = CliRunner().invoke(main, ["derive", *args])
-    return result, time.perf_counter() - start
+    return result, time.process_time() - start
 
 
 @pytest.mark.parametrize(("content", "line", "where", "phrase"), [c[1:] for c in BAD_FILES],
@@ -146,9 +146,9 @@ def test_bad_file_is_refused_with_a_precise_message(tmp_path: Path, content: str
     """A bad file exits with 2 and says file:line: field: what, fast, without a traceback."""
     path = write(tmp_path, "problem.yaml", content)
     out = tmp_path / "out"
-    result, elapsed = derive(str(path), "-o", str(out))
+    result, cpu = derive(str(path), "-o", str(out))
     assert result.exit_code == 2, result.output
-    assert elapsed < FAST, f"took {elapsed:.2f} s"
+    assert cpu < FAST, f"took {cpu:.2f} s"
     place = f"error: {path}:{line}: " + (f"{where}: " if where else "")
     assert place in result.stderr, result.stderr
     assert phrase in result.stderr

@@ -159,7 +159,7 @@ class _Sampler:
         for e in exprs:
             for fn, lam in self.functions.items():
                 e = e.replace(fn, lam)
-            concrete.append(sympy.sympify(e).doit())
+            concrete.append((e if isinstance(e, sympy.Basic) else sympy.Integer(e)).doit())
         if not concrete:
             return lambda *args: np.zeros(0)
         values = sympy.lambdify(self.arguments, concrete, modules="numpy")
