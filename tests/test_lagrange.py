@@ -249,11 +249,13 @@ def _singular(text):
     return lagrange_terms(model, constraints, zero)
 
 
-def test_singular_system_with_redundant_constraints_raises_from_derive():
-    """Two redundant constraints make derive() raise a DerivationError naming redundancy."""
-    with pytest.raises(DerivationError, match="singular") as info:
+def test_redundant_constraints_are_refused_before_the_derivation():
+    """Two redundant constraints are refused (a SpecError naming them and the fix), before anything is solved."""
+    from lagsolve.errors import SpecError
+
+    with pytest.raises(SpecError, match="redundant") as info:
         derive(problem_text(REDUNDANT))
-    assert "redundant" in str(info.value)
+    assert "remove again" in str(info.value)
 
 
 def test_solve_linear_matches_an_independent_solver():
