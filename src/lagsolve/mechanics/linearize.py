@@ -265,9 +265,9 @@ def numeric_linearization(system: MotionSystem, values: dict[str, float], initia
             continue
         if any(np.allclose(point, p, atol=1e-7) for p in found):
             continue
-        if _on_continuum(f_static, -np.asarray(f_jac(point), dtype=float), point):
-            if any(_on_continuum(f_static, -np.asarray(f_jac(p), dtype=float), p) for p in found):
-                continue  # the multi-start lands anywhere on a continuum: one point of it is shown
+        if _on_continuum(f_static, -np.asarray(f_jac(point), dtype=float), point) and any(
+                _on_continuum(f_static, -np.asarray(f_jac(p), dtype=float), p) for p in found):
+            continue  # the multi-start lands anywhere on a continuum: one point of it is shown
         found.append(point)
     if not found:
         raise StageSkipped(f"no equilibrium found numerically from {STARTS} starting points")
