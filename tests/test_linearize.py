@@ -107,3 +107,28 @@ def test_numeric_equilibria_show_one_point_of_a_continuum():
     assert abs(point["x2"] - point["x1"] - 1.0) < 1e-9
     assert "continuum" in mode.note and mode.stable is None
     assert sorted(float(w) for w in mode.squared_frequencies) == [0.0, 7.5]  # k (m1 + m2)/(m1 m2)
+
+
+def test_a_singular_point_of_the_coordinates_is_no_equilibrium():
+    """The elastic pendulum in polar coordinates: F(q, 0) = 0 also at r = 0, but only because the theta
+    equation carries the factor r of M (the true theta_ddot = -(2 r_dot theta_dot + g sin theta)/r is
+    singular there). Such points are not listed as (stable!) equilibria. The hanging one is
+    r0 = l0 + m g/k with omega^2 = k/m (the spring) and g/r0 (the pendulum) — Taylor, problem 7.31."""
+    elastic = derived_text("""
+name: Elastic pendulum
+parameters: {m: mass, k: stiffness, l0: rest length, g: gravity}
+coordinates: [r, theta]
+particles:
+  bob: {mass: m, position: [r*sin(theta), -r*cos(theta)]}
+gravity: [0, -g]
+potential: k*(r - l0)**2/2
+""")
+    s = names(elastic.problem)
+    modes = elastic.analysis.linearization.modes
+    assert all(dict(m.point)[s["r"]] != 0 for m in modes)
+    (down,) = [m for m in modes if dict(m.point)[s["theta"]] == 0]
+    r0 = s["l0"] + s["m"] * s["g"] / s["k"]
+    assert exactly_equal(dict(down.point)[s["r"]], r0)
+    assert down.stable is True
+    expected = [s["k"] / s["m"], s["g"] / r0]
+    assert all(any(exactly_equal(got, want) for want in expected) for got in down.squared_frequencies)

@@ -123,6 +123,10 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
         if any(v.has(sympy.I) or v.free_symbols & (set(s) - set(free)) for v in s.values()):
             continue
         points.add((tuple((q, _principal(s[q])) for q in coordinates if q in s), free))
+    # where M is singular the coordinates themselves are (r = 0 in polar coordinates): F(q, 0) = 0 there only
+    # because the equations were multiplied through by M, so such a point is no equilibrium of the motion
+    mass = sympy.Matrix(terms.mass_matrix)
+    points = {p for p in points if not proved_zero(mass.xreplace(dict(p[0])).det())}
     if not points:
         return None, "no isolated equilibrium was found in closed form"
     ordered = sorted(points, key=lambda p: (len(p[1]), sympy.default_sort_key(sympy.Tuple(*[v for _, v in p[0]]))))
@@ -265,6 +269,8 @@ def numeric_linearization(system: MotionSystem, values: dict[str, float], initia
             continue
         if any(np.allclose(point, p, atol=1e-7) for p in found):
             continue
+        if np.linalg.cond(np.asarray(f_mass(point), dtype=float)) > 1e12:
+            continue  # a singular point of the coordinates (M singular), not an equilibrium of the motion
         if _on_continuum(f_static, -np.asarray(f_jac(point), dtype=float), point) and any(
                 _on_continuum(f_static, -np.asarray(f_jac(p), dtype=float), p) for p in found):
             continue  # the multi-start lands anywhere on a continuum: one point of it is shown
