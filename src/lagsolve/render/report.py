@@ -357,6 +357,9 @@ def summary(derivation: Derivation) -> str:
                 parts = ", ".join(f"Q_{g['coordinate_text']} = {g['value']['text']}" for g in f["generalized"])
                 lines.append(f"    {f['name']}: generalized forces of constraint (no point named): {parts}")
                 continue
+            if f["magnitude"] is None and f["particles"]:
+                lines += [f"    |F_{f['name']}| on {p['name']} = {p['magnitude']['text']}" for p in f["particles"]]
+                continue
             value = f["magnitude"]["text"] if f["magnitude"] else "— " + f["note"]
             lines.append(f"    |F_{f['name']}| = {value}")
     for f in ctx["friction"]:
