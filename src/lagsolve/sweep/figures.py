@@ -17,7 +17,7 @@ import numpy as np
 from lagsolve.errors import Issue, SpecError
 
 #: outcome → colour (colour-blind-safe palette, Okabe–Ito)
-OUTCOMES = {"ok": "#56B4E9", "flipped": "#D55E00", "stick": "#009E73", "slip": "#E69F00",
+OUTCOMES = {"ok": "#56B4E9", "no flip": "#56B4E9", "flipped": "#D55E00", "stick": "#009E73", "slip": "#E69F00",
             "released": "#CC79A7", "failed": "#000000"}
 
 

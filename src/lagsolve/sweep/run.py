@@ -161,10 +161,11 @@ def _empty_row(problem: Compiled, settings: Settings, path: str) -> dict[str, An
                            "t_final": np.nan}
     for name in _state_names(system):
         row[f"final_{name}"] = np.nan
-    row.update({"max_residual": np.nan, "energy_drift": np.nan})
+    row.update({"max_residual": np.nan, "energy_conserved": bool(system.energy_conserved), "energy_drift": np.nan})
     for name in problem.conserved:
         row[f"drift_{name}"] = np.nan
-    row.update({"flipped": False, "stick_count": 0, "slip_count": 0, "stick_times": [], "slip_times": [],
+    row.update({"flipped": False, "flip_time": np.nan, "stick_count": 0, "slip_count": 0, "stick_times": [],
+                "slip_times": [],
                 "stuck_at_end": False, "release_time": np.nan, "release_constraint": ""})
     for c in system.coordinates:
         row[f"release_{c}"] = np.nan
@@ -177,7 +178,7 @@ def _empty_row(problem: Compiled, settings: Settings, path: str) -> dict[str, An
     return row
 
 
-def _outcome(row: dict[str, Any], has_contacts: bool) -> str:
+def _outcome(row: dict[str, Any], has_contacts: bool, angular: bool) -> str:
     if row["status"] == "failed":
         return "failed"
     if row["status"] == "released":
@@ -186,7 +187,7 @@ def _outcome(row: dict[str, Any], has_contacts: bool) -> str:
         return "flipped"
     if has_contacts:
         return "stick" if row["stuck_at_end"] else "slip"
-    return "ok"
+    return "no flip" if angular else "ok"
 
 
 def _drift(first: np.ndarray, worst: np.ndarray) -> np.ndarray:
@@ -220,6 +221,7 @@ def _batched(problem: Compiled, settings: Settings, parameters: np.ndarray, star
     residual = batch.residual(t0, y0[:, :n], y0[:, n:], p)
     angular = np.array(problem.angular, dtype=bool)
     flipped = np.any(np.abs(y0[:, :n][:, angular]) > np.pi, axis=1)
+    flip_time = np.where(flipped, 0.0, np.nan)
     section = settings.section
     crossings: list[list[np.ndarray]] = [[] for _ in range(live)]
     project = batch.m > 0
@@ -242,7 +244,13 @@ def _batched(problem: Compiled, settings: Settings, parameters: np.ndarray, star
             if conserved0.shape[1]:
                 worst_conserved[which] = np.maximum(worst_conserved[which],
                                                     np.abs(batch.conserved(t, q, qd, pw) - conserved0[which]))
-        flipped[which] |= np.any(np.abs(q[:, angular]) > np.pi, axis=1)
+        if angular.any():
+            over = np.any(np.abs(step.y_new[:, :n][:, angular]) > np.pi, axis=1) & ~flipped[which]
+            if over.any():
+                subset = np.flatnonzero(over)
+                flip_time[which[subset]] = _first_root(step, subset, lambda y: np.max(
+                    np.abs(y[:, :n][:, angular]), axis=1) - np.pi)
+                flipped[which[subset]] = True
         return np.concatenate([q, qd], axis=1) if project else None
 
     with np.errstate(all="ignore"):
@@ -263,6 +271,7 @@ def _batched(problem: Compiled, settings: Settings, parameters: np.ndarray, star
         for c, name in enumerate(problem.conserved):
             row[f"drift_{name}"] = float(conserved_drift[i, c])
         row["flipped"] = bool(flipped[i])
+        row["flip_time"] = float(flip_time[i])
         row["steps"] = int(steps[i])
         if section is not None:
             found = crossings[i]
@@ -270,8 +279,22 @@ def _batched(problem: Compiled, settings: Settings, parameters: np.ndarray, star
             row["poincare_t"] = [float(c[0]) for c in found]
             for j, name in enumerate(names):
                 row[f"poincare_{name}"] = [float(c[1 + j]) for c in found]
-        row["outcome"] = _outcome(row, False)
+        row["outcome"] = _outcome(row, False, bool(angular.any()))
     return rows
+
+
+def _first_root(step: Any, subset: np.ndarray, g: Any) -> np.ndarray:
+    """For the steps ``subset`` where ``g`` (a function of states, one value per row) goes from ≤ 0 to
+    > 0, the time where it first becomes > 0, by bisection on the dense output to machine precision."""
+    dense = step.dense(subset)
+    low, high = step.t_old[subset].copy(), step.t_new[subset].copy()
+    for _ in range(64):
+        middle = 0.5 * (low + high)
+        above = g(dense(middle)) > 0
+        low, high = np.where(above, low, middle), np.where(above, middle, high)
+        if np.all(high - low <= 4 * np.finfo(float).eps * np.maximum(1.0, np.abs(high))):
+            break
+    return high
 
 
 def _crossings(step: Any, section: Section, crossings: list[list[np.ndarray]]) -> None:
@@ -283,21 +306,13 @@ def _crossings(step: Any, section: Section, crossings: list[list[np.ndarray]]) -
     if not crossing.any():
         return
     subset = np.flatnonzero(crossing)
-    dense = step.dense(subset)
-    low, high = step.t_old[subset].copy(), step.t_new[subset].copy()
-    rising = g_old[subset] < 0
-    for _ in range(60):
-        middle = 0.5 * (low + high)
-        value = dense(middle)[:, section.index] - section.value
-        below = np.where(rising, value < 0, value > 0)
-        low = np.where(below, middle, low)
-        high = np.where(below, high, middle)
-        if np.all(high - low <= 4 * np.finfo(float).eps * np.maximum(1.0, np.abs(high))):
-            break
-    states = dense(high)
+    sign = np.where(g_old[subset] < 0, 1.0, -1.0)
+    times = _first_root(step, subset, lambda y: sign * (y[:, section.index] - section.value) + 0.0)
+    states = step.dense(subset)(times)
+    states[:, section.index] = section.value
     keep = section.holds(states)
     for k in np.flatnonzero(keep):
-        crossings[step.rows[subset[k]]].append(np.concatenate([[high[k]], states[k]]))
+        crossings[step.rows[subset[k]]].append(np.concatenate([[times[k]], states[k]]))
 
 
 def _per_run(problem: Compiled, settings: Settings, parameters: np.ndarray, starts: np.ndarray,
@@ -334,7 +349,9 @@ def _per_run(problem: Compiled, settings: Settings, parameters: np.ndarray, star
         row["energy_drift"] = float(motion.stats["energy_drift"])
         for name in problem.conserved:
             row[f"drift_{name}"] = float(motion.stats["conserved_drift"].get(name, np.nan))
-        row["flipped"] = bool(np.any(np.abs(motion.q[:, angular]) > np.pi))
+        over = np.flatnonzero(np.any(np.abs(motion.q[:, angular]) > np.pi, axis=1))
+        row["flipped"] = bool(len(over))
+        row["flip_time"] = float(motion.t[over[0]]) if len(over) else np.nan  # the first sample past π
         row["stick_times"] = [float(e.time) for e in motion.events if e.kind == "stick"]
         row["slip_times"] = [float(e.time) for e in motion.events if e.kind == "slip"]
         row["stick_count"], row["slip_count"] = len(row["stick_times"]), len(row["slip_times"])
@@ -347,5 +364,5 @@ def _per_run(problem: Compiled, settings: Settings, parameters: np.ndarray, star
         row["steps"] = int(motion.stats["steps"])
         if settings.section is not None:
             row["note"] = "Poincaré crossings are recorded on the batched path only"
-        row["outcome"] = _outcome(row, bool(system.contacts))
+        row["outcome"] = _outcome(row, bool(system.contacts), bool(angular.any()))
     return rows
