@@ -123,14 +123,13 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
                          for k, v in random_specs.items()]
     else:
         random_values = [spec.parse_random(r, names) for r in random_specs]
-    if t_end is None:
-        t_end = problem.simulation.t_end if problem.simulation is not None else None
-    if t_end is None or not (math.isfinite(t_end) and t_end > 0):
+    end = t_end if t_end is not None else problem.simulation.t_end if problem.simulation is not None else None
+    if end is None or not (math.isfinite(end) and end > 0):
         raise SpecError([Issue(source, 0, "simulation.t_end", "no positive end time",
                                "give simulation.t_end in the file or --t-end")])
     section = spec.parse_section(poincare, names) if poincare is not None else None
     inputs = spec.inputs(grid_values, random_values, runs, seed)
-    settings = Settings(float(t_end), method, float(rtol), float(atol), section)
+    settings = Settings(float(end), method, float(rtol), float(atol), section)
     compiled(text, source)  # bad values surface here, as SpecError, before any worker starts
     total = len(next(iter(inputs.values())))
     size = chunk_size or min(1024, max(1, math.ceil(total / (4 * max(1, workers)))))
@@ -164,9 +163,9 @@ def _check_options(method: str, rtol: float, atol: float, workers: int, runs: in
     for key, value in (("rtol", rtol), ("atol", atol)):
         if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
             bad.append(Issue("<argument>", 0, key, f"expected a positive finite number, found {value!r}"))
-    for key, value, low in (("workers", workers, 0), ("runs", runs, 1), ("chunk_size", chunk_size, 1),
+    for key, count, low in (("workers", workers, 0), ("runs", runs, 1), ("chunk_size", chunk_size, 1),
                             ("seed", seed, 0)):
-        if value is not None and (isinstance(value, bool) or not isinstance(value, int) or value < low):
-            bad.append(Issue("<argument>", 0, key, f"expected a whole number >= {low}, found {value!r}"))
+        if count is not None and (isinstance(count, bool) or not isinstance(count, int) or count < low):
+            bad.append(Issue("<argument>", 0, key, f"expected a whole number >= {low}, found {count!r}"))
     if bad:
         raise SpecError(bad)

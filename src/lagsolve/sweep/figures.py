@@ -54,21 +54,22 @@ def _regime(frame: Any, x: str, y: str, title: str, color: str | None) -> Any:
     axes = figure.add_subplot()
     xs, ys = np.unique(frame[x].to_numpy()), np.unique(frame[y].to_numpy())
     full_grid = len(xs) * len(ys) == len(frame) and len(xs) > 1 and len(ys) > 1
+    present = [k for k in OUTCOMES if (frame["outcome"] == k).any()]
+    cmap: Any = "viridis"
+    vmin = vmax = None
     if color is None:
-        present = [k for k in OUTCOMES if (frame["outcome"] == k).any()]
-        codes = frame["outcome"].map({k: i for i, k in enumerate(present)}).to_numpy(dtype=float)
+        values = frame["outcome"].map({k: i for i, k in enumerate(present)}).to_numpy(dtype=float)
         cmap = ListedColormap([OUTCOMES[k] for k in present])
-        limits: dict[str, float] = {"vmin": -0.5, "vmax": len(present) - 0.5}
-        values = codes
+        vmin, vmax = -0.5, len(present) - 0.5
     else:
-        cmap, limits = "viridis", {}
         values = frame[color].to_numpy(dtype=float)
+    mesh: Any
     if full_grid:
         grid = np.full((len(ys), len(xs)), np.nan)
         grid[np.searchsorted(ys, frame[y].to_numpy()), np.searchsorted(xs, frame[x].to_numpy())] = values
-        mesh = axes.pcolormesh(_edges(xs), _edges(ys), grid, cmap=cmap, **limits)
+        mesh = axes.pcolormesh(_edges(xs), _edges(ys), grid, cmap=cmap, vmin=vmin, vmax=vmax)
     else:
-        mesh = axes.scatter(frame[x], frame[y], c=values, cmap=cmap, s=12, **limits)
+        mesh = axes.scatter(frame[x], frame[y], c=values, cmap=cmap, s=12, vmin=vmin, vmax=vmax)
     if color is None:
         axes.legend(handles=[Patch(color=OUTCOMES[k], label=k) for k in present], loc="upper left",
                     bbox_to_anchor=(1.01, 1.0), frameon=False, title="outcome")
