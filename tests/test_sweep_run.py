@@ -153,3 +153,20 @@ def test_random_inputs_repeat_with_the_seed() -> None:
     assert one.equals(sweep(DOUBLE, random=["theta1=0:1", "l=0.5:2"], runs=4, seed=7, t_end=0.5))
     assert not np.array_equal(one["theta1"], sweep(DOUBLE, random=["theta1=0:1"], runs=4, seed=8, t_end=0.5)["theta1"])
     assert one["l"].between(0.5, 2).all()
+
+
+def test_release_from_a_sphere_where_the_closed_form_says() -> None:
+    """A particle launched along the top of a smooth sphere with speed v₀ leaves it where
+    cos θ = (v₀²/(g R) + 2 cos θ₀)/3 (energy and the radial equation with N = 0); the rows say
+    released, when, and where."""
+    sphere = ROOT / "problems" / "sliding_off_sphere.yaml"
+    frame = sweep(sphere, grid={"x_dot": "0.2:2.8:6"}, t_end=5.0)
+    g, radius = 9.81, 1.0
+    x0, y0 = 0.001, 0.9999995
+    for _, row in frame.iterrows():
+        assert row.status == "released" and row.outcome == "released"
+        assert row.release_constraint == "surface" and 0 < row.release_time == row.t_final
+        speed2 = row.x_dot**2 + (x0 * row.x_dot / y0) ** 2  # y_dot from x x_dot + y y_dot = 0
+        cos_release = (speed2 / (g * radius) + 2 * y0 / radius) / 3
+        assert abs(row.release_y - radius * cos_release) < 1e-6
+        assert row.path.startswith("per run: unilateral constraints")
