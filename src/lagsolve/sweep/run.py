@@ -50,7 +50,7 @@ class Compiled:
     batch: Any  # BatchSystem, or None where only the per-run path applies
     why_per_run: str
     initial: Mapping[str, float]
-    angular: tuple[bool, ...]  # per coordinate: the Lagrangian and positions repeat when it grows by 2π
+    angular: tuple[bool, ...]  # per coordinate: L depends on it, and L and the positions repeat when it grows by 2π
     conserved: tuple[str, ...]
 
 
@@ -93,7 +93,8 @@ def _compile(text: str, source: str) -> Compiled:
     for q in model.coordinates:
         shifted = {q: q + 2 * sympy.pi}
         same = all(sympy.expand(e.xreplace(shifted) - e) == 0 for e in [model.lagrangian, *positions])
-        angular.append(bool(same))
+        # a cyclic angle (a turning tube's φ, a spherical pendulum's azimuth) goes round; it does not flip
+        angular.append(bool(same) and sympy.diff(model.lagrangian, q) != 0)
     initial = dict(problem.simulation.initial) if problem.simulation is not None else {}
     return Compiled(source, system, batch, why, initial, tuple(angular), system.conserved_names)
 
@@ -183,10 +184,10 @@ def _outcome(row: dict[str, Any], has_contacts: bool, angular: bool) -> str:
         return "failed"
     if row["status"] == "released":
         return "released"
+    if has_contacts:  # friction problems are mapped by their contacts (a turning tube's angle always "flips")
+        return "stick" if row["stuck_at_end"] else "slip"
     if row["flipped"]:
         return "flipped"
-    if has_contacts:
-        return "stick" if row["stuck_at_end"] else "slip"
     return "no flip" if angular else "ok"
 
 
