@@ -170,3 +170,23 @@ def test_release_from_a_sphere_where_the_closed_form_says() -> None:
         cos_release = (speed2 / (g * radius) + 2 * y0 / radius) / 3
         assert abs(row.release_y - radius * cos_release) < 1e-6
         assert row.path.startswith("per run: unilateral constraints")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("path", sorted((ROOT / "problems").glob("*.yaml")), ids=lambda p: p.stem)
+def test_every_shipped_problem_matches_simulate(path: Path) -> None:
+    """Each shipped problem with a simulation block, swept over one point (its first parameter's file value),
+    ends where lagsolve.simulate ends (batched with projection, or per run), at the same time."""
+    problem = lagsolve.load_problem(path)
+    values = dict(problem.simulation.values) if problem.simulation is not None else {}
+    if problem.simulation is None or problem.simulation.t_end is None or problem.parameters[0].name not in values:
+        pytest.skip("no simulation block with values")
+    name = problem.parameters[0].name
+    t_end = min(problem.simulation.t_end, 2.0)
+    row = sweep(path, grid={name: [values[name]]}, t_end=t_end).iloc[0]
+    run = lagsolve.simulate(path, t_end=t_end)
+    assert row.status in ("ok", "released"), row.reason
+    assert row.t_final == pytest.approx(run.t[-1], abs=1e-12)
+    ours = np.array([row[f"final_{c}"] for c in run.coordinates])
+    assert np.max(np.abs(ours - run.q[-1])) < 1e-8
+    assert row.max_residual < 1e-8
