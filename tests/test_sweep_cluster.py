@@ -46,3 +46,22 @@ def test_two_workers_give_the_table_of_one_process() -> None:
                                       check_exact=True)
     psutil.wait_procs([psutil.Process(pid) for pid in _children() - before if psutil.pid_exists(pid)], timeout=10)
     assert _children() - before == set()
+
+
+def test_an_existing_cluster_through_the_command_line(tmp_path: Path) -> None:
+    """--scheduler ADDRESS runs the chunks on a cluster started elsewhere, and leaves it running."""
+    import logging
+
+    from click.testing import CliRunner
+    from distributed import LocalCluster
+
+    from lagsolve.cli import main
+
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None,
+                      silence_logs=logging.ERROR) as cluster:
+        out = tmp_path / "s.csv"
+        result = CliRunner().invoke(main, ["sweep", str(DOUBLE), "--grid", "theta1=0.1:0.5:3", "--t-end", "0.5",
+                                           "--scheduler", cluster.scheduler_address, "-o", str(out)])
+        assert result.exit_code == 0, result.output
+        assert cluster.status.name == "running"
+    assert len(pandas.read_csv(out)) == 3
