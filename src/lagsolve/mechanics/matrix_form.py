@@ -16,6 +16,7 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.constraints import ConstraintTerms, constraint_terms
+from lagsolve.mechanics.dimensions import check_dimensions
 from lagsolve.mechanics.forces import ForceTerm, FrictionTerm, force_terms, friction_term
 from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms
 from lagsolve.mechanics.model import Model, build_model
@@ -50,6 +51,7 @@ def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
     :func:`~lagsolve.mechanics.lagrange.lagrange_terms`). The equations are the same; only their
     written shape differs.
     """
+    check_dimensions(problem)  # with units: wrong dimensions refused before anything is derived
     model = build_model(problem, tidy=True if display else None)
     constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
     check_constraints(problem, model, constraints)  # degenerate or redundant ones: refused with a fix
