@@ -192,7 +192,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
             status = max(status, _fail(error))
             continue
         for warning in reports.warnings:
-            _note(f"warning: {reports.source}: not completed: {warning}", err=True)
+            _note(f"warning: {reports.source}: {warning}", err=True)
         if stream and golden is None:
             texts.append(reports.outputs["json"])
             continue

@@ -27,7 +27,7 @@ class Reports:
     summary: str
     outputs: dict[str, str]
     files: dict[str, bytes] = field(default_factory=dict)
-    warnings: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()  # each a sentence: missing units, "not completed: <stage note>"
 
 
 def safe_slug(path: str | Path) -> str:
@@ -117,7 +117,19 @@ def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
     lines = summary_text.splitlines()
     if "  not completed:" not in lines:
         return ()
-    return tuple(line.strip() for line in lines[lines.index("  not completed:") + 1:] if line.startswith("    "))
+    return tuple("not completed: " + line.strip() for line in lines[lines.index("  not completed:") + 1:]
+                 if line.startswith("    "))
+
+
+def _unit_warnings(problem: object) -> tuple[str, ...]:
+    """A file that declares some units but not all: the names without one (their dimensions go unchecked)."""
+    from lagsolve.mechanics.dimensions import missing_units
+
+    missing = missing_units(problem)  # type: ignore[arg-type]
+    if not missing:
+        return ()
+    return (f"units: no unit declared for {', '.join(missing)}, so dimensions involving "
+            f"{'it' if len(missing) == 1 else 'them'} are not checked; add 'unit:' to each (1 for a pure number)",)
 
 
 def _potential_figure(derivation: object) -> dict | None:
@@ -166,7 +178,8 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json
     text, outputs, files = run_with_budget(_derive_and_render, (problem, formats, templates, simulate, timeout),
                                            timeout, f"the derivation of {path}",
                                            on_partial=_render_core(formats, templates))
-    return Reports(str(path), safe_slug(path), problem.name, text, outputs, files, _warnings(outputs, text))
+    return Reports(str(path), safe_slug(path), problem.name, text, outputs, files,
+                   _unit_warnings(problem) + _warnings(outputs, text))
 
 
 @dataclass(frozen=True)

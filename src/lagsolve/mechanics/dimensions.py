@@ -296,7 +296,7 @@ def check_dimensions(problem: Problem) -> None:
     issues: list[Issue] = []
     lines = problem.lines
 
-    def need(where: str, expr: Any, dim: Dimension | None, what: str = "", why: str = "") -> Any:
+    def need(where: str, expr: Any, dim: Dimension | None, what: str = "", why: str = "", hint: str = "") -> Any:
         """Check ``expr`` at ``where`` (its dimension must be ``dim`` unless None); its unit, or None."""
         line = _line(lines, where)
         try:
@@ -312,7 +312,7 @@ def check_dimensions(problem: Problem) -> None:
         issues.append(Issue(problem.source, line, where,
                             f"{_text(expr)} has dimension {describe(found)}, but it must be "
                             f"{wanted + ' (' if wanted else ''}{dimension_text(dim)}{')' if wanted else ''}{why}",
-                            _hint(expr, found, dim, units)))
+                            hint or _hint(expr, found, dim, units)))
         return unit
 
     for p in problem.particles:
@@ -345,7 +345,14 @@ def check_dimensions(problem: Problem) -> None:
             why = f", so that Q*{f.coordinate} is an energy" + (
                 f" ({f.coordinate} is an angle)" if kind == "torque" else
                 f" ({f.coordinate} is a length)" if kind == "force" else "")
-            need(f"forces[{i}].value", f.value[0], wanted, kind, why)
+            hint = ""
+            if kind == "torque" and q_unit is not None:
+                hint = (f"a generalized force on an angle is a torque: multiply the force by its lever arm, or check "
+                        f"the units declared for {_symbols_of(f.value[0])}")
+            elif kind == "force":
+                hint = (f"a generalized force on a length is a force, the one along {f.coordinate}; check the "
+                        f"expression and the units declared for {_symbols_of(f.value[0])}")
+            need(f"forces[{i}].value", f.value[0], wanted, kind, why, hint)
         else:
             for k, v in enumerate(f.value):
                 need(f"forces[{i}].force[{k}]", v, FORCE)
@@ -377,7 +384,7 @@ def _hint(expr: Any, found: Dimension, wanted: Dimension, units: UnitAlgebra) ->
     for s in sorted(expr.free_symbols, key=str):
         u = units.symbols.get(s)
         if u is not None and dimension(u) and ratio in (dimension(u), dimension(1 / u)):
-            return f"did you forget a power? (they differ by {dimension_text(ratio)}, the dimension of {s})"
+            return f"did you forget a power? (they differ by {dimension_text(ratio)})"
     return (f"they differ by {dimension_text(ratio)}; check the expression and the units declared for "
             f"{_symbols_of(expr)}")
 

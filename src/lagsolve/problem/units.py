@@ -60,7 +60,7 @@ def canonical(text: Any) -> str:
         raise ExpressionError("the unit is empty", "write 1 for a pure number, or " + _EXAMPLES)
     if len(text) > MAX_UNIT_LENGTH:
         raise ExpressionError(f"the unit has {len(text)} characters; the limit is {MAX_UNIT_LENGTH}", _EXAMPLES)
-    if not _ALLOWED.match(text) or "__" in text:
+    if not _ALLOWED.match(text) or "_" in text:
         raise ExpressionError(f"{text!r} is not a unit", _EXAMPLES)
     text = _normal(text)
     _parse(text)
