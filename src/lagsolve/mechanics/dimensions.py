@@ -64,7 +64,7 @@ _ORDER = tuple(_BASE)
 _PURE = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc, sympy.asin, sympy.acos, sympy.atan,
          sympy.sinh, sympy.cosh, sympy.tanh, sympy.exp, sympy.log)
 #: names of some dimensions (mass, length, time exponents), for messages
-_NAMES = {
+_NAMES: dict[tuple[tuple[str, float], ...], str] = {
     (): "dimensionless", (("[length]", 1),): "length", (("[mass]", 1),): "mass", (("[time]", 1),): "time",
     (("[length]", 1), ("[time]", -1)): "velocity", (("[length]", 1), ("[time]", -2)): "acceleration",
     (("[time]", -1),): "rate", (("[mass]", 1), ("[length]", 1), ("[time]", -2)): "force",
@@ -383,8 +383,11 @@ def _hint(expr: Any, found: Dimension, wanted: Dimension, units: UnitAlgebra) ->
     ratio = dimension(_unit(wanted) / _unit(found))
     for s in sorted(expr.free_symbols, key=str):
         u = units.symbols.get(s)
-        if u is not None and dimension(u) and ratio in (dimension(u), dimension(1 / u)):
+        if u is not None and dimension(u) and ratio == dimension(u):
             return f"did you forget a power? (they differ by {dimension_text(ratio)})"
+        if u is not None and dimension(u) and ratio == dimension(1 / u):
+            return (f"is there a factor of dimension {dimension_text(dimension(u))} too many? "
+                    f"(they differ by {dimension_text(ratio)})")
     return (f"they differ by {dimension_text(ratio)}; check the expression and the units declared for "
             f"{_symbols_of(expr)}")
 
@@ -478,7 +481,10 @@ def result_units(problem: Problem, kinetic: Any) -> ResultUnits | None:
     if energy is None and problem.potential is not None:
         energy = safe(problem.potential)
     time = units.time
-    coordinates, velocities, accelerations, generalized = {}, {}, {}, {}
+    coordinates: dict[str, str | None] = {}
+    velocities: dict[str, str | None] = {}
+    accelerations: dict[str, str | None] = {}
+    generalized: dict[str, str | None] = {}
     for c in problem.coordinates:
         q = units.symbols.get(c.symbol)
         coordinates[c.name] = unit_text(q, angle=True)
@@ -486,7 +492,8 @@ def result_units(problem: Problem, kinetic: Any) -> ResultUnits | None:
         accelerations[c.name] = unit_text(q / time ** 2, angle=True) if q is not None else None
         generalized[c.name] = (unit_text(energy / q, torque=_dimensionless(q))
                                if q is not None and energy is not None else None)
-    constraints, multipliers = {}, {}
+    constraints: dict[str, str | None] = {}
+    multipliers: dict[str, str | None] = {}
     for con in problem.constraints:
         u = safe(con.expression)
         constraints[con.name] = unit_text(u, angle=True)

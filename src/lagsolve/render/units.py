@@ -100,4 +100,5 @@ def units_context(derivation: Any, tex: Callable[[Any], str]) -> dict[str, Any] 
                                       *((sympy.Symbol(f.name), f.unit) for f in problem.functions),
                                       *((c.symbol, c.unit) for c in problem.coordinates)] if unit is not None]
     return {"declared": declared, "time": unit_tex(units.time), "energy": unit_tex(units.energy),
-            "time_text": units.time, "energy_text": units.energy or "?", "rows": rows, "missing": list(units.missing)}
+            "time_text": units.time, "energy_text": units.energy or "?", "rows": rows, "missing": list(units.missing),
+            "constraints": bool(derivation.constraints)}
