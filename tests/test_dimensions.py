@@ -200,29 +200,42 @@ def test_multiplier_and_force_units(name: str, multipliers: dict[str, str], forc
     assert {k: units.generalized_forces[k] for k in generalized} == generalized
 
 
-@pytest.mark.parametrize("name", ["bead.yaml", "pendulum_cartesian.yaml", "rolling_incline.yaml",
-                                  "hole_table.yaml"])
-def test_multiplier_unit_agrees_with_the_derived_expression(name: str) -> None:
-    """Independent route: the unit of each derived λ expression (walked term by term) is the one predicted
-    from the energy and the constraint's unit, and each generalized force λ a_q of the matrix form has the
-    dimension of energy over q."""
+@pytest.mark.parametrize("name", SHIPPED_WITH_UNITS)
+def test_derived_results_have_the_predicted_units(name: str) -> None:
+    """Independent route: walking each *derived* expression gives the unit predicted from the declared units
+    alone: accelerations [q]/s^2, multipliers energy over the constraint's unit, forces of constraint N
+    (generalized ones energy over [q]); a result like g m sqrt(R^2 + 1) would fail here."""
     from lagsolve.mechanics.derivation import derive
 
     problem = load_problem(PROBLEMS / name)
     derivation = derive(problem, budget=60)
     units = result_units(problem, derivation.kinetic)
     walker = algebra(problem)
-    assert units is not None and derivation.multipliers is not None
+    assert units is not None and derivation.accelerations is not None and derivation.multipliers is not None
+    for c in problem.coordinates:
+        if derivation.accelerations[c.name] == 0:
+            continue  # 0 has every dimension
+        derived = walker.of(derivation.accelerations[c.name])
+        assert derived is not None and derived.dimensionality == unit_of(f"({c.unit})/s^2").dimensionality, c.name
+    force = unit_of("N").dimensionality
     for c in derivation.constraints:
         derived = walker.of(derivation.multipliers[c.name])
-        predicted = unit_of(units.multipliers[c.name] or "")
         assert derived is not None
-        assert derived.dimensionality == predicted.dimensionality, c.name
+        assert derived.dimensionality == unit_of(units.multipliers[c.name] or "").dimensionality, c.name
         walker.symbols[c.multiplier] = derived
         for q, a in zip(problem.coordinates, c.coefficients, strict=True):
             if a != 0:
-                force = walker.of(c.multiplier * a)
-                assert force.dimensionality == (unit_of("J") / unit_of(q.unit or "")).dimensionality
+                assert walker.of(c.multiplier * a).dimensionality == (unit_of("J") / unit_of(q.unit or "")
+                                                                      ).dimensionality
+        result = (derivation.constraint_forces or {}).get(c.name)
+        if result is None:
+            continue
+        for value in (*(result.vector or ()), *((result.magnitude,) if result.magnitude is not None else ())):
+            if value != 0:
+                assert walker.of(value).dimensionality == force, (c.name, value)
+        for q, value in zip(problem.coordinates, result.generalized, strict=False):
+            if value != 0:
+                assert walker.of(value).dimensionality == (unit_of("J") / unit_of(q.unit or "")).dimensionality
 
 
 def test_unit_text_names_si_units() -> None:
