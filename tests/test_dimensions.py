@@ -249,3 +249,25 @@ def test_unit_text_names_si_units() -> None:
     assert unit_text(unit_of("rad/s^2")) == "1/s^2"
     assert unit_text(unit_of("km/min^2")) == "km/min^2"
     assert unit_text(None) is None
+
+
+def test_named_dimensions_agree_with_pint() -> None:
+    """The dimensions written out for the checks are pint's (energy J, power W, force N, ...)."""
+    from lagsolve.mechanics import dimensions as d
+
+    for dim, text in ((d.ENERGY, "J"), (d.POWER, "W"), (d.FORCE, "N"), (d.LENGTH, "m"), (d.MASS, "kg"),
+                      (d.ACCELERATION, "m/s^2"), (d.INERTIA, "kg*m^2"), (d.RATE, "rad/s")):
+        assert d.dimension(unit_of(text)) == dim, text
+
+
+def test_a_file_without_units_never_loads_pint() -> None:
+    """Deriving a problem without units does not import pint (its registry costs about 0.4 s)."""
+    import subprocess
+    import sys
+
+    code = ("import sys; from lagsolve.problem.load import load_problem; "
+            "from lagsolve.mechanics.matrix_form import matrix_form; "
+            f"matrix_form(load_problem({str(PROBLEMS / 'wedge.yaml')!r}), display=False); "
+            "print('pint' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True)
+    assert out.stdout.strip() == "False"

@@ -272,12 +272,16 @@ def algebra(problem: Problem) -> UnitAlgebra:
 # -- the checks ---------------------------------------------------------------------------------------
 
 
-def _si(text: str) -> Dimension:
-    return dimension(unit_of(text))
-
-
-ENERGY, POWER, FORCE = _si("J"), _si("W"), _si("N")
-LENGTH, MASS, ACCELERATION, INERTIA, RATE = _si("m"), _si("kg"), _si("m/s^2"), _si("kg*m^2"), _si("1/s")
+_M, _L, _T = "[mass]", "[length]", "[time]"
+#: the dimensions the checks ask for, in :func:`dimension`'s order (written out: no pint needed to import this)
+ENERGY: Dimension = ((_M, 1), (_L, 2), (_T, -2))
+POWER: Dimension = ((_M, 1), (_L, 2), (_T, -3))
+FORCE: Dimension = ((_M, 1), (_L, 1), (_T, -2))
+LENGTH: Dimension = ((_L, 1),)
+MASS: Dimension = ((_M, 1),)
+ACCELERATION: Dimension = ((_L, 1), (_T, -2))
+INERTIA: Dimension = ((_M, 1), (_L, 2))
+RATE: Dimension = ((_T, -1),)
 
 
 def check_dimensions(problem: Problem) -> None:
