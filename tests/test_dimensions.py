@@ -271,3 +271,19 @@ def test_a_file_without_units_never_loads_pint() -> None:
             "print('pint' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_partial_units_warn_in_check_and_simulate(tmp_path: Path) -> None:
+    """`lagsolve check` and `lagsolve simulate` warn about missing units too (stderr), and still run."""
+    path = tmp_path / "p.yaml"
+    path.write_text("name: p\nparameters:\n  m: {unit: kg}\n  k: stiffness\ncoordinates:\n  x: {unit: m}\n"
+                    "particles:\n  a: {mass: m, position: [x, 0]}\npotential: k*x**2/2\n"
+                    "expected:\n  accelerations: {x: '-k*x/m'}\n"
+                    "simulation: {values: {m: 1, k: 1}, initial: {x: 1}, t_end: 0.1}\n", encoding="utf-8")
+    warning = f"warning: {path}: units: no unit declared for k, so dimensions involving it are not checked"
+    checked = CliRunner().invoke(main, ["check", str(path)])
+    assert checked.exit_code == 0, checked.output
+    assert warning in checked.stderr
+    simulated = CliRunner().invoke(main, ["simulate", str(path), "-o", str(tmp_path / "out")])
+    assert simulated.exit_code == 0, simulated.output
+    assert warning in simulated.stderr

@@ -191,6 +191,7 @@ class Checked:
     table: str
     counts: dict[str, int]
     rows: tuple[dict[str, str], ...] = ()  # one per verdict (:func:`lagsolve.render.machine.verdict_rows`)
+    warnings: tuple[str, ...] = ()  # about the file (units missing)
 
     @property
     def passed(self) -> bool:
@@ -228,7 +229,7 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
     problem = load_problem(path)
     _preload()
     table, counts, rows = run_with_budget(_derive_and_check, (problem, timeout), timeout, f"the check of {path}")
-    return Checked(str(path), problem.name, table, counts, rows)
+    return Checked(str(path), problem.name, table, counts, rows, _unit_warnings(problem))
 
 
 def _preload() -> None:
@@ -298,4 +299,7 @@ def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: floa
 
     problem = load_problem(path)
     _preload()
-    return run_with_budget(_simulate, (problem, options, progress), timeout, f"the simulation of {path}")
+    from dataclasses import replace
+
+    result = run_with_budget(_simulate, (problem, options, progress), timeout, f"the simulation of {path}")
+    return replace(result, warnings=_unit_warnings(problem))

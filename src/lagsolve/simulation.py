@@ -41,6 +41,7 @@ class SimulationResult:
     tables: dict[str, str | bytes]
     figures: dict[str, bytes]
     trajectory: object
+    warnings: tuple[str, ...] = ()  # about the file (units missing), for the command line to show
 
 
 def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progress: Any = None,
