@@ -30,7 +30,7 @@ MAX_UNIT_LENGTH = 60
 #: the largest |exponent| of one unit in a unit text
 MAX_EXPONENT = 12
 #: letters (any script: µ, Ω), digits, spaces and the operators of a unit text
-_ALLOWED = re.compile(r"^[^\W_]+(?:[\w\s*/^()·⋅-]*)$|^1$")
+_ALLOWED = re.compile(r"^[\w\s*/^()·⋅-]+$")
 _EXAMPLES = "write it like kg, m/s^2, N*m, kg*m^2, rad or 1"
 #: the time's unit when the file does not declare one
 DEFAULT_TIME_UNIT = "s"
@@ -63,8 +63,89 @@ def canonical(text: Any) -> str:
     if not _ALLOWED.match(text) or "_" in text:
         raise ExpressionError(f"{text!r} is not a unit", _EXAMPLES)
     text = _normal(text)
+    _check_grammar(text)
     _parse(text)
     return text
+
+
+#: a unit text's tokens: a power, an operator, a name (letters, then ² or ³), a whole number, a minus sign
+_TOKENS = re.compile(r"\s*(\*\*|[*/^()-]|[^\W\d_]+[²³]?|\d+)")
+#: deepest nesting of parentheses in a unit
+_MAX_NESTING = 4
+
+
+def _check_grammar(text: str) -> None:
+    """Accept only ``factor (('*' | '/' | ' ') factor)*`` with ``factor := (name | 1 | '(' unit ')') ['^' exponent]``
+    and a small whole or fractional exponent (``m^2``, ``s^-1``, ``m^(1/2)``), before pint evaluates anything: its
+    grammar computes numbers, and ``m^9^9^9`` would never finish."""
+    tokens: list[str] = []
+    position = 0
+    while position < len(text):
+        match = _TOKENS.match(text, position)
+        if match is None or match.end() == position:
+            raise ExpressionError(f"{text!r} is not a unit", _EXAMPLES)
+        tokens.append(match.group(1))
+        position = match.end()
+    tokens = ["^" if t == "**" else t for t in tokens]
+    index = 0
+
+    def peek() -> str | None:
+        return tokens[index] if index < len(tokens) else None
+
+    def take() -> str:
+        nonlocal index
+        if index >= len(tokens):
+            raise ExpressionError(f"{text!r} is not a unit (it ends too early)", _EXAMPLES)
+        index += 1
+        return tokens[index - 1]
+
+    def small(token: str) -> None:
+        if not token.isdigit() or len(token) > 2:
+            raise ExpressionError(f"the exponent {token!r} in {text!r} is not a small whole number",
+                                  f"exponents are small numbers (at most {MAX_EXPONENT}), like m^2, s^-1 or m^(1/2)")
+
+    def exponent() -> None:
+        token = take()
+        if token == "(":
+            if peek() == "-":
+                take()
+            small(take())
+            if peek() == "/":
+                take()
+                small(take())
+            if take() != ")":
+                raise ExpressionError(f"{text!r}: write a fractional exponent as ^(1/2)", _EXAMPLES)
+            return
+        if token == "-":
+            token = take()
+        small(token)
+
+    def factor(depth: int) -> None:
+        token = take()
+        if token == "(":
+            if depth >= _MAX_NESTING:
+                raise ExpressionError(f"{text!r} nests parentheses too deeply", _EXAMPLES)
+            unit(depth + 1)
+            if take() != ")":
+                raise ExpressionError(f"{text!r} is not a unit (unbalanced parentheses)", _EXAMPLES)
+        elif not (token == "1" or token[0].isalpha()):
+            raise ExpressionError(f"{text!r} is not a unit", "a unit has no number in front; " + _EXAMPLES)
+        if peek() == "^":
+            take()
+            exponent()
+            if peek() == "^":
+                raise ExpressionError(f"{text!r} raises a power to a power", "give each unit one exponent, like m^2")
+
+    def unit(depth: int) -> None:
+        factor(depth)
+        while peek() not in (None, ")"):
+            if peek() in ("*", "/"):
+                take()
+            factor(depth)
+
+    unit(0)
+    if index != len(tokens):
+        raise ExpressionError(f"{text!r} is not a unit (unbalanced parentheses)", _EXAMPLES)
 
 
 def _parse(text: str) -> Any:
