@@ -313,8 +313,9 @@ def check_dimensions(problem: Problem) -> None:
         found = dimension(unit)
         name = what or _NAMES.get(dim, "")
         wanted = _ARTICLE.get(name, f"a {name}" if name else "")
+        written = _text(problem.texts.get(where) or expr)  # the field as the file writes it
         issues.append(Issue(problem.source, line, where,
-                            f"{_text(expr)} has dimension {describe(found)}, but it must be "
+                            f"{written} has dimension {describe(found)}, but it must be "
                             f"{wanted + ' (' if wanted else ''}{dimension_text(dim)}{')' if wanted else ''}{why}",
                             hint or _hint(expr, found, dim, units)))
         return unit

@@ -95,6 +95,7 @@ class _Loader:
         self.declared_particles: list[str] = []
         self.particles_readable = True  # False: references to particles cannot be checked
         self.acceleration_names: dict[str, Any] = {}
+        self.texts: dict[str, str] = {}  # dotted field -> expression text as written (for messages)
 
     # -- reporting ---------------------------------------------------------------------------
 
@@ -188,10 +189,12 @@ class _Loader:
 
     def expression(self, path: tuple, value: Any, names: gateway.Namespace) -> Any | None:
         try:
-            return gateway.parse(value, names)
+            parsed = gateway.parse(value, names)
         except ExpressionError as exc:
             self.issue(path, exc.message, exc.hint)
             return None
+        self.texts[dotted(path)] = str(value)
+        return parsed
 
     def vector(self, path: tuple, value: Any, names: gateway.Namespace) -> tuple[Any, ...] | None:
         if not isinstance(value, list) or not 2 <= len(value) <= 3:
@@ -314,6 +317,7 @@ class _Loader:
             constraints=tuple(constraints), friction=tuple(friction), expected=expected,
             simulation=simulation, symbols=dict(self.symbols),
             lines={dotted(k): v for k, v in self.lines.items()}, independent=independent, time_unit=time_unit,
+            texts=self.texts,
         )
 
     def unit(self, path: tuple, value: Any) -> str | None:

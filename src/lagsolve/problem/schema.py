@@ -174,6 +174,7 @@ class Problem:
     lines: Mapping[str, int]
     independent: tuple[str, ...] = ()  # optional choice of minimal coordinates (names, input order)
     time_unit: str | None = None  # declared with ``time: {name: t, unit: ms}``; seconds otherwise
+    texts: Mapping[str, str] = field(default_factory=dict)  # dotted field -> expression as written
 
     @property
     def units(self) -> dict[str, str | None]:

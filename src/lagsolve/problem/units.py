@@ -182,8 +182,8 @@ def unit_of(text: str) -> Any:
 
 
 def _normal(text: str) -> str:
-    """``kg·m²`` → ``kg*m²``; runs of spaces become one."""
-    return " ".join(text.replace("·", "*").replace("⋅", "*").split())
+    """``kg·m²`` → ``kg*m²``, ``s**2`` → ``s^2``; runs of spaces become one."""
+    return " ".join(text.replace("·", "*").replace("⋅", "*").replace("**", "^").split())
 
 
 def format_unit(unit: Any) -> str:

@@ -13,7 +13,7 @@ from typing import Any
 
 from lagsolve.mechanics.dimensions import ResultUnits, result_units
 
-_POWER = re.compile(r"\^(-?[0-9.]+)")
+_POWER = re.compile(r"\^(-?[0-9.]+|\(-?[0-9]+/[0-9]+\))")
 #: pint's non-ASCII unit symbols, in LaTeX math
 _TEX = {"µ": r"\mu ", "μ": r"\mu ", "Ω": r"\Omega ", "°": r"^{\circ}", "Å": r"\mathring{A}"}
 
@@ -22,7 +22,7 @@ def unit_tex(text: str | None) -> str:
     r"""``m/s^2`` → ``\mathrm{m/s^{2}}``; ``N*s/m`` → ``\mathrm{N\,s/m}``; None → ``?``."""
     if text is None:
         return r"\text{?}"
-    body = _POWER.sub(r"^{\1}", text).replace("*", r"\,")
+    body = _POWER.sub(lambda m: "^{" + m.group(1).strip("()") + "}", text).replace("*", r"\,").replace(" ", r"\,")
     body = "".join(_TEX.get(ch, ch) if ord(ch) > 127 else ch for ch in body)
     return r"\mathrm{" + "".join(ch if ord(ch) < 128 else "?" for ch in body) + "}"
 
