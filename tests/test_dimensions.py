@@ -109,6 +109,13 @@ def test_the_right_file_passes_and_angles_are_pure_numbers() -> None:
     check_dimensions(load_text(text))
 
 
+def test_fractional_powers_are_exact_enough() -> None:
+    """Cube roots and other fractional powers combine to whole dimensions without rounding refusals."""
+    text = SPRING.replace("  g: {unit: m/s^2}\n", "  g: {unit: m/s^2}\n  a: {unit: m^3}\n").replace(
+        "potential: k*(r - l0)**2/2", "potential: k*r**2*(a/r**3)**(1/3)*(r**3/a)**(1/3)/2 + k*r*a**(1/3)")
+    check_dimensions(load_text(text))
+
+
 def test_without_units_nothing_is_checked() -> None:
     """A file without units is not checked at all (a "wrong" potential is accepted as before)."""
     problem = load_text("name: p\ncoordinates: [x]\nkinetic: x_dot**2/2\npotential: x\n")

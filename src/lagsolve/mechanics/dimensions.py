@@ -92,10 +92,16 @@ Dimension = tuple[tuple[str, float], ...]
 
 def dimension(unit: Any) -> Dimension:
     """The dimension of a pint unit as sorted (base, exponent) pairs; ``()`` for a pure number (or an angle)."""
-    dims = dict(unit.dimensionality)
+    dims = {d: _exponent(e) for d, e in dict(unit.dimensionality).items()}
     known = [(d, dims[d]) for d in _ORDER if dims.get(d)]
     other = sorted((d, e) for d, e in dims.items() if d not in _BASE and e)
-    return tuple((d, float(e) if e != int(e) else int(e)) for d, e in [*known, *other])
+    return tuple([*known, *other])
+
+
+def _exponent(e: float) -> float:
+    """An exponent rounded to 9 decimals, a whole one as an int: (1/3 + 2/3 in floats) is 1."""
+    rounded = round(float(e), 9)
+    return int(round(rounded)) if abs(rounded - round(rounded)) < 1e-9 else rounded
 
 
 def dimension_text(dim: Dimension) -> str:
