@@ -294,3 +294,15 @@ def test_partial_units_warn_in_check_and_simulate(tmp_path: Path) -> None:
     simulated = CliRunner().invoke(main, ["simulate", str(path), "-o", str(tmp_path / "out")])
     assert simulated.exit_code == 0, simulated.output
     assert warning in simulated.stderr
+
+
+@pytest.mark.parametrize("command", ["check", "simulate"])
+def test_check_and_simulate_refuse_wrong_dimensions_too(tmp_path: Path, command: str) -> None:
+    """The checks run before any derivation, so `lagsolve check` and `lagsolve simulate` exit 2 the same way."""
+    path = tmp_path / "p.yaml"
+    path.write_text(SPRING.replace("potential: k*(r - l0)**2/2", "potential: k*(r - l0)/2")
+                    + "simulation: {values: {k: 1, m: 1, l0: 1, F0: 1, omega: 1, g: 1}, initial: {r: 1}, t_end: 1}\n",
+                    encoding="utf-8")
+    result = CliRunner().invoke(main, [command, str(path)])
+    assert result.exit_code == 2, result.output
+    assert f"error: {path}:15: potential: k*(r - l0)/2 has dimension kg*m/s^2 (force)" in result.stderr
