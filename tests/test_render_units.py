@@ -119,3 +119,14 @@ def test_figure_axes_carry_units() -> None:
     bare = plots.figures(trajectory, "pendulum", labels)
     assert bare["coordinates"].axes[0].get_ylabel() == "$x$"
     assert bare["path"].axes[0].get_xlabel() == "x"
+
+
+def test_effective_potential_axes_carry_units() -> None:
+    """The V_eff figure labels its axes `$r$ [m]` and `V_eff [J]` when the file declares units."""
+    from lagsolve.render.potential_plot import potential_figure
+
+    figure = potential_figure([1.0, 2.0, 3.0], [1.0, 0.0, 1.0], coordinate="r", units=("m", "J"))
+    assert figure.axes[0].get_xlabel() == "$r$ [m]"
+    assert figure.axes[0].get_ylabel() == r"$V_{\mathrm{eff}}$ [J]"
+    bare = potential_figure([1.0, 2.0, 3.0], [1.0, 0.0, 1.0], coordinate="r")
+    assert bare.axes[0].get_xlabel() == "$r$"

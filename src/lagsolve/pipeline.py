@@ -149,8 +149,13 @@ def _potential_figure(derivation: object) -> dict | None:
         curve = potential_curve(derivation, dict(spec.values), initial=dict(spec.initial))  # type: ignore[arg-type]
     except (ValueError, KeyError, TypeError, ZeroDivisionError, StopIteration, NameError, OverflowError):
         return None
+    from lagsolve.mechanics.dimensions import result_units
+
+    units = result_units(problem, derivation.kinetic)  # type: ignore[attr-defined]
+    coordinate = str(getattr(analysis.effective_potential, "coordinate", ""))
+    axis_units = (None, None) if units is None else (units.coordinates.get(coordinate), units.energy)
     figure = potential_figure(curve.q, curve.v, curve.equilibria, coordinate=curve.coordinate,
-                              title=f"{problem.name}: effective potential")
+                              title=f"{problem.name}: effective potential", units=axis_units)
     return {"file": f"{safe_slug(problem.source)}_effective_potential.png", "png": png_bytes(figure),
             "caption": "Effective potential with its equilibria, for the simulation's values"}
 
