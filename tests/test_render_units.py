@@ -11,7 +11,7 @@ from click.testing import CliRunner
 
 from lagsolve.cli import main
 from lagsolve.mechanics.derivation import derive
-from lagsolve.mechanics.dimensions import column_units
+from lagsolve.mechanics.result_units import column_units
 from lagsolve.numeric.integrate import Trajectory
 from lagsolve.problem.load import load_problem
 from lagsolve.render import plots

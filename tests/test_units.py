@@ -130,7 +130,8 @@ def test_bad_unit_in_a_file_exits_2(tmp_path: Path, old: str, new: str, line: in
 
 def test_time_unit_changes_the_units_of_rates() -> None:
     """With time in ms, a velocity is in m/ms and a damping c*x_dot**2/2 must be an energy per ms."""
-    from lagsolve.mechanics.dimensions import check_dimensions, result_units
+    from lagsolve.mechanics.dimensions import check_dimensions
+    from lagsolve.mechanics.result_units import result_units
 
     text = GOOD.replace("unit: s}", "unit: ms}") + "dissipation: k*x*x_dot\n"
     problem = load_text(text)

@@ -123,7 +123,7 @@ def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
 
 def _unit_warnings(problem: object) -> tuple[str, ...]:
     """A file that declares some units but not all: the names without one (their dimensions go unchecked)."""
-    from lagsolve.mechanics.dimensions import missing_units
+    from lagsolve.mechanics.result_units import missing_units
 
     missing = missing_units(problem)  # type: ignore[arg-type]
     if not missing:
@@ -149,7 +149,7 @@ def _potential_figure(derivation: object) -> dict | None:
         curve = potential_curve(derivation, dict(spec.values), initial=dict(spec.initial))  # type: ignore[arg-type]
     except (ValueError, KeyError, TypeError, ZeroDivisionError, StopIteration, NameError, OverflowError):
         return None
-    from lagsolve.mechanics.dimensions import result_units
+    from lagsolve.mechanics.result_units import result_units
 
     units = result_units(problem, derivation.kinetic)  # type: ignore[attr-defined]
     coordinate = str(getattr(analysis.effective_potential, "coordinate", ""))

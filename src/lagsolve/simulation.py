@@ -101,7 +101,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     tables: dict[str, str | bytes] = {}
     units: dict[str, str] = {}
     if problem.has_units:
-        from lagsolve.mechanics.dimensions import column_units
+        from lagsolve.mechanics.result_units import column_units
 
         units = column_units(problem, form.model.kinetic)
     if "csv" in options.tables:

@@ -1,6 +1,6 @@
 """The units of a derivation's results, for the JSON result and the reports (only when the file declares units).
 
-The units themselves are decided in :func:`lagsolve.mechanics.dimensions.result_units`; this module
+The units themselves are decided in :func:`lagsolve.mechanics.result_units.result_units`; this module
 projects them: :func:`units_json` is the ``units`` key of the JSON result (``docs/format.md``,
 *Units*), :func:`units_context` the rows the Markdown, LaTeX and HTML templates show.
 """
@@ -11,7 +11,7 @@ import re
 from collections.abc import Callable
 from typing import Any
 
-from lagsolve.mechanics.dimensions import ResultUnits, result_units
+from lagsolve.mechanics.result_units import ResultUnits, result_units
 
 _POWER = re.compile(r"\^(-?[0-9.]+|\(-?[0-9]+/[0-9]+\))")
 #: pint's non-ASCII unit symbols, in LaTeX math
