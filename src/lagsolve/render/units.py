@@ -86,13 +86,13 @@ def units_context(derivation: Any, tex: Callable[[Any], str]) -> dict[str, Any] 
         written = units.constraints[c.name]
         row(c.multiplier, units.multipliers[c.name],
             f"its constraint is written in {written}" if written is not None else "")
+    generalized = [c.name for c in derivation.constraints if _generalized(derivation, c.name)]
     for c in derivation.constraints:
-        if _generalized(derivation, c.name):
-            for q in problem.coordinates:
-                row(sympy.Symbol(f"Q_{q.name}"), units.generalized_forces[q.name],
-                    f"generalized force of constraint {c.name} on {q.name}")
-        else:
+        if c.name not in generalized:
             row(sympy.Symbol(f"F_{c.name}"), units.force, f"force of constraint {c.name}")
+    for q in problem.coordinates if generalized else ():
+        row(sympy.Symbol(f"Q_{q.name}"), units.generalized_forces[q.name],
+            f"generalized force of constraint {', '.join(generalized)} on {q.name}")
     for f in problem.friction:
         row(sympy.Symbol(f"N_{f.name}"), units.force, f"normal force of contact {f.name}")
     declared = [{"symbol": tex(symbol), "unit": unit_tex(unit), "unit_text": unit}
