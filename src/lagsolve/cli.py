@@ -126,6 +126,8 @@ def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
             results.append(Unchecked(str(path), str(error), code))
             continue
         results.append(checked)
+        for warning in checked.warnings:
+            _note(f"warning: {checked.source}: {warning}", err=True)
         if fmt == "text":
             click.echo(checked.table, nl=False)
         if not checked.passed:
@@ -193,7 +195,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
             status = max(status, _fail(error))
             continue
         for warning in reports.warnings:
-            _note(f"warning: {reports.source}: not completed: {warning}", err=True)
+            _note(f"warning: {reports.source}: {warning}", err=True)
         if stream and golden is None:
             texts.append(reports.outputs["json"])
             continue
@@ -319,6 +321,8 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
         folder = Path(safe_slug(path))
         to_stdout = fmt == "csv" and output is None
         _note(result.summary, nl=False, err=to_stdout)
+        for warning in result.warnings:
+            _note(f"warning: {result.source}: {warning}", err=True)
         written = []
         try:
             for kind, data in result.tables.items():

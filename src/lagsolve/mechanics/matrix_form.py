@@ -16,6 +16,7 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.constraints import ConstraintTerms, constraint_terms
+from lagsolve.mechanics.dimensions import check_dimensions
 from lagsolve.mechanics.forces import ForceTerm, FrictionTerm, force_terms, friction_term
 from lagsolve.mechanics.inertia import check_inertia, check_masses
 from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms
@@ -51,7 +52,8 @@ def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
     :func:`~lagsolve.mechanics.lagrange.lagrange_terms`). The equations are the same; only their
     written shape differs.
     """
-    check_masses(problem)  # zero or negative masses: refused with a fix
+    check_dimensions(problem)  # with units: wrong dimensions refused before anything is derived
+    check_masses(problem)  # negative masses: refused with a fix
     model = build_model(problem, tidy=True if display else None)
     constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
     check_constraints(problem, model, constraints)  # degenerate or redundant ones: refused with a fix

@@ -17,6 +17,7 @@ import sympy
 
 from lagsolve.errors import ExpressionError, Issue, SpecError
 from lagsolve.problem import expr as gateway
+from lagsolve.problem import units
 from lagsolve.problem.schema import (
     Body,
     ConcreteFunction,
@@ -94,6 +95,7 @@ class _Loader:
         self.declared_particles: list[str] = []
         self.particles_readable = True  # False: references to particles cannot be checked
         self.acceleration_names: dict[str, Any] = {}
+        self.texts: dict[str, str] = {}  # dotted field -> expression text as written (for messages)
 
     # -- reporting ---------------------------------------------------------------------------
 
@@ -187,10 +189,12 @@ class _Loader:
 
     def expression(self, path: tuple, value: Any, names: gateway.Namespace) -> Any | None:
         try:
-            return gateway.parse(value, names)
+            parsed = gateway.parse(value, names)
         except ExpressionError as exc:
             self.issue(path, exc.message, exc.hint)
             return None
+        self.texts[dotted(path)] = str(value)
+        return parsed
 
     def vector(self, path: tuple, value: Any, names: gateway.Namespace) -> tuple[Any, ...] | None:
         if not isinstance(value, list) or not 2 <= len(value) <= 3:
@@ -246,7 +250,9 @@ class _Loader:
         if "description" in data:
             description = self.text(("description",), data["description"], limit=MAX_PROBLEM_DESCRIPTION_LENGTH) or ""
 
-        time_name = data.get("time", "t")
+        time_name, time_unit = data.get("time", "t"), None
+        if isinstance(time_name, dict):  # time: {name: t, unit: ms}
+            time_name, time_unit = self.time_spec(time_name)
         if not isinstance(time_name, str) or not self.declare(("time",), time_name, "the time"):
             if not isinstance(time_name, str):
                 self.issue(("time",), f"expected a name, found {_kind(time_name)}")
@@ -310,17 +316,33 @@ class _Loader:
             potential=potential, dissipation=dissipation, forces=tuple(forces),
             constraints=tuple(constraints), friction=tuple(friction), expected=expected,
             simulation=simulation, symbols=dict(self.symbols),
-            lines={dotted(k): v for k, v in self.lines.items()}, independent=independent,
+            lines={dotted(k): v for k, v in self.lines.items()}, independent=independent, time_unit=time_unit,
+            texts=self.texts,
         )
+
+    def unit(self, path: tuple, value: Any) -> str | None:
+        """A ``unit:`` field (:mod:`lagsolve.problem.units`); None and an issue when it is not a unit."""
+        try:
+            return units.canonical(value)
+        except ExpressionError as exc:
+            self.issue(path, exc.message, exc.hint)
+            return None
+
+    def time_spec(self, value: dict[str, Any]) -> tuple[Any, str | None]:
+        """``time: {name: t, unit: ms}`` → the name and the unit."""
+        self.keys(("time",), value, ("name", "unit"))
+        unit = self.unit(("time", "unit"), value["unit"]) if "unit" in value else None
+        return value.get("name", "t"), unit
 
     def parameters(self, value: Any) -> list[Parameter]:
         out = []
         for name, detail, path in self.names_list(("parameters",), value):
-            description, positive, real, default = "", True, True, None
+            description, positive, real, default, unit = "", True, True, None, None
             if isinstance(detail, str):
                 description = detail
             elif isinstance(detail, dict):
-                self.keys(path, detail, ("description", "positive", "real", "value"))
+                self.keys(path, detail, ("description", "positive", "real", "value", "unit"))
+                unit = self.unit((*path, "unit"), detail["unit"]) if "unit" in detail else None
                 description = self.text((*path, "description"), detail.get("description", "")) or ""
                 if "positive" in detail:
                     positive = bool(self.flag((*path, "positive"), detail["positive"]))
@@ -336,19 +358,24 @@ class _Loader:
                 continue
             symbol = sympy.Symbol(name, positive=True) if positive else sympy.Symbol(name, real=real or None)
             self.symbols[name] = symbol
-            out.append(Parameter(name, description.strip(), positive, real, default, symbol))
+            out.append(Parameter(name, description.strip(), positive, real, default, symbol, unit))
         return out
 
     def function_decls(self, value: Any) -> list[FunctionDecl]:
         out = []
         for name, detail, path in self.names_list(("functions",), value):
-            if detail is not None and not isinstance(detail, str):
-                self.issue(path, f"expected a description, found {_kind(detail)}")
+            unit = None
+            if isinstance(detail, dict):  # f: {description: ..., unit: m}
+                self.keys(path, detail, ("description", "unit"))
+                unit = self.unit((*path, "unit"), detail["unit"]) if "unit" in detail else None
+                detail = self.text((*path, "description"), detail.get("description", "")) or ""
+            elif detail is not None and not isinstance(detail, str):
+                self.issue(path, f"expected a description or a mapping, found {_kind(detail)}")
             if not self.declare(path, name, "a function"):
                 continue
             fn = sympy.Function(name, real=True)
             self.functions[name] = fn
-            out.append(FunctionDecl(name, (detail or "").strip() if isinstance(detail, str) else "", fn))
+            out.append(FunctionDecl(name, (detail or "").strip() if isinstance(detail, str) else "", fn, unit))
         return out
 
     def coordinates(self, value: Any) -> list[Coordinate]:
@@ -357,9 +384,10 @@ class _Loader:
         if not entries and "coordinates" in self.data:
             self.issue(("coordinates",), "no coordinates given", "list at least one, e.g. [x, y]")
         for name, detail, path in entries:
-            positive = False
+            positive, unit = False, None
             if isinstance(detail, dict):
-                self.keys(path, detail, ("description", "positive"))
+                self.keys(path, detail, ("description", "positive", "unit"))
+                unit = self.unit((*path, "unit"), detail["unit"]) if "unit" in detail else None
                 if "positive" in detail:
                     positive = bool(self.flag((*path, "positive"), detail["positive"]))
                 detail = self.text((*path, "description"), detail.get("description", "")) or ""
@@ -378,7 +406,8 @@ class _Loader:
             self.symbols[name] = q
             self.symbols[velocity] = qd
             self.acceleration_names[acceleration] = "accelerations may not appear in problem expressions"
-            out.append(Coordinate(name, (detail or "").strip() if isinstance(detail, str) else "", q, qd, qdd))
+            out.append(Coordinate(name, (detail or "").strip() if isinstance(detail, str) else "", q, qd, qdd,
+                                  unit))
         return out
 
     def particles(self, value: dict[str, Any], names: gateway.Namespace) -> list[Particle]:

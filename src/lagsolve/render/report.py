@@ -22,6 +22,7 @@ from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.render.analysis_report import analysis_context, analysis_json, analysis_summary, contract_json
 from lagsolve.render.notation import FILTERS, Notation, symbol_table, to_json
+from lagsolve.render.units import units_context, units_json
 
 FORMAT_VERSION = 1
 #: above this many coordinates the matrix form is written one equation per row instead of as matrices
@@ -179,6 +180,7 @@ def context(derivation: Derivation, math: str = "latex") -> dict[str, Any]:
         "symbols": symbol_table(dict(problem.symbols), note),
         "math": math,
         "stage_notes": {n.stage: n.reason for n in derivation.notes},
+        "units": units_context(derivation, tex),
     }
 
 
@@ -323,6 +325,7 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
         **contract_json(derivation),
         "analysis": analysis_json(derivation),
         "notes": [{"stage": n.stage, "kind": n.kind, "reason": n.reason} for n in derivation.notes],
+        **({"units": units} if (units := units_json(derivation)) is not None else {}),
     }
 
 
