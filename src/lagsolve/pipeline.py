@@ -39,6 +39,7 @@ def safe_slug(path: str | Path) -> str:
 
 
 FIGURE_CAPTIONS = {
+    "sketch": "The system at the start: particles, rods, pivots, surfaces and wires",
     "path": "Paths in space, with the constraint curve where there is one",
     "coordinates": "Coordinates against time",
     "phase": "Phase portraits",
@@ -104,7 +105,7 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
         from lagsolve.render.trajectory import summary as run_summary
 
         simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures,
-                      "animation": animation(run.trajectory)}
+                      "animation": animation(run.trajectory, scene=run.scene)}
         text += run.summary
     outputs = {fmt: render(derivation, fmt, templates, simulation, potential, files) for fmt in formats}
     if not figures_written:

@@ -28,6 +28,7 @@ class SimulationOptions:
     plots: bool = False
     animate: bool = False
     analysis_timeout: float = 60.0  # budget of the derivation that finds the conserved quantities
+    units: dict[str, str] | None = None  # unit of a coordinate, "t", "length", "force", "energy" for the axes
 
 
 @dataclass(frozen=True)
@@ -41,6 +42,16 @@ class SimulationResult:
     tables: dict[str, str | bytes]
     figures: dict[str, bytes]
     trajectory: object
+    scene: object = None  # the numeric.scene.Scene the figures drew, when any were made
+
+
+def _scene(problem: Any, parameters: Any, trajectory: Any) -> Any:
+    """The problem's rods, surfaces and wires (``mechanics/geometry.py``) along the trajectory."""
+    from lagsolve.mechanics.geometry import geometry
+    from lagsolve.numeric.scene import evaluate
+
+    return evaluate(geometry(problem), problem, parameters, trajectory.t, trajectory.q, trajectory.qd,
+                    trajectory.positions)
 
 
 def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progress: Any = None,
@@ -109,27 +120,17 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
 
         notation = Notation([c.name for c in problem.coordinates])
         labels = {c.name: notation.latex(c.symbol) for c in problem.coordinates}
-        curve = None
-        if system.curve is not None and system.curve_coordinate is not None:
-            k, fn = system.curve_coordinate, system.curve
-
-            def shape(values: np.ndarray) -> np.ndarray:
-                q = np.array(q0, dtype=float)
-                rows = []
-                for u in values:
-                    q[k] = u
-                    rows.append(fn(0.0, q, qd0, system.parameters))
-                return np.array(rows)
-
-            curve = (k, shape)
+        scene = _scene(problem, system.parameters, trajectory)
         if options.plots:
-            for key, figure in plots.figures(trajectory, name, labels, curve).items():
+            for key, figure in plots.figures(trajectory, name, labels, scene=scene, units=options.units).items():
                 figures[key] = plots.png_bytes(figure)
         if options.animate and trajectory.particles:
-            figures["animation"] = plots.animation_gif(trajectory, name)
+            figures["animation"] = plots.animation_gif(trajectory, name, scene=scene, units=options.units)
+    else:
+        scene = None
     from lagsolve.pipeline import safe_slug
 
     return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name) + note, tables,
-                            figures, trajectory)
+                            figures, trajectory, scene)
 
 

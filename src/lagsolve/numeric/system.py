@@ -57,7 +57,8 @@ class NumericSystem:
     contacts: tuple[tuple[tuple[int, int, int], ...], ...]  # per contact: (constraint j, offset, dims)
     contact_names: tuple[str, ...]
     slides: tuple[int | None, ...]  # per contact: the one sliding coordinate (stick–slip), else None
-    contact_values: StateFunction  # per contact: static coefficient, |dr/dq| of the sliding coordinate
+    contact_values: StateFunction  # per contact: static coefficient, |dr/dq| of the sliding coordinate; then
+    # the kinetic coefficient of each contact
     directions: StateFunction
     scales: StateFunction
     position_residual: StateFunction
@@ -198,6 +199,38 @@ class NumericSystem:
             normal = new
         raise SimulationError(f"at t = {t:.6g} the normal forces of the friction contacts did not converge")
 
+    def friction_forces(self, t: float, q: np.ndarray, qd: np.ndarray, normal: np.ndarray, stuck: np.ndarray,
+                        sticking: np.ndarray, direction: np.ndarray) -> np.ndarray:
+        """The friction force of each contact at a state, shape (contacts,).
+
+        With one sliding coordinate s: the force's component along the unit vector ∂r/∂s / |∂r/∂s|
+        (signed), from the generalized force it exerts, :math:`Q_s / |\partial\mathbf r/\partial s|`,
+        which is :math:`-\mu N\,\mathrm{sign}(\dot s)` while it slides and the force that holds it,
+        the sticking multiplier over :math:`|\partial\mathbf r/\partial s|`, while it sticks. With
+        several sliding coordinates: the magnitude μ N of the kinetic friction (it opposes the sliding
+        velocity).
+        """
+        k = len(self.contacts)
+        if k == 0:
+            return _EMPTY
+        n, p = self.n, self.parameters
+        values = self.contact_values(t, q, qd, p)
+        out = np.zeros(k)
+        columns = None
+        for c, slide in enumerate(self.slides):
+            if slide is None:
+                out[c] = values[2 * k + c] * normal[c]
+                continue
+            length = values[2 * c + 1]
+            if stuck[c]:
+                out[c] = sticking[c] / length
+                continue
+            if columns is None:
+                columns = self.matrices(t, q, qd, p)[n * n: n * n + n * (k + 1)].reshape(n, k + 1)
+            sign = np.sign(qd[slide]) or direction[c]
+            out[c] = columns[slide, c + 1] * sign * normal[c] / length
+        return out
+
     def magnitudes(self, t: float, q: np.ndarray, qd: np.ndarray, lam: np.ndarray) -> np.ndarray:
         """|force of constraint j| = |λ_j| · |direction_j| (NaN where no force can be claimed)."""
         return np.abs(lam) * self.scales(t, q, qd, self.parameters)
@@ -282,6 +315,7 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
         position = problem.particle(f.particle).position
         length = norm([sympy.diff(r, model.coordinates[slide]) for r in position]) if slide is not None else 1
         contact_values += [static if static is not None else f.coefficient, length]
+    contact_values += [f.coefficient for f in form.frictions]  # then the kinetic coefficients, in contact order
     forcing_columns = [columns[c][i] for i in range(len(model.coordinates)) for c in range(len(columns))]
     matrices = [*lagrange.mass_matrix, *forcing_columns, *lagrange.constraint_jacobian, *lagrange.constraint_rhs]
     contacts, directions, offset = [], [], 0
