@@ -42,7 +42,7 @@ class SimulationResult:
     tables: dict[str, str | bytes]
     figures: dict[str, bytes]
     trajectory: object
-    scene: object = None  # the numeric.scene.Scene the figures drew, when any were made
+    scene: object = None  # the numeric.scene.Scene of the run's rods, surfaces and wires (None without particles)
 
 
 def _scene(problem: Any, parameters: Any, trajectory: Any) -> Any:
@@ -114,20 +114,19 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     if "npz" in options.tables:
         tables["npz"] = table.to_npz(trajectory)
     figures: dict[str, bytes] = {}
+    # what the sketch draws: cheap next to the run (a classification and a few compiled shapes)
+    scene = _scene(problem, system.parameters, trajectory) if trajectory.particles else None
     if options.plots or options.animate:
         from lagsolve.render import plots
         from lagsolve.render.notation import Notation
 
         notation = Notation([c.name for c in problem.coordinates])
         labels = {c.name: notation.latex(c.symbol) for c in problem.coordinates}
-        scene = _scene(problem, system.parameters, trajectory)
         if options.plots:
             for key, figure in plots.figures(trajectory, name, labels, scene=scene, units=options.units).items():
                 figures[key] = plots.png_bytes(figure)
         if options.animate and trajectory.particles:
             figures["animation"] = plots.animation_gif(trajectory, name, scene=scene, units=options.units)
-    else:
-        scene = None
     from lagsolve.pipeline import safe_slug
 
     return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name) + note, tables,

@@ -201,7 +201,7 @@ class NumericSystem:
 
     def friction_forces(self, t: float, q: np.ndarray, qd: np.ndarray, normal: np.ndarray, stuck: np.ndarray,
                         sticking: np.ndarray, direction: np.ndarray) -> np.ndarray:
-        """The friction force of each contact at a state, shape (contacts,).
+        r"""The friction force of each contact at a state, shape (contacts,).
 
         With one sliding coordinate s: the force's component along the unit vector ∂r/∂s / |∂r/∂s|
         (signed), from the generalized force it exerts, :math:`Q_s / |\partial\mathbf r/\partial s|`,

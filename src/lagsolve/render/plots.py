@@ -139,11 +139,11 @@ class _Drawing:
         for label, points in self.scene.curves:
             if points.shape[1] > j:
                 ax.plot(points[:, i], points[:, j], "-", color="0.55", linewidth=2.2, alpha=0.8, zorder=1,
-                        label=f"wire {label}" if label else "wire")
+                        label=label or "wire")
         self.surfaces = []
         if not three:
             for label, _, _ in self.scene.surfaces:
-                line, = ax.plot([], [], "-", color="0.45", linewidth=2.5, zorder=1, label=f"surface {label}")
+                line, = ax.plot([], [], "-", color="0.45", linewidth=2.5, zorder=1, label=label)
                 self.surfaces.append(line)
         self.rods = [ax.plot([], [], "-", color="0.15", linewidth=2.0, solid_capstyle="round", zorder=2)[0]
                      for _ in self.scene.rods]
