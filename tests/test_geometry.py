@@ -16,10 +16,10 @@ def test_double_pendulum_has_two_rods_pivot_to_upper_to_lower() -> None:
     """Angles fix both distances: a rod from the pivot at the origin to 'upper', one from 'upper' to 'lower'."""
     problem = problem_file("double_pendulum")
     g = geometry(problem)
-    (l,) = _symbols(problem, "l")
+    (length,) = _symbols(problem, "l")
     assert [(r.start, r.end.particle, r.constraint) for r in g.rods] == [
         (Anchor(None, (0, 0)), "upper", None), (Anchor("upper"), "lower", None)]
-    assert all(sympy.simplify(r.length - l) == 0 for r in g.rods)
+    assert all(sympy.simplify(r.length - length) == 0 for r in g.rods)
     assert g.pivots == (Anchor(None, (0, 0)),)
     assert not g.surfaces and not g.curves
 
@@ -40,10 +40,10 @@ def test_cartesian_pendulum_is_a_rod_from_the_origin() -> None:
     """(x^2 + y^2 - l^2)/2 on the bob is the rod 'rod' from a pivot at the origin, of length l."""
     problem = problem_file("pendulum_cartesian")
     g = geometry(problem)
-    (l,) = _symbols(problem, "l")
+    (length,) = _symbols(problem, "l")
     (rod,) = g.rods
     assert rod.constraint == "rod" and rod.start == Anchor(None, (0, 0)) and rod.end == Anchor("bob")
-    assert sympy.simplify(rod.length - l) == 0
+    assert sympy.simplify(rod.length - length) == 0
 
 
 def test_ladder_rod_between_particles_and_two_surfaces() -> None:

@@ -148,7 +148,8 @@ def test_the_slider_drawing_moves_the_rods(browser: Any, tmp_path: Path) -> None
     page = tmp_path / "double_pendulum.html"
     page.write_text(reports.outputs["html"], encoding="utf-8")
     browser.get(page.as_uri())
-    script = ("var r = document.querySelectorAll('#path-view line'), c = document.querySelectorAll('#path-view circle');"
+    script = ("var r = document.querySelectorAll('#path-view line'),"
+              " c = document.querySelectorAll('#path-view circle');"
               "return [Array.from(r).map(function (l) { return [l.getAttribute('x1'), l.getAttribute('y1'),"
               " l.getAttribute('x2'), l.getAttribute('y2')]; }), [c[0].getAttribute('cx'), c[0].getAttribute('cy')],"
               " document.querySelectorAll('#path-view polygon').length];")

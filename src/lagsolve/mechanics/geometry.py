@@ -189,10 +189,12 @@ def _cartesian_shape(constraint: Any, particles: list[Any], cartesian: list[Any]
         point = tuple(sympy.simplify(b - rest * g / size) for g, b in zip(gradient, base, strict=True))
         return Surface(constraint.name, first.name, point, tuple(gradient), constraint.unilateral)
     # quadratic: psi = k |r - c|^2 + const with the same k for every component
-    second = [sympy.diff(psi, s, 2) if s is not None else None for s in cartesian[0]]
-    if any(s is None for s in second) or len(set(second)) != 1:
+    if any(s is None for s in cartesian[0]):
         return None
-    k = second[0] / 2
+    second = [sympy.diff(psi, s, 2) for s in cartesian[0]]
+    if len(set(second)) != 1:
+        return None
+    k: Any = second[0] / 2
     if k == 0 or k.free_symbols & set(coordinates):
         return None
     centre = [sympy.expand(s - sympy.diff(psi, s) / (2 * k)) for s in mine]
@@ -265,7 +267,8 @@ def _implied_rods(problem: Problem, coordinates: list[Any], variables: set[Any],
         length = _fixed_distance([r - c for r, c in zip(expanded, pivot, strict=True)], coordinates)
         if length is not None:
             out.append(Rod(Anchor(None, pivot), Anchor(p.name), length, None))
-    out.sort(key=lambda r: [x.name for x in particles].index(r.end.particle))
+    names = [x.name for x in particles]
+    out.sort(key=lambda r: names.index(r.end.particle or ""))
     return out
 
 

@@ -71,7 +71,8 @@ def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, t: np.nda
     def end(anchor: Anchor) -> np.ndarray | None:
         return columns.get(anchor.particle) if anchor.particle is not None else along(anchor.point)
 
-    rods, pivots = [], []
+    rods: list[tuple[str, np.ndarray, np.ndarray]] = []
+    pivots: list[np.ndarray] = []
     for rod in geometry.rods:
         start, stop = end(rod.start), end(rod.end)
         if start is None or stop is None or start.shape != stop.shape:

@@ -28,6 +28,9 @@ from lagsolve.numeric.scene import Scene
 
 Units = Mapping[str, str] | None
 
+#: surfaces in muted colours, told apart in the legend
+SURFACE_COLOURS = ("0.45", "#9c7a4a", "#5b8a9a", "#8a6a9a")
+
 #: relative size below which a coordinate counts as constant, or its rate as uniform
 FLAT = 1e-9
 
@@ -142,8 +145,9 @@ class _Drawing:
                         label=label or "wire")
         self.surfaces = []
         if not three:
-            for label, _, _ in self.scene.surfaces:
-                line, = ax.plot([], [], "-", color="0.45", linewidth=2.5, zorder=1, label=label)
+            for k, (label, _, _) in enumerate(self.scene.surfaces):
+                line, = ax.plot([], [], "-", color=SURFACE_COLOURS[k % len(SURFACE_COLOURS)], linewidth=2.5,
+                                zorder=1, label=label)
                 self.surfaces.append(line)
         self.rods = [ax.plot([], [], "-", color="0.15", linewidth=2.0, solid_capstyle="round", zorder=2)[0]
                      for _ in self.scene.rods]
@@ -166,9 +170,9 @@ class _Drawing:
                              zorder=6)
 
     def show(self, sample: int) -> list[Any]:
-        for (label, a, b), rod in zip(self.scene.rods, self.rods, strict=True):
+        for (_, a, b), rod in zip(self.scene.rods, self.rods, strict=True):
             rod.set_data([a[sample, self.i], b[sample, self.i]], [a[sample, self.j], b[sample, self.j]])
-        for (_, point, normal), line in zip(self.scene.surfaces, self.surfaces, strict=True):
+        for (_, point, normal), line in zip(self.scene.surfaces, self.surfaces, strict=False):  # none in 3-D
             p, n = point[sample], normal[sample]
             direction = np.array([-n[1], n[0]]) / max(float(np.hypot(n[0], n[1])), 1e-300)
             ends = np.array([p[:2] - self.reach * direction, p[:2] + self.reach * direction])
@@ -324,6 +328,10 @@ def forces_figure(trajectory: Trajectory, title: str, units: Units = None) -> An
     third panel of the friction forces (sticking phases shaded)."""
     contacts = bool(trajectory.contacts) and trajectory.friction.shape[1] == len(trajectory.contacts)
     measured = [j for j in range(len(trajectory.constraints)) if np.any(np.isfinite(trajectory.magnitudes[:, j]))]
+    same = bool(measured) and len(measured) == len(trajectory.constraints) and np.allclose(
+        np.abs(trajectory.multipliers), trajectory.magnitudes, rtol=1e-9, atol=1e-12)
+    if same:  # the magnitudes would repeat the multipliers: one panel says both
+        measured = []
     panels = ["lambda"] + (["magnitude"] if measured else []) + (["friction"] if contacts else [])
     title_text = f"{title}: forces of constraint" + (" and friction" if contacts else "")
     fig, axes = _figure(title_text, len(panels), 1, sharex=True)
@@ -342,7 +350,8 @@ def forces_figure(trajectory: Trajectory, title: str, units: Units = None) -> An
                                 label=f"friction {name}")
         ax["friction"].set_ylabel(_with_unit("friction $f$", force))
     notes = [] if measured or not trajectory.constraints else [
-        "no magnitude of a force of constraint: no particle it acts on is known"]
+        "each |F| equals |λ| (the constraint's gradient has unit length), so the multipliers are drawn alone"
+        if same else "no magnitude of a force of constraint: no particle it acts on is known"]
     for a in ax.values():
         a.grid(alpha=0.3)
         a.axhline(0, color="0.5", linewidth=0.6)
@@ -370,7 +379,8 @@ def conservation_figure(trajectory: Trajectory, title: str, units: Units = None)
     residual = bool(trajectory.constraints) and bool(np.any(trajectory.residual))
     panels = (["drift"] if series else []) + (["energy"] if changing else []) + (["residual"] if residual else [])
     panels = panels or ["energy"]
-    fig, axes = _figure(f"{title}: conservation and constraints", len(panels), 1, sharex=True)
+    what = "conservation and constraints" if trajectory.constraints else "conservation"
+    fig, axes = _figure(f"{title}: {what}", len(panels), 1, sharex=True)
     ax = dict(zip(panels, (row[0] for row in axes), strict=True))
     notes = []
     if "drift" in ax:
