@@ -145,12 +145,15 @@ class _Drawing:
                         label=label or "wire")
         self.surfaces = []
         if not three:
-            for k, (label, _, _) in enumerate(self.scene.surfaces):
+            for k, (label, point, _) in enumerate(self.scene.surfaces):
+                if point.shape[1] != 2:
+                    continue
                 line, = ax.plot([], [], "-", color=SURFACE_COLOURS[k % len(SURFACE_COLOURS)], linewidth=2.5,
                                 zorder=1, label=label)
                 self.surfaces.append(line)
+        self.rod_ends = [(a, b) for _, a, b in self.scene.rods if a.shape[1] > j and b.shape[1] > j]
         self.rods = [ax.plot([], [], "-", color="0.15", linewidth=2.0, solid_capstyle="round", zorder=2)[0]
-                     for _ in self.scene.rods]
+                     for _ in self.rod_ends]
         self.pivots = [ax.plot([], [], "^", color="0.15", markersize=9, zorder=3)[0] for _ in pivots]
         self.pivot_points = pivots
         self.trails = [ax.plot([], [], "-", linewidth=0.8, alpha=0.5, zorder=2)[0] for _ in plane] if trails else []
@@ -170,9 +173,10 @@ class _Drawing:
                              zorder=6)
 
     def show(self, sample: int) -> list[Any]:
-        for (_, a, b), rod in zip(self.scene.rods, self.rods, strict=True):
+        for (a, b), rod in zip(self.rod_ends, self.rods, strict=True):
             rod.set_data([a[sample, self.i], b[sample, self.i]], [a[sample, self.j], b[sample, self.j]])
-        for (_, point, normal), line in zip(self.scene.surfaces, self.surfaces, strict=False):  # none in 3-D
+        planar = [(p, n) for _, p, n in self.scene.surfaces if p.shape[1] == 2]  # none drawn in 3-D
+        for (point, normal), line in zip(planar, self.surfaces, strict=False):
             p, n = point[sample], normal[sample]
             direction = np.array([-n[1], n[0]]) / max(float(np.hypot(n[0], n[1])), 1e-300)
             ends = np.array([p[:2] - self.reach * direction, p[:2] + self.reach * direction])
