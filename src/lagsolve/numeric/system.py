@@ -70,8 +70,6 @@ class NumericSystem:
     particles: tuple[tuple[str, int], ...]
     conserved_names: tuple[str, ...]
     conserved: StateFunction
-    curve_coordinate: int | None
-    curve: StateFunction | None
     energy_conserved: bool
     energy_note: str
     chart: NumericChart | None = None  # minimal coordinates, when the constraints are solved in closed form
@@ -378,7 +376,6 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
 
     conserved_names = list(conserved or {})
     usable = [i for i, e in enumerate(prepared["conserved"]) if e.free_symbols <= allowed]
-    curve_coordinate, curve = _constraint_curve(form, prepare, arguments)
     # mechanics decides (mechanics.analysis.monitored, or the derivation's analysis); this only evaluates
     energy_conserved = "energy" in (conserved or {})
     note = energy_note or "the analysis finds no conserved energy"
@@ -406,8 +403,6 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
             particles=tuple((p.name, len(p.position)) for p in problem.particles),
             conserved_names=tuple(conserved_names[i] for i in usable),
             conserved=compile_state_function([prepared["conserved"][i] for i in usable], **arguments),
-            curve_coordinate=curve_coordinate,
-            curve=curve,
             energy_conserved=energy_conserved,
             energy_note=note,
             chart=None if chart is None else compile_chart(chart, prepare, **arguments),
@@ -424,22 +419,3 @@ def _sliding_coordinate(form: MatrixForm, friction: Any) -> int | None:
     moving = [index[name] for name in next(f.sliding for f in problem.friction if f.name == friction.name)
               if any(sympy.diff(r, model.coordinates[index[name]]) != 0 for r in position)]
     return moving[0] if len(moving) == 1 else None
-
-
-def _constraint_curve(form: MatrixForm, prepare: Any,
-                      arguments: dict[str, Any]) -> tuple[int | None, StateFunction | None]:
-    """For one degree of freedom left by explicit position constraints (a bead on a wire), the first
-    particle's position as a function of the independent coordinate: the curve the constraint draws."""
-    from lagsolve.mechanics.reduce import eliminate
-
-    problem, model = form.problem, form.model
-    if not problem.particles or not form.constraints or any(c.kind != "holonomic" for c in form.constraints):
-        return None, None
-    elimination = eliminate(form.constraints, model)
-    free = [i for i, q in enumerate(model.coordinates) if q not in elimination.positions]
-    if len(free) != 1:
-        return None, None
-    shape = [prepare(elimination.apply(r)) for r in problem.particles[0].position]
-    if any(model.time in e.free_symbols for e in shape):
-        return None, None
-    return free[0], compile_state_function(shape, **arguments)

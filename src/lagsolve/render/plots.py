@@ -250,9 +250,14 @@ def path_figure(trajectory: Trajectory, title: str,
             wires.append(curve[1](np.linspace(*_padded(trajectory.q[:, curve[0]]), 400)))
         elif scene is not None:
             wires += [points for _, points in scene.curves if points.shape[1] > j]
+        paths = np.vstack([_plane(trajectory, o, d, i, j) for o, d in _offsets(trajectory)])
+        (x0, x1), (y0, y1) = _padded(paths[:, 0]), _padded(paths[:, 1])
         for k, pts in enumerate(wires):
-            ax.plot(pts[:, i], pts[:, j], "--", color="0.6", linewidth=1, label="constraint" if k == 0 else None,
-                    scalex=False, scaley=False)
+            # only near the paths (the rest would set the limits): points outside the box break the line
+            xs, ys = pts[:, i].astype(float), pts[:, j].astype(float)
+            outside = (xs < x0) | (xs > x1) | (ys < y0) | (ys > y1)
+            ax.plot(np.where(outside, np.nan, xs), np.where(outside, np.nan, ys), "--", color="0.6", linewidth=1,
+                    label="constraint" if k == 0 else None)
         for (name, d), (offset, _) in zip(trajectory.particles, _offsets(trajectory), strict=True):
             xy = _plane(trajectory, offset, d, i, j)
             line, = ax.plot(xy[:, 0], xy[:, 1], linewidth=1.4, label=name)
