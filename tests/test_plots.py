@@ -96,8 +96,8 @@ def _shipped(name: str, **options: object) -> object:
     problem = problem_file(name)
     form = matrix_form(problem, display=False)
     conserved, _, _, note = monitored(form)
-    result = run_simulation(form, conserved, SimulationOptions(values={}, initial={}, tables=("csv",), **options),
-                            energy_note=note)
+    settings = SimulationOptions(values={}, initial={}, tables=("csv",), scene=True, **options)  # type: ignore[arg-type]
+    result = run_simulation(form, conserved, settings, energy_note=note)
     return result, result.scene
 
 

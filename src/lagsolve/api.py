@@ -313,7 +313,7 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
         raise SpecError(bad)
     options = SimulationOptions(values=dict(values or {}), initial=dict(initial or {}), t_end=t_end, samples=samples,
                                 method=method, rtol=rtol, atol=atol, max_step=max_step, after_release=after_release,
-                                coordinates=coordinates, analysis_timeout=budget)
+                                coordinates=coordinates, analysis_timeout=budget, scene=True)
     if isinstance(path_or_derivation, Derivation):
         from lagsolve.mechanics.analysis import energy_reason
         from lagsolve.mechanics.chart import minimal_chart

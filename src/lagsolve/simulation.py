@@ -28,6 +28,7 @@ class SimulationOptions:
     plots: bool = False
     animate: bool = False
     analysis_timeout: float = 60.0  # budget of the derivation that finds the conserved quantities
+    scene: bool = False  # also evaluate the sketch's geometry without figures (for Trajectory.plot())
     units: dict[str, str] | None = None  # unit of a coordinate, "t", "length", "force", "energy" for the axes
 
 
@@ -114,8 +115,9 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     if "npz" in options.tables:
         tables["npz"] = table.to_npz(trajectory)
     figures: dict[str, bytes] = {}
-    # what the sketch draws: cheap next to the run (a classification and a few compiled shapes)
-    scene = _scene(problem, system.parameters, trajectory) if trajectory.particles else None
+    # what the sketch draws (a classification and a few compiled shapes), for figures or on request
+    wanted = options.plots or options.animate or options.scene
+    scene = _scene(problem, system.parameters, trajectory) if trajectory.particles and wanted else None
     if options.plots or options.animate:
         from lagsolve.render import plots
         from lagsolve.render.notation import Notation
