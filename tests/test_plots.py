@@ -200,3 +200,25 @@ def test_constant_and_uniform_coordinates_get_no_panel() -> None:
     assert fig.get_supxlabel() == "y = 0 throughout"
     phase = plots.phase_figure(result.trajectory, "S", {"x": "x", "y": "y"}, units={"x": "m", "t": "s"})
     assert _labels(phase) == [("$x$ [m]", "$\\dot{x}$ [m/s]")]
+
+
+@pytest.mark.parametrize(("name", "contact", "rate"), [("rotating_tube", "wall", "r_dot"),
+                                                       ("rough_circular_wire", "rub", "theta_dot"),
+                                                       ("rough_incline", "contact", "s_dot")])
+def test_friction_column_is_mu_n_against_the_sliding_rate(name: str, contact: str, rate: str) -> None:
+    """While a contact slides, |friction_<c>| = mu N_<c> (Coulomb's law, from the CSV's own N) and the
+    friction opposes the sliding rate: its power f * s_dot is never positive."""
+    import numpy as np
+
+    from mechanics_support import problem_file
+
+    result, _ = _shipped(name)
+    lines = result.tables["csv"].splitlines()
+    header = lines[0].split(",")
+    table = np.array([[float(v) for v in line.split(",")] for line in lines[1:]])
+    col = {key: table[:, k] for k, key in enumerate(header)}
+    mu = problem_file(name).simulation.values["mu"]
+    sliding = col[f"stuck_{contact}"] == 0
+    assert sliding.all()
+    assert np.allclose(np.abs(col[f"friction_{contact}"]), mu * col[f"N_{contact}"], rtol=1e-12, atol=1e-12)
+    assert np.all(col[f"friction_{contact}"] * col[rate] <= 0)
