@@ -91,8 +91,11 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
         from lagsolve.mechanics.chart import minimal_chart
 
         chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
+        from dataclasses import replace
+
         from lagsolve.mechanics.analysis import energy_reason
 
+        simulate = replace(simulate, scene=True)  # the page's slider and the reports' sketch draw it
         run = run_simulation(derivation.form, derivation.conserved, simulate, chart=chart, chart_note=chart_note,
                              energy_note=energy_reason(derivation.analysis.conservation))
         slug = safe_slug(derivation.problem.source)
