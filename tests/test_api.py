@@ -165,14 +165,15 @@ def test_trajectory_converts_to_a_dataframe() -> None:
 
 
 def test_trajectory_plot_returns_figures() -> None:
-    """`plot()` returns matplotlib Figures by name, never bytes."""
+    """`plot()` returns matplotlib Figures by name, never bytes; the sketch draws the bead's wire."""
     from matplotlib.figure import Figure
 
     run = lagsolve.simulate(BEAD, t_end=1.0, samples=11)
     figures = run.plot()
     try:
-        assert set(figures) == {"path", "coordinates", "phase", "forces", "conservation"}
+        assert set(figures) == {"sketch", "path", "coordinates", "phase", "forces", "conservation"}
         assert all(isinstance(f, Figure) for f in figures.values())
+        assert "wire" in [line.get_label() for line in figures["sketch"].axes[0].get_lines()]
     finally:
         import matplotlib.pyplot as plt
 

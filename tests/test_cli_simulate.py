@@ -52,7 +52,7 @@ def test_plot_writes_figures(runner: CliRunner, tmp_path: Path) -> None:
     assert result.exit_code == 0, result.output
     names = sorted(p.name for p in (tmp_path / "bead").iterdir())
     assert names == ["bead_conservation.png", "bead_coordinates.png", "bead_forces.png", "bead_path.png",
-                     "bead_phase.png"]
+                     "bead_phase.png", "bead_sketch.png"]
     assert all((tmp_path / "bead" / n).read_bytes().startswith(b"\x89PNG") for n in names)
 
 
@@ -111,7 +111,7 @@ def test_animate_and_show(runner: CliRunner, tmp_path: Path, monkeypatch: pytest
     result = runner.invoke(main, ["simulate", BEAD, "--t-end", "1", "--animate", "--show", "-o", str(tmp_path)])
     assert result.exit_code == 0, result.output
     assert (tmp_path / "bead" / "bead_animation.gif").read_bytes().startswith(b"GIF8")
-    assert len(opened) == 6 and any(p.endswith("bead_path.png") for p in opened)
+    assert len(opened) == 7 and any(p.endswith("bead_sketch.png") for p in opened)
 
 
 @pytest.mark.parametrize(("args", "message"), [

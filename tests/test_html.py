@@ -135,3 +135,29 @@ def test_the_time_slider_moves_the_particles(bead: Derivation, browser: Any, tmp
     assert after != before and float(cursor) > 40 and label.startswith("t = 5")
     assert browser.execute_script("return performance.getEntriesByType('resource').length;") == 0
     assert [e for e in browser.get_log("browser") if e["level"] in ("SEVERE", "ERROR")] == []
+
+
+def test_the_slider_drawing_moves_the_rods(browser: Any, tmp_path: Path) -> None:
+    """The double pendulum's page draws its two rods and the pivot; the slider moves the rods' ends with the
+    particles (the lower rod starts where the upper particle is)."""
+    from lagsolve.pipeline import derive_file
+    from lagsolve.simulation import SimulationOptions
+
+    reports = derive_file(ROOT / "problems" / "double_pendulum.yaml", ("html",),
+                          simulate=SimulationOptions(values={}, initial={}, samples=201))
+    page = tmp_path / "double_pendulum.html"
+    page.write_text(reports.outputs["html"], encoding="utf-8")
+    browser.get(page.as_uri())
+    script = ("var r = document.querySelectorAll('#path-view line'),"
+              " c = document.querySelectorAll('#path-view circle');"
+              "return [Array.from(r).map(function (l) { return [l.getAttribute('x1'), l.getAttribute('y1'),"
+              " l.getAttribute('x2'), l.getAttribute('y2')]; }), [c[0].getAttribute('cx'), c[0].getAttribute('cy')],"
+              " document.querySelectorAll('#path-view polygon').length];")
+    rods, upper, pivots = browser.execute_script(script)
+    assert len(rods) == 2 and pivots == 1
+    assert rods[0][2:] == upper and rods[1][:2] == upper
+    browser.execute_script("var s = document.getElementById('time'); s.value = '100';"
+                           "s.dispatchEvent(new Event('input'));")
+    moved, upper_then, _ = browser.execute_script(script)
+    assert moved[0][2:] == upper_then != upper and moved[1][:2] == upper_then
+    assert [e for e in browser.get_log("browser") if e["level"] in ("SEVERE", "ERROR")] == []

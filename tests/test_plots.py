@@ -21,17 +21,18 @@ def _labels(fig: object) -> list[tuple[str, str]]:
 def test_all_figures_are_made_with_stable_names(trajectory: Trajectory) -> None:
     """A constrained particle problem gets path, coordinates, phase, forces and conservation figures."""
     figs = plots.figures(trajectory, "Pendulum", {"x": "x", "y": "y"})
-    assert list(figs) == ["path", "coordinates", "phase", "forces", "conservation"]
+    assert list(figs) == ["sketch", "path", "coordinates", "phase", "forces", "conservation"]
 
 
 def test_axes_are_labelled(trajectory: Trajectory) -> None:
     """Each figure has a title and labelled axes with symbols."""
     figs = plots.figures(trajectory, "Pendulum", {"x": "x", "y": "y"})
     assert _labels(figs["path"]) == [("x", "y")]
+    assert _labels(figs["sketch"]) == [("x", "y")]
     assert _labels(figs["coordinates"]) == [("", "$x$"), ("$t$", "$y$")]
     assert ("$x$", "$\\dot{x}$") in _labels(figs["phase"])
     assert _labels(figs["forces"]) == [("", "multiplier $\\lambda$"), ("$t$", "magnitude $|F|$")]
-    assert _labels(figs["conservation"])[1] == ("$t$", "constraint residual\n(before projection)")
+    assert _labels(figs["conservation"])[-1] == ("$t$", "constraint residual\n(before projection)")
     for fig in figs.values():
         assert fig._suptitle.get_text().startswith("Pendulum")  # noqa: SLF001
 
@@ -55,8 +56,8 @@ def test_png_and_gif_bytes(trajectory: Trajectory) -> None:
 
 
 def test_minimal_coordinates_conservation_figure() -> None:
-    """Integrated in minimal coordinates the residual is exactly zero: the figure says so in words instead of
-    drawing a line at the log scale's floor, and the energy is drawn once."""
+    """Integrated in minimal coordinates the residual is exactly zero: the figure says so in a line under it
+    instead of drawing an empty panel, and the energy is drawn once."""
     from lagsolve.mechanics.chart import minimal_chart
     from lagsolve.numeric.initial import complete_initial
     from lagsolve.numeric.integrate import integrate_motion
@@ -69,10 +70,9 @@ def test_minimal_coordinates_conservation_figure() -> None:
     q0, qd0 = complete_initial(system, hole.problem.simulation.initial)
     trajectory = integrate_motion(system, q0, qd0, 1.0, samples=101)
     fig = plots.conservation_figure(trajectory, "Hole")
-    drift, residual = fig.axes[0], fig.axes[1]
+    (drift,) = fig.axes  # no residual panel: it would be empty
     assert [line.get_label() for line in drift.get_lines()] == ["energy $h$", "p theta"]
-    assert residual.get_ylabel() == "constraint residual" and not residual.get_lines()
-    assert "exactly 0 at every sample" in residual.texts[0].get_text()
+    assert "exactly 0 at every sample" in fig.get_supxlabel()
 
 
 def test_a_name_with_dollar_signs_is_drawn_as_text(trajectory: Trajectory) -> None:
@@ -81,3 +81,144 @@ def test_a_name_with_dollar_signs_is_drawn_as_text(trajectory: Trajectory) -> No
     for fig in plots.figures(trajectory, title, {"x": "x", "y": "y"}).values():
         assert plots.png_bytes(fig).startswith(b"\x89PNG")
     assert plots.animation_gif(trajectory, title, frames=3).startswith(b"GIF8")
+
+
+# --- shipped problems: the sketch, friction, no empty panels, units, the time stamp ---------------------
+
+
+def _shipped(name: str, **options: object) -> object:
+    """``lagsolve simulate problems/<name>.yaml`` as the library runs it (tables and scene, no PNGs)."""
+    from lagsolve.mechanics.analysis import monitored
+    from lagsolve.mechanics.matrix_form import matrix_form
+    from lagsolve.simulation import SimulationOptions, run_simulation
+    from mechanics_support import problem_file
+
+    problem = problem_file(name)
+    form = matrix_form(problem, display=False)
+    conserved, _, _, note = monitored(form)
+    settings = SimulationOptions(values={}, initial={}, tables=("csv",), scene=True, **options)  # type: ignore[arg-type]
+    result = run_simulation(form, conserved, settings, energy_note=note)
+    return result, result.scene
+
+
+SHIPPED = ["bead", "double_pendulum", "pendulum_cartesian", "spring_on_rough_floor", "rough_incline", "wedge",
+           "ladder_rough_floor", "rotating_tube", "bead_on_rotating_hoop", "hole_table"]
+
+
+@pytest.mark.parametrize("name", SHIPPED)
+def test_no_figure_of_a_shipped_problem_has_an_empty_panel(name: str) -> None:
+    """Every Axes of every figure holds data (lines, shading or the sketch), and each title fits its figure."""
+    result, scene = _shipped(name)
+    labels = {c: c for c in result.trajectory.coordinates}
+    for key, fig in plots.figures(result.trajectory, result.name, labels, scene=scene).items():
+        for ax in fig.axes:
+            assert ax.has_data(), f"{name}: an empty panel in the {key} figure"
+        plots.png_bytes(fig)  # lays the figure out
+        renderer = fig._get_renderer()  # noqa: SLF001
+        box = fig._suptitle.get_window_extent(renderer)  # noqa: SLF001
+        assert box.x0 >= 0 and box.x1 <= fig.bbox.x1, f"{name}: the {key} title is clipped"
+
+
+def test_sketch_draws_rods_and_pivot_of_the_double_pendulum() -> None:
+    """The sketch of the double pendulum draws two rods (pivot to upper, upper to lower) at t = 0."""
+    import numpy as np
+
+    result, scene = _shipped("double_pendulum")
+    trajectory = result.trajectory
+    fig = plots.sketch_figure(trajectory, scene, "Double pendulum")
+    ax = fig.axes[0]
+    upper, lower = trajectory.positions[0, :2], trajectory.positions[0, 2:4]
+    segments = [np.column_stack(line.get_data()) for line in ax.get_lines() if len(line.get_xdata()) == 2]
+    assert any(np.allclose(s, [[0, 0], upper]) for s in segments)
+    assert any(np.allclose(s, [upper, lower]) for s in segments)
+    assert [t.get_text() for t in ax.texts if t.get_text() in ("upper", "lower")] == ["upper", "lower"]
+
+
+def test_animation_frames_carry_a_time_stamp() -> None:
+    """Each frame of the animation shows 't = ...' with the sample's time; the first frame is the sketch at 0."""
+    import numpy as np
+
+    from lagsolve.render.plots import _Drawing
+
+    result, scene = _shipped("pendulum_cartesian")
+    trajectory = result.trajectory
+    fig = plots._pyplot().figure()  # noqa: SLF001
+    drawing = _Drawing(fig.add_subplot(), trajectory, scene, trails=True, units={"t": "s"})
+    assert drawing.show(0)[-1].get_text() == "t = 0.00 s"
+    assert drawing.show(500)[-1].get_text() == f"t = {trajectory.t[500]:.2f} s"
+    rod = drawing.rods[0]
+    assert np.allclose(np.column_stack(rod.get_data())[1], trajectory.positions[500, :2])
+    plots._pyplot().close(fig)  # noqa: SLF001
+    gif = plots.animation_gif(trajectory, "P", frames=4, scene=scene)
+    assert gif.startswith(b"GIF8")
+
+
+def test_friction_is_plotted_and_in_the_csv() -> None:
+    """The spring on a rough floor: the CSV's friction column is -mu N sign(x_dot) while sliding and k x (what
+    holds the spring) while stuck, stuck_rough marks the sticking phase, and the forces figure has a friction
+    panel with that phase shaded."""
+    import numpy as np
+
+    result, scene = _shipped("spring_on_rough_floor")
+    lines = result.tables["csv"].splitlines()
+    header = lines[0].split(",")
+    assert {"N_rough", "friction_rough", "stuck_rough"} <= set(header)
+    table = np.array([[float(v) for v in line.split(",")] for line in lines[1:]])
+    col = {name: table[:, k] for k, name in enumerate(header)}
+    trajectory = result.trajectory
+    assert np.array_equal(col["friction_rough"], trajectory.friction[:, 0])
+    m, k, g, mu = 1.0, 10.0, 9.81, 0.1
+    stuck = col["stuck_rough"] == 1
+    sliding = ~stuck & (col["x_dot"] != 0)
+    assert stuck.any() and sliding.any()
+    assert np.allclose(col["N_rough"], m * g, rtol=1e-12)
+    assert np.allclose(col["friction_rough"][sliding], -mu * m * g * np.sign(col["x_dot"][sliding]), rtol=1e-10)
+    assert np.allclose(col["friction_rough"][stuck], k * col["x"][stuck], rtol=1e-8, atol=1e-10)
+    fig = plots.forces_figure(trajectory, result.name, units={"t": "s", "force": "N"})
+    friction = fig.axes[-1]
+    assert friction.get_ylabel() == "friction $f$ [N]" and friction.get_xlabel() == "$t$ [s]"
+    assert [line.get_label() for line in friction.get_lines()][0] == "friction rough"
+    assert friction.patches  # the sticking phase, shaded
+
+
+def test_dissipative_run_shows_the_energy_dissipated() -> None:
+    """Without a conserved energy, the conservation figure draws h - h0 and says how much was dissipated."""
+    result, _ = _shipped("spring_on_rough_floor")
+    fig = plots.conservation_figure(result.trajectory, result.name)
+    (energy,) = fig.axes
+    h = result.trajectory.energy
+    assert energy.get_ylabel() == "$h - h_0$"
+    assert energy.get_legend().get_title().get_text() == f"dissipated by t = 8: {h[0] - h[-1]:.4g}"
+    assert "energy not conserved" in fig.get_supxlabel()
+
+
+def test_constant_and_uniform_coordinates_get_no_panel() -> None:
+    """The floor's y stays 0: no panel for it in the coordinates and phase figures, a note instead."""
+    result, _ = _shipped("spring_on_rough_floor")
+    fig = plots.coordinates_figure(result.trajectory, "S", {"x": "x", "y": "y"}, units={"x": "m", "t": "s"})
+    assert _labels(fig) == [("$t$ [s]", "$x$ [m]")]
+    assert fig.get_supxlabel() == "y = 0 throughout"
+    phase = plots.phase_figure(result.trajectory, "S", {"x": "x", "y": "y"}, units={"x": "m", "t": "s"})
+    assert _labels(phase) == [("$x$ [m]", "$\\dot{x}$ [m/s]")]
+
+
+@pytest.mark.parametrize(("name", "contact", "rate"), [("rotating_tube", "wall", "r_dot"),
+                                                       ("rough_circular_wire", "rub", "theta_dot"),
+                                                       ("rough_incline", "contact", "s_dot")])
+def test_friction_column_is_mu_n_against_the_sliding_rate(name: str, contact: str, rate: str) -> None:
+    """While a contact slides, |friction_<c>| = mu N_<c> (Coulomb's law, from the CSV's own N) and the
+    friction opposes the sliding rate: its power f * s_dot is never positive."""
+    import numpy as np
+
+    from mechanics_support import problem_file
+
+    result, _ = _shipped(name)
+    lines = result.tables["csv"].splitlines()
+    header = lines[0].split(",")
+    table = np.array([[float(v) for v in line.split(",")] for line in lines[1:]])
+    col = {key: table[:, k] for k, key in enumerate(header)}
+    mu = problem_file(name).simulation.values["mu"]
+    sliding = col[f"stuck_{contact}"] == 0
+    assert sliding.all()
+    assert np.allclose(np.abs(col[f"friction_{contact}"]), mu * col[f"N_{contact}"], rtol=1e-12, atol=1e-12)
+    assert np.all(col[f"friction_{contact}"] * col[rate] <= 0)

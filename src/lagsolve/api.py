@@ -161,6 +161,7 @@ class Trajectory:
     summary: str
     motion: Motion
     labels: Mapping[str, str]
+    scene: Any = None  # the rods, surfaces and wires the sketch draws (numeric.scene.Scene)
 
     @property
     def t(self) -> np.ndarray:
@@ -235,11 +236,11 @@ class Trajectory:
         return pandas.DataFrame(self.columns())
 
     def plot(self) -> dict[str, Any]:
-        """The figures of the run by name ("path", "coordinates", "phase", "forces", "conservation"),
-        as :class:`matplotlib.figure.Figure` objects (never shown; close them when done)."""
+        """The figures of the run by name ("sketch", "path", "coordinates", "phase", "forces",
+        "conservation"), as :class:`matplotlib.figure.Figure` objects (never shown; close them when done)."""
         from lagsolve.render.plots import figures
 
-        return figures(self.motion, self.name, self.labels)
+        return figures(self.motion, self.name, self.labels, scene=self.scene)
 
     def _repr_html_(self) -> str:
         from lagsolve.render.display import trajectory_html
@@ -312,7 +313,7 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
         raise SpecError(bad)
     options = SimulationOptions(values=dict(values or {}), initial=dict(initial or {}), t_end=t_end, samples=samples,
                                 method=method, rtol=rtol, atol=atol, max_step=max_step, after_release=after_release,
-                                coordinates=coordinates, analysis_timeout=budget)
+                                coordinates=coordinates, analysis_timeout=budget, scene=True)
     if isinstance(path_or_derivation, Derivation):
         from lagsolve.mechanics.analysis import energy_reason
         from lagsolve.mechanics.chart import minimal_chart
@@ -350,7 +351,7 @@ def _trajectory(result: Any) -> Trajectory:
     import sympy
 
     labels = {name: notation.latex(sympy.Symbol(name)) for name in problem_coordinates}
-    return Trajectory(result.name, result.source, result.summary, result.trajectory, labels)
+    return Trajectory(result.name, result.source, result.summary, result.trajectory, labels, result.scene)
 
 
 def check(path_or_derivation: str | Path | bytes | Problem | Derivation, *, budget: float = DEFAULT_BUDGET,

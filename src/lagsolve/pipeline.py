@@ -39,6 +39,7 @@ def safe_slug(path: str | Path) -> str:
 
 
 FIGURE_CAPTIONS = {
+    "sketch": "The system at the start: particles, rods, pivots, surfaces and wires",
     "path": "Paths in space, with the constraint curve where there is one",
     "coordinates": "Coordinates against time",
     "phase": "Phase portraits",
@@ -90,8 +91,11 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
         from lagsolve.mechanics.chart import minimal_chart
 
         chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
+        from dataclasses import replace
+
         from lagsolve.mechanics.analysis import energy_reason
 
+        simulate = replace(simulate, scene=True)  # the page's slider and the reports' sketch draw it
         run = run_simulation(derivation.form, derivation.conserved, simulate, chart=chart, chart_note=chart_note,
                              energy_note=energy_reason(derivation.analysis.conservation))
         slug = safe_slug(derivation.problem.source)
@@ -104,7 +108,7 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
         from lagsolve.render.trajectory import summary as run_summary
 
         simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures,
-                      "animation": animation(run.trajectory)}
+                      "animation": animation(run.trajectory, scene=run.scene)}
         text += run.summary
     outputs = {fmt: render(derivation, fmt, templates, simulation, potential, files) for fmt in formats}
     if not figures_written:

@@ -28,6 +28,8 @@ class SimulationOptions:
     plots: bool = False
     animate: bool = False
     analysis_timeout: float = 60.0  # budget of the derivation that finds the conserved quantities
+    scene: bool = False  # also evaluate the sketch's geometry without figures (for Trajectory.plot())
+    units: dict[str, str] | None = None  # unit of a coordinate, "t", "length", "force", "energy" for the axes
 
 
 @dataclass(frozen=True)
@@ -42,6 +44,16 @@ class SimulationResult:
     figures: dict[str, bytes]
     trajectory: object
     warnings: tuple[str, ...] = ()  # about the file (units missing), for the command line to show
+    scene: object = None  # the numeric.scene.Scene of the run's rods, surfaces and wires (None without particles)
+
+
+def _scene(problem: Any, parameters: Any, trajectory: Any) -> Any:
+    """The problem's rods, surfaces and wires (``mechanics/geometry.py``) along the trajectory."""
+    from lagsolve.mechanics.geometry import geometry
+    from lagsolve.numeric.scene import evaluate
+
+    return evaluate(geometry(problem), problem, parameters, trajectory.t, trajectory.q, trajectory.qd,
+                    trajectory.positions)
 
 
 def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progress: Any = None,
@@ -104,38 +116,36 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
         from lagsolve.mechanics.result_units import column_units
 
         units = column_units(problem, form.model.kinetic)
+        force = next((u for k, u in units.items() if k.startswith(("F_", "N_"))), None)
+        units.update({f"friction_{f.name}": force for f in problem.friction if force})
+    # the figures' keys: coordinates, "t", "length", "force", "energy" (the file's units win over options.units)
+    axis_units = {**(options.units or {}), **units}
+    if "position" in units:
+        axis_units["length"] = units["position"]
+    if force := next((u for k, u in units.items() if k.startswith(("F_", "N_", "friction_"))), None):
+        axis_units["force"] = force
     if "csv" in options.tables:
         tables["csv"] = table.to_csv(trajectory, units)
     if "npz" in options.tables:
         tables["npz"] = table.to_npz(trajectory)
     figures: dict[str, bytes] = {}
+    # what the sketch draws (a classification and a few compiled shapes), for figures or on request
+    wanted = options.plots or options.animate or options.scene
+    scene = _scene(problem, system.parameters, trajectory) if trajectory.particles and wanted else None
     if options.plots or options.animate:
         from lagsolve.render import plots
         from lagsolve.render.notation import Notation
 
         notation = Notation([c.name for c in problem.coordinates])
         labels = {c.name: notation.latex(c.symbol) for c in problem.coordinates}
-        curve = None
-        if system.curve is not None and system.curve_coordinate is not None:
-            k, fn = system.curve_coordinate, system.curve
-
-            def shape(values: np.ndarray) -> np.ndarray:
-                q = np.array(q0, dtype=float)
-                rows = []
-                for u in values:
-                    q[k] = u
-                    rows.append(fn(0.0, q, qd0, system.parameters))
-                return np.array(rows)
-
-            curve = (k, shape)
         if options.plots:
-            for key, figure in plots.figures(trajectory, name, labels, curve, units=units).items():
+            for key, figure in plots.figures(trajectory, name, labels, scene=scene, units=axis_units).items():
                 figures[key] = plots.png_bytes(figure)
         if options.animate and trajectory.particles:
-            figures["animation"] = plots.animation_gif(trajectory, name)
+            figures["animation"] = plots.animation_gif(trajectory, name, scene=scene, units=axis_units)
     from lagsolve.pipeline import safe_slug
 
     return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name) + note, tables,
-                            figures, trajectory)
+                            figures, trajectory, scene)
 
 

@@ -69,7 +69,8 @@ class Trajectory:
 
     ``q``, ``qd`` shape (samples, n); ``multipliers`` and ``magnitudes`` shape
     (samples, m) in constraint order (λ = 0 and magnitude 0 after release);
-    ``normal_forces`` and ``stuck`` shape (samples, contacts) for friction contacts;
+    ``normal_forces``, ``stuck`` and ``friction`` shape (samples, contacts) for friction contacts
+    (``friction``: see :meth:`NumericSystem.friction_forces`);
     ``energy`` the Jacobi integral h = Σ q̇ ∂L/∂q̇ − L; ``residual`` the largest
     constraint violation of the integrated state before projection; ``positions``
     shape (samples, total particle components).
@@ -92,6 +93,7 @@ class Trajectory:
     particles: tuple[tuple[str, int], ...]
     events: tuple[Event, ...]
     stats: Mapping[str, Any] = field(default_factory=dict)
+    friction: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
 
 
 @dataclass
@@ -465,12 +467,15 @@ def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: d
     lam = np.zeros((count, system.m))
     mags = np.zeros((count, system.m))
     normals = np.zeros((count, k))
+    friction = np.zeros((count, k))
     energy = np.zeros(count)
     conserved = np.zeros((count, len(system.conserved_names)))
     positions = np.zeros((count, sum(d for _, d in system.particles)))
     for i, (ti, qi, qdi, _, active, stuck_i, direction) in enumerate(rows):
         if system.m:
-            _, lam[i], normals[i], _ = system.solve_all(ti, qi, qdi, active, stuck_i, direction)
+            _, lam[i], normals[i], sticking = system.solve_all(ti, qi, qdi, active, stuck_i, direction)
+            if k:
+                friction[i] = system.friction_forces(ti, qi, qdi, normals[i], stuck_i, sticking, direction)
             mags[i] = np.where(active, system.magnitudes(ti, qi, qdi, lam[i]), 0.0)
         energy[i] = system.energy(ti, qi, qdi, p)[0]
         if system.conserved_names:
@@ -482,7 +487,7 @@ def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: d
                                  for c, name in enumerate(system.conserved_names)}}
     return Trajectory(t, system.coordinates, system.constraints, q, qd, lam, mags, system.contact_names, normals,
                       stuck, energy, {name: conserved[:, c] for c, name in enumerate(system.conserved_names)},
-                      residual, positions, system.particles, tuple(events), stats)
+                      residual, positions, system.particles, tuple(events), stats, friction)
 
 
 def _relative_drift(values: np.ndarray) -> float:

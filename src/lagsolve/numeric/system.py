@@ -57,7 +57,8 @@ class NumericSystem:
     contacts: tuple[tuple[tuple[int, int, int], ...], ...]  # per contact: (constraint j, offset, dims)
     contact_names: tuple[str, ...]
     slides: tuple[int | None, ...]  # per contact: the one sliding coordinate (stick–slip), else None
-    contact_values: StateFunction  # per contact: static coefficient, |dr/dq| of the sliding coordinate
+    contact_values: StateFunction  # per contact: static coefficient, |dr/dq| of the sliding coordinate; then
+    # the kinetic coefficient of each contact
     directions: StateFunction
     scales: StateFunction
     position_residual: StateFunction
@@ -69,8 +70,6 @@ class NumericSystem:
     particles: tuple[tuple[str, int], ...]
     conserved_names: tuple[str, ...]
     conserved: StateFunction
-    curve_coordinate: int | None
-    curve: StateFunction | None
     energy_conserved: bool
     energy_note: str
     chart: NumericChart | None = None  # minimal coordinates, when the constraints are solved in closed form
@@ -202,6 +201,38 @@ class NumericSystem:
             normal = new
         raise SimulationError(f"at t = {t:.6g} the normal forces of the friction contacts did not converge")
 
+    def friction_forces(self, t: float, q: np.ndarray, qd: np.ndarray, normal: np.ndarray, stuck: np.ndarray,
+                        sticking: np.ndarray, direction: np.ndarray) -> np.ndarray:
+        r"""The friction force of each contact at a state, shape (contacts,).
+
+        With one sliding coordinate s: the force's component along the unit vector ∂r/∂s / |∂r/∂s|
+        (signed), from the generalized force it exerts, :math:`Q_s / |\partial\mathbf r/\partial s|`,
+        which is :math:`-\mu N\,\mathrm{sign}(\dot s)` while it slides and the force that holds it,
+        the sticking multiplier over :math:`|\partial\mathbf r/\partial s|`, while it sticks. With
+        several sliding coordinates: the magnitude μ N of the kinetic friction (it opposes the sliding
+        velocity).
+        """
+        k = len(self.contacts)
+        if k == 0:
+            return _EMPTY
+        n, p = self.n, self.parameters
+        values = self.contact_values(t, q, qd, p)
+        out = np.zeros(k)
+        columns = None
+        for c, slide in enumerate(self.slides):
+            if slide is None:
+                out[c] = values[2 * k + c] * normal[c]
+                continue
+            length = values[2 * c + 1]
+            if stuck[c]:
+                out[c] = sticking[c] / length
+                continue
+            if columns is None:
+                columns = self.matrices(t, q, qd, p)[n * n: n * n + n * (k + 1)].reshape(n, k + 1)
+            sign = np.sign(qd[slide]) or direction[c]
+            out[c] = columns[slide, c + 1] * sign * normal[c] / length
+        return out
+
     def magnitudes(self, t: float, q: np.ndarray, qd: np.ndarray, lam: np.ndarray) -> np.ndarray:
         """|force of constraint j| = |λ_j| · |direction_j| (NaN where no force can be claimed)."""
         return np.abs(lam) * self.scales(t, q, qd, self.parameters)
@@ -286,6 +317,7 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
         position = problem.particle(f.particle).position
         length = norm([sympy.diff(r, model.coordinates[slide]) for r in position]) if slide is not None else 1
         contact_values += [static if static is not None else f.coefficient, length]
+    contact_values += [f.coefficient for f in form.frictions]  # then the kinetic coefficients, in contact order
     forcing_columns = [columns[c][i] for i in range(len(model.coordinates)) for c in range(len(columns))]
     matrices = [*lagrange.mass_matrix, *forcing_columns, *lagrange.constraint_jacobian, *lagrange.constraint_rhs]
     contacts, directions, offset = [], [], 0
@@ -349,7 +381,6 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
 
     conserved_names = list(conserved or {})
     usable = [i for i, e in enumerate(prepared["conserved"]) if e.free_symbols <= allowed]
-    curve_coordinate, curve = _constraint_curve(form, prepare, arguments)
     # mechanics decides (mechanics.analysis.monitored, or the derivation's analysis); this only evaluates
     energy_conserved = "energy" in (conserved or {})
     note = energy_note or "the analysis finds no conserved energy"
@@ -377,8 +408,6 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
             particles=tuple((p.name, len(p.position)) for p in problem.particles),
             conserved_names=tuple(conserved_names[i] for i in usable),
             conserved=compile_state_function([prepared["conserved"][i] for i in usable], **arguments),
-            curve_coordinate=curve_coordinate,
-            curve=curve,
             energy_conserved=energy_conserved,
             energy_note=note,
             chart=None if chart is None else compile_chart(chart, prepare, **arguments),
@@ -398,22 +427,3 @@ def _sliding_coordinate(form: MatrixForm, friction: Any) -> int | None:
     moving = [index[name] for name in next(f.sliding for f in problem.friction if f.name == friction.name)
               if any(sympy.diff(r, model.coordinates[index[name]]) != 0 for r in position)]
     return moving[0] if len(moving) == 1 else None
-
-
-def _constraint_curve(form: MatrixForm, prepare: Any,
-                      arguments: dict[str, Any]) -> tuple[int | None, StateFunction | None]:
-    """For one degree of freedom left by explicit position constraints (a bead on a wire), the first
-    particle's position as a function of the independent coordinate: the curve the constraint draws."""
-    from lagsolve.mechanics.reduce import eliminate
-
-    problem, model = form.problem, form.model
-    if not problem.particles or not form.constraints or any(c.kind != "holonomic" for c in form.constraints):
-        return None, None
-    elimination = eliminate(form.constraints, model)
-    free = [i for i, q in enumerate(model.coordinates) if q not in elimination.positions]
-    if len(free) != 1:
-        return None, None
-    shape = [prepare(elimination.apply(r)) for r in problem.particles[0].position]
-    if any(model.time in e.free_symbols for e in shape):
-        return None, None
-    return free[0], compile_state_function(shape, **arguments)

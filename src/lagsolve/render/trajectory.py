@@ -2,7 +2,8 @@
 
 CSV columns (format section 3): ``t``, each coordinate, each ``<q>_dot``, then
 ``lambda_<c>`` and ``F_<c>`` per constraint, ``energy`` (the Jacobi integral,
-conserved or not), then ``N_<contact>`` per friction contact, ``residual`` and any
+conserved or not), then ``N_<contact>``, ``friction_<contact>`` and ``stuck_<contact>``
+(1 while it sticks, 0 while it slides) per friction contact, ``residual`` and any
 conserved quantities. With units (a problem that declares them) each header cell carries its column's
 unit, ``x [m]``; a column whose unit is not known keeps its bare name.
 """
@@ -32,6 +33,8 @@ def columns(trajectory: Trajectory) -> dict[str, np.ndarray]:
     out["energy"] = trajectory.energy
     for c, name in enumerate(trajectory.contacts):
         out[f"N_{name}"] = trajectory.normal_forces[:, c]
+    for c, name in enumerate(trajectory.contacts):
+        out[f"friction_{name}"] = trajectory.friction[:, c]
     for c, name in enumerate(trajectory.contacts):
         out[f"stuck_{name}"] = trajectory.stuck[:, c].astype(float)
     out["residual"] = trajectory.residual
@@ -106,16 +109,18 @@ def summary(trajectory: Trajectory, name: str, timing: bool = True) -> str:
 FRAMES = 400
 
 
-def animation(trajectory: Trajectory, frames: int = FRAMES) -> dict[str, Any] | None:
+def animation(trajectory: Trajectory, frames: int = FRAMES, scene: Any = None) -> dict[str, Any] | None:
     """Plain data for the HTML report's time slider: times, each particle's path in the plane of its first
     two components, the relative drift of the Jacobi integral and each constraint force's magnitude,
-    at most ``frames`` samples (rounded to 5 significant digits). None without particles."""
+    at most ``frames`` samples (rounded to 5 significant digits). With a
+    :class:`~lagsolve.numeric.scene.Scene`, also the rods (both ends at each frame), pivots, surfaces
+    (a point and the normal at each frame) and wires (a fixed polyline) to draw. None without particles."""
     if not trajectory.particles or len(trajectory.t) < 2:
         return None
     pick = np.unique(np.linspace(0, len(trajectory.t) - 1, min(frames, len(trajectory.t))).round().astype(int))
 
-    def values(column: Any) -> list[float]:
-        return [float(f"{v:.5g}") if np.isfinite(v) else 0.0 for v in np.asarray(column, dtype=float)[pick]]
+    def values(column: Any, rows: Any = pick) -> list[float]:
+        return [float(f"{v:.5g}") if np.isfinite(v) else 0.0 for v in np.asarray(column, dtype=float)[rows]]
 
     particles = []
     offset = 0
@@ -129,4 +134,25 @@ def animation(trajectory: Trajectory, frames: int = FRAMES) -> dict[str, Any] | 
     series = [{"name": "relative drift of h", "values": values((h - h[0]) / scale)}] if np.all(np.isfinite(h)) else []
     series += [{"name": f"|F_{c}|", "values": values(trajectory.magnitudes[:, j])}
                for j, c in enumerate(trajectory.constraints)]
-    return {"t": values(trajectory.t), "particles": particles, "series": series}
+    out: dict[str, Any] = {"t": values(trajectory.t), "particles": particles, "series": series}
+    if scene:
+        out.update(_scene_data(scene, values))
+    return out
+
+
+def _scene_data(scene: Any, values: Any) -> dict[str, Any]:
+    """The scene in the plane of the first two components, sampled like the particles."""
+    def plane(a: np.ndarray) -> bool:
+        return a.shape[1] >= 2
+
+    rods = [{"x1": values(a[:, 0]), "y1": values(a[:, 1]), "x2": values(b[:, 0]), "y2": values(b[:, 1])}
+            for _, a, b in scene.rods if plane(a) and plane(b)]
+    pivots = [{"x": values(p[:, 0]), "y": values(p[:, 1])} for p in scene.pivots if plane(p)]
+    surfaces = [{"x": values(p[:, 0]), "y": values(p[:, 1]), "nx": values(n[:, 0]), "ny": values(n[:, 1])}
+                for _, p, n in scene.surfaces if p.shape[1] == 2]
+    curves = []
+    for _, points in scene.curves:
+        if plane(points):
+            rows = np.unique(np.linspace(0, len(points) - 1, min(200, len(points))).round().astype(int))
+            curves.append({"x": values(points[:, 0], rows), "y": values(points[:, 1], rows)})
+    return {"rods": rods, "pivots": pivots, "surfaces": surfaces, "curves": curves}
