@@ -57,6 +57,12 @@ def _weight(expr: Any) -> int:
     return ops(expr) + 3 * compound
 
 
+@functools.lru_cache(maxsize=8192, typed=True)
+def factor_terms(expr: Any) -> Any:
+    """``sympy.factor_terms(expr)``, remembered (the same forms come back from several rewritings)."""
+    return sympy.factor_terms(expr)
+
+
 @functools.lru_cache(maxsize=8192)
 def ops(expr: Any) -> int:
     """``sympy.count_ops(expr)``, remembered."""
@@ -129,9 +135,9 @@ def tidy(expr: Any) -> Any:
         return expr
     if ops(expr) > TIDY_LIMIT:
         # a governor: factor and cancel on a large expression cost far more than they gain
-        return smallest([expr, sympy.factor_terms(expr)])
+        return smallest([expr, factor_terms(expr)])
     candidates: list[Any] = [expr]
-    for step in (sympy.cancel, sympy.factor_terms, lambda e: sympy.factor(sympy.cancel(e))):
+    for step in (sympy.cancel, factor_terms, lambda e: sympy.factor(sympy.cancel(e))):
         try:
             candidates.append(step(expr))
         except _ERRORS:
@@ -140,7 +146,7 @@ def tidy(expr: Any) -> Any:
         candidates += pythagoras(expr)
         numerator, denominator = sympy.fraction(candidates[1])
         contracted = compound_angles(sympy.expand(numerator)) / compound_angles(sympy.expand(denominator))
-        candidates += [contracted, sympy.factor_terms(contracted)]
+        candidates += [contracted, factor_terms(contracted)]
         if ops(expr) <= TRIGSIMP_LIMIT:
             reduced = sympy.trigsimp(candidates[1])
             for step in (sympy.factor, lambda e: sympy.factor(sympy.expand_trig(e))):
@@ -174,8 +180,8 @@ def tidy_sum(expr: Any) -> Any:
     if ops(expanded) > TIDY_LIMIT:
         # a governor: pull common factors out of the best form only
         best = smallest(candidates)
-        return smallest([best, sympy.factor_terms(best)])
-    candidates += [sympy.factor_terms(c) for c in candidates]
+        return smallest([best, factor_terms(best)])
+    candidates += [factor_terms(c) for c in candidates]
     return smallest(candidates)
 
 
@@ -185,9 +191,10 @@ def tidy_sum_light(expr: Any) -> Any:
     (one rewriting each instead of a search over candidates)."""
     if not isinstance(expr, sympy.Basic):
         return _number(expr)
-    return sympy.factor_terms(compound_angles(sympy.expand(expr)))
+    return factor_terms(compound_angles(sympy.expand(expr)))
 
 
+@functools.lru_cache(maxsize=8192, typed=True)
 def compound_angles(expr: Any) -> Any:
     """``sin a sin b + cos a cos b`` → ``cos(a − b)`` and the like (sums of products to a function of a
     sum), term by term of the expanded ``expr``: the textbook form of chains of pendulums.
@@ -284,7 +291,7 @@ def norm(components: tuple[Any, ...] | list[Any]) -> Any:
 def root_of_sum_of_squares(terms: list[Any]) -> Any:
     """``sqrt(t1**2 + t2**2 + ...)`` keeping each term's factored form (for the length of a
     sum of orthogonal vectors, whose lengths are the terms)."""
-    return root_of_square(sympy.factor_terms(sum((tidy(t) ** 2 for t in terms), sympy.Integer(0))))
+    return root_of_square(factor_terms(sum((tidy(t) ** 2 for t in terms), sympy.Integer(0))))
 
 
 def root_of_square(square: Any) -> Any:
