@@ -74,6 +74,9 @@ def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix, limit: int | None = No
     Raises ``ValueError`` when no non-zero pivot is found (a singular system) and
     :class:`StageSkipped` when an entry grows past ``limit`` operations.
     """
+    fast = _solve_in_ring(system, rhs)
+    if fast is not None and (limit is None or max((_size(e) for e in fast), default=0) <= limit):
+        return fast
     size, columns = system.rows, rhs.cols
     if size == 1:
         if not _nonzero(system[0, 0]):
@@ -105,6 +108,38 @@ def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix, limit: int | None = No
             solution[r][j] = sympy.cancel(acc / work[r][r])
         _guard(solution[r], limit)
     return sympy.Matrix(solution)
+
+
+def _solve_in_ring(system: sympy.Matrix, rhs: sympy.Matrix) -> sympy.Matrix | None:
+    """The solution :func:`solve_linear` gives, found by elimination over the field of fractions of a
+    polynomial ring (each sine, cosine or other function in the entries a variable of its own), which is
+    many times faster than cancelling SymPy expressions at every step. Each entry is then cancelled, as
+    elimination leaves it: ``cancel`` writes a rational function in one way, so the result is the same
+    expression. None when the entries are not polynomials in such variables, or the system is singular
+    (elimination then says why)."""
+    from sympy.polys.matrices import DomainMatrix
+
+    size = system.rows
+    augmented = system.row_join(rhs)
+    atoms = sorted({f for e in augmented for f in e.atoms(sympy.Function, sympy.Derivative)},
+                   key=sympy.default_sort_key)
+    variables = {f: sympy.Dummy() for f in atoms}
+    try:
+        matrix = DomainMatrix.from_Matrix(augmented.xreplace(variables))
+        ring = matrix.domain
+        if not (ring.is_ZZ or ring.is_QQ or (ring.is_PolynomialRing and (ring.domain.is_ZZ or ring.domain.is_QQ))):
+            return None
+        field = matrix.to_field()
+        reduced, pivots = field.rref()
+    except (sympy.polys.polyerrors.PolynomialError, sympy.CoercionFailed, ValueError, TypeError,
+            NotImplementedError):
+        return None
+    if tuple(pivots[:size]) != tuple(range(size)):
+        return None
+    back = {v: f for f, v in variables.items()}
+    to_sympy = reduced.domain.to_sympy
+    return sympy.Matrix(size, rhs.cols, lambda i, j: sympy.cancel(
+        to_sympy(reduced[i, size + j].element).xreplace(back)))
 
 
 def _nonzero(value: Any) -> bool:

@@ -39,13 +39,17 @@ def smallest(candidates: list[Any]) -> Any:
     (printing is the dear part of :func:`measure`, and the operation count decides most choices)."""
     weights = [_weight(c) for c in candidates]
     low = min(weights)
-    tied = [c for c, w in zip(candidates, weights, strict=True) if w == low]
+    # equal candidates print alike, so only the first of each is printed (min keeps the first of a tie)
+    tied = list(dict.fromkeys(c for c, w in zip(candidates, weights, strict=True) if w == low))
     if len(tied) == 1:
         return tied[0]
-    return min(tied, key=lambda c: _text_key(sympy.sstr(c)))
+    return min(tied, key=_text_key)
 
 
-def _text_key(text: str) -> tuple[int, str]:
+@functools.lru_cache(maxsize=8192, typed=True)
+def _text_key(expr: Any) -> tuple[int, str]:
+    """The last two items of :func:`measure`."""
+    text = sympy.sstr(expr)
     return len(text), text
 
 
