@@ -67,6 +67,18 @@ def factor_terms(expr: Any) -> Any:
     return sympy.factor_terms(expr)
 
 
+@functools.lru_cache(maxsize=8192, typed=True)
+def cancel(expr: Any) -> Any:
+    """``sympy.cancel(expr)``, remembered (:func:`tidy` and :func:`pythagoras` start from the same one)."""
+    return sympy.cancel(expr)
+
+
+@functools.lru_cache(maxsize=8192, typed=True)
+def factor(expr: Any) -> Any:
+    """``sympy.factor(expr)``, remembered."""
+    return sympy.factor(expr)
+
+
 @functools.lru_cache(maxsize=8192)
 def ops(expr: Any) -> int:
     """``sympy.count_ops(expr)``, remembered."""
@@ -99,16 +111,16 @@ def _reduce_squares(expr: Any, of: Any, to: Any) -> Any:
 
 def pythagoras(expr: Any) -> list[Any]:
     """Forms of ``expr`` with sin² + cos² = 1 applied both ways, numerator and denominator apart."""
-    numerator, denominator = sympy.fraction(sympy.cancel(expr))
+    numerator, denominator = sympy.fraction(cancel(expr))
     out = []
     for of, to in ((sympy.cos, sympy.sin), (sympy.sin, sympy.cos)):
         n, d = _reduce_squares(numerator, of, to), _reduce_squares(denominator, of, to)
         try:
-            out.append(sympy.factor(n) / sympy.factor(d))
+            out.append(factor(n) / factor(d))
         except _ERRORS:
             out.append(n / d)
     try:
-        factored = sympy.factor(expr)
+        factored = factor(expr)
     except _ERRORS:
         return out
     # factor first, then reduce each factor: keeps squares such as (x*cos + y*sin)**2 intact
@@ -116,10 +128,10 @@ def pythagoras(expr: Any) -> list[Any]:
     return out
 
 
-def _reduce_factor(factor: Any) -> Any:
-    base, exp = factor.as_base_exp()
+def _reduce_factor(term: Any) -> Any:
+    base, exp = term.as_base_exp()
     if not base.has(sympy.sin, sympy.cos):
-        return factor
+        return term
     forms = [base, _reduce_squares(base, sympy.cos, sympy.sin), _reduce_squares(base, sympy.sin, sympy.cos)]
     return smallest(forms) ** exp
 
@@ -135,13 +147,13 @@ def tidy(expr: Any) -> Any:
     """
     if not isinstance(expr, sympy.Basic):
         return _number(expr)
-    if expr.is_Number or expr.is_Symbol:
-        return expr
+    if expr.is_Number or expr.is_Symbol or _monomial(expr):
+        return expr  # every rewriting below gives a monomial back as it is
     if ops(expr) > TIDY_LIMIT:
         # a governor: factor and cancel on a large expression cost far more than they gain
         return smallest([expr, factor_terms(expr)])
     candidates: list[Any] = [expr]
-    for step in (sympy.cancel, factor_terms, lambda e: sympy.factor(sympy.cancel(e))):
+    for step in (cancel, factor_terms, lambda e: factor(cancel(e))):
         try:
             candidates.append(step(expr))
         except _ERRORS:
@@ -163,6 +175,13 @@ def tidy(expr: Any) -> Any:
         with contextlib.suppress(*_ERRORS):
             candidates.append(sympy.simplify(best))
     return smallest(candidates)
+
+
+def _monomial(expr: Any) -> bool:
+    """``expr`` is a rational number times integer powers of symbols (``-2*g*l**2/m``)."""
+    factors = expr.args if expr.is_Mul else (expr,)
+    return all(f.is_Rational or f.is_Symbol or (f.is_Pow and f.base.is_Symbol and f.exp.is_Integer)
+               for f in factors)
 
 
 @functools.lru_cache(maxsize=4096)
