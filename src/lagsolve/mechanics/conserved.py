@@ -74,6 +74,9 @@ def _numerator_vanishes(model: Model, expr: Any, accelerations: dict[Any, Any]) 
     """The numerator of ``d expr/dt`` with ``accelerations`` put in, over their common denominator, expands to 0."""
     if expr.has(*model.accelerations):
         return False  # the rate is linear in the accelerations only when expr has none
+    fast = _numerator_vanishes_symengine(model, expr, accelerations)
+    if fast is not None:
+        return fast
     rate = model.time_derivative(expr, second_order=True)
     parts = {a: sympy.fraction(v) for a, v in accelerations.items() if rate.has(a)}
     if any(rate.has(a) for a in model.accelerations if a not in accelerations):
@@ -88,6 +91,40 @@ def _numerator_vanishes(model: Model, expr: Any, accelerations: dict[Any, Any]) 
         return sympy.expand(numerator) == 0
     except (TypeError, ValueError):
         return False
+
+
+def _numerator_vanishes_symengine(model: Model, expr: Any, accelerations: dict[Any, Any]) -> bool | None:
+    """:func:`_numerator_vanishes` with the derivatives and the expansion in SymEngine (an expansion that
+    gives 0 is a proof in any engine); None where SymEngine cannot take the expressions."""
+    accelerations = {a: v if isinstance(v, sympy.Basic) else sympy.Integer(v) for a, v in accelerations.items()}
+    pieces = (expr, *accelerations.values())
+    if not isinstance(expr, sympy.Basic) or any(
+            e.atoms(sympy.core.function.AppliedUndef) or e.has(sympy.Derivative) for e in pieces):
+        return None
+    try:
+        import symengine
+        from symengine.lib.symengine_wrapper import sympy2symengine
+    except ImportError:
+        return None
+    try:
+        engine = sympy2symengine(expr)
+        rate = engine.diff(sympy2symengine(model.time))
+        for q, v in zip(model.coordinates, model.velocities, strict=True):
+            rate += engine.diff(sympy2symengine(q)) * sympy2symengine(v)
+        coefficients = {a: engine.diff(sympy2symengine(v)) for v, a in zip(model.velocities, model.accelerations,
+                                                                            strict=True)}
+        coefficients = {a: c for a, c in coefficients.items() if c != 0}
+        if any(a not in accelerations for a in coefficients):
+            return False
+        parts = {a: tuple(sympy2symengine(x) for x in sympy.fraction(accelerations[a])) for a in coefficients}
+        denominators = list(dict.fromkeys(d for _, d in parts.values()))
+        numerator = rate * symengine.Mul(*denominators) if denominators else rate
+        for a, (num, den) in parts.items():
+            others = [d for d in denominators if d != den]
+            numerator += coefficients[a] * num * (symengine.Mul(*others) if others else 1)
+        return bool(symengine.expand(numerator) == 0)
+    except (RuntimeError, TypeError, ValueError, NotImplementedError, AttributeError):
+        return None
 
 
 def _on(expr: Any, surface: dict[Any, Any]) -> Any:

@@ -147,7 +147,8 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
         note = "gyroscopic or damping terms: normal modes are not computed"
     else:
         s = sympy.Dummy("s")
-        polynomial = sympy.Poly(sympy.factor((K - s * M0).det()), s)
+        # the Poly is canonical, however the determinant is written: Berkowitz's is the quickest to write
+        polynomial = sympy.Poly((K - s * M0).det(method="berkowitz"), s)
         _, factors = sympy.factor_list(polynomial)
         roots = sympy.roots(polynomial) if all(f.degree() <= 2 for f, _ in factors) else {}
         if sum(roots.values()) != polynomial.degree() or any(r.has(sympy.I) for r in roots):

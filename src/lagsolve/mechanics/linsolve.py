@@ -11,7 +11,9 @@ The equations :math:`M\ddot q = F + A^T\lambda`, :math:`A\ddot q = \beta` are so
   .. math:: (A X)\,\lambda = \beta - A y, \qquad \ddot q = y + X\lambda,
 
   an :math:`m\times m` system however many coordinates there are;
-* by elimination that cancels as it goes in each small dense block; and by the whole
+* in each small dense block by elimination over the field of fractions of a polynomial ring
+  (each entry then cancelled, as SymPy writes a rational function), or, where the entries are not
+  polynomials in their functions, by elimination that cancels as it goes; and by the whole
   augmented matrix only when :math:`M` itself is singular (a coordinate without inertia).
 
 Explicit accelerations of a large coupled system (a 4-link pendulum) are far too long to
@@ -68,8 +70,9 @@ def blocks(matrix: sympy.Matrix) -> list[list[int]]:
 
 
 def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix, limit: int | None = None) -> sympy.Matrix:
-    """Solve a square symbolic system (``rhs`` may have several columns) by Gaussian elimination that
-    cancels as it goes.
+    """Solve a square symbolic system (``rhs`` may have several columns): over a polynomial fraction
+    field when the entries allow it (:func:`_solve_in_ring`), else by Gaussian elimination that
+    cancels as it goes. Either way each entry comes out cancelled, in the same form.
 
     Raises ``ValueError`` when no non-zero pivot is found (a singular system) and
     :class:`StageSkipped` when an entry grows past ``limit`` operations.
