@@ -111,3 +111,21 @@ def test_momentum_of_a_coordinate_only_in_other_coefficients_is_conserved():
         values[plain[4]] = values[R] * values[plain[7]] * math.cos(values[plain[2]])  # on the rolling surface
         values[plain[5]] = values[R] * values[plain[7]] * math.sin(values[plain[2]])
         assert abs(float(rate.xreplace(values))) < 1e-12
+
+
+def test_constant_proves_the_energy_and_refuses_what_changes():
+    """MotionSystem.constant (its quick proof over the accelerations' common denominator, then the full one)
+    proves h of the double pendulum constant along the motion, and refuses T alone, a velocity and the
+    angle, whose rates along the same equations are not zero (checked numerically, independently)."""
+    double = derived_file("double_pendulum")
+    system = double.analysis.system
+    assert system.accelerations
+    model = system.model
+    assert system.constant(double.conserved["energy"])
+    assert system.constant(model.kinetic + model.potential)
+    for changing in (model.kinetic, model.velocities[0], model.coordinates[1]):
+        assert not system.constant(changing)
+        rate = system.rate(changing)
+        rng = random.Random(5)
+        point = {s: rng.uniform(0.5, 1.5) for s in rate.free_symbols}
+        assert abs(float(rate.xreplace(point))) > 1e-9

@@ -130,9 +130,9 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
     if not points:
         return None, "no isolated equilibrium was found in closed form"
     ordered = sorted(points, key=lambda p: (len(p[1]), sympy.default_sort_key(sympy.Tuple(*[v for _, v in p[0]]))))
-    F = sympy.Matrix(terms.forcing)
-    K_all = -F.jacobian(coordinates)
-    C_all = -F.jacobian(list(model.velocities))
+    # K and C are wanted at rest only: K from F at rest (q̇ = 0 commutes with ∂/∂q), C by SymEngine
+    K_all = -sympy.Matrix([f.xreplace(rest) for f in terms.forcing]).jacobian(coordinates)
+    C_all = _damping_at_rest(terms.forcing, list(model.velocities))
     modes = tuple(_mode(point, terms.mass_matrix, K_all, C_all, rest, values, free)
                   for point, free in ordered[:MAX_EQUILIBRIA])
     return Linearization(model.coordinates, modes), ""
@@ -168,7 +168,8 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
         note = "gyroscopic or damping terms: normal modes are not computed"
     else:
         s = sympy.Dummy("s")
-        polynomial = sympy.Poly(sympy.factor((K - s * M0).det()), s)
+        # the Poly is canonical, however the determinant is written: Berkowitz's is the quickest to write
+        polynomial = sympy.Poly((K - s * M0).det(method="berkowitz"), s)
         _, factors = sympy.factor_list(polynomial)
         roots = sympy.roots(polynomial) if all(f.degree() <= 2 for f, _ in factors) else {}
         if sum(roots.values()) != polynomial.degree() or any(r.has(sympy.I) for r in roots):
@@ -240,7 +241,7 @@ def numeric_linearization(system: MotionSystem, values: dict[str, float], initia
     static = sympy.Matrix(terms.forcing).xreplace(rest).xreplace(params)
     stiffness = -static.jacobian(q)
     mass = sympy.Matrix(terms.mass_matrix).xreplace(params)
-    damping_all = (-sympy.Matrix(terms.forcing).jacobian(qd)).xreplace(rest).xreplace(params)
+    damping_all = _damping_at_rest(terms.forcing, qd).xreplace(params)
     missing = (static.free_symbols | mass.free_symbols) - set(q)
     if missing:
         raise StageSkipped(f"needs values for {', '.join(sorted(s.name for s in missing))} (simulation.values)")
@@ -324,3 +325,27 @@ def _on_continuum(f_static: Any, stiffness: Any, point: Any) -> bool:
         else:
             return True
     return False
+
+
+def _damping_at_rest(forcing: Any, velocities: list[Any]) -> sympy.Matrix:
+    r""":math:`-\partial F/\partial\dot q` at :math:`\dot q = 0`, differentiated with SymEngine where it can
+    (the derivative of the whole of F is the dear part of the numeric search; only its values are used,
+    to tell whether damping or gyroscopic terms act)."""
+    rest = {v: 0 for v in velocities}
+    if not any(f.atoms(sympy.core.function.AppliedUndef) or f.has(sympy.Derivative) for f in forcing):
+        try:
+            from symengine.lib.symengine_wrapper import sympy2symengine
+
+            own = {s.name: s for f in forcing for s in f.free_symbols}
+            engine_v = [sympy2symengine(v) for v in velocities]
+            at_rest = dict.fromkeys(engine_v, 0)
+
+            def back(expr: Any) -> Any:
+                value = expr._sympy_()  # a SymEngine object, never text
+                return value.xreplace({s: own[s.name] for s in value.free_symbols})
+
+            return sympy.Matrix([[back((-sympy2symengine(f).diff(v)).subs(at_rest)) for v in engine_v]
+                                 for f in forcing])
+        except (ImportError, RuntimeError, TypeError, ValueError, NotImplementedError, AttributeError, KeyError):
+            pass
+    return (-sympy.Matrix(forcing).jacobian(velocities)).xreplace(rest)

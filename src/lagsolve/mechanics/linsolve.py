@@ -11,7 +11,9 @@ The equations :math:`M\ddot q = F + A^T\lambda`, :math:`A\ddot q = \beta` are so
   .. math:: (A X)\,\lambda = \beta - A y, \qquad \ddot q = y + X\lambda,
 
   an :math:`m\times m` system however many coordinates there are;
-* by elimination that cancels as it goes in each small dense block; and by the whole
+* in each small dense block by elimination over the field of fractions of a polynomial ring
+  (each entry then cancelled, as SymPy writes a rational function), or, where the entries are not
+  polynomials in their functions, by elimination that cancels as it goes; and by the whole
   augmented matrix only when :math:`M` itself is singular (a coordinate without inertia).
 
 Explicit accelerations of a large coupled system (a 4-link pendulum) are far too long to
@@ -68,12 +70,16 @@ def blocks(matrix: sympy.Matrix) -> list[list[int]]:
 
 
 def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix, limit: int | None = None) -> sympy.Matrix:
-    """Solve a square symbolic system (``rhs`` may have several columns) by Gaussian elimination that
-    cancels as it goes.
+    """Solve a square symbolic system (``rhs`` may have several columns): over a polynomial fraction
+    field when the entries allow it (:func:`_solve_in_ring`), else by Gaussian elimination that
+    cancels as it goes. Either way each entry comes out cancelled, in the same form.
 
     Raises ``ValueError`` when no non-zero pivot is found (a singular system) and
     :class:`StageSkipped` when an entry grows past ``limit`` operations.
     """
+    fast = _solve_in_ring(system, rhs)
+    if fast is not None and (limit is None or max((_size(e) for e in fast), default=0) <= limit):
+        return fast
     size, columns = system.rows, rhs.cols
     if size == 1:
         if not _nonzero(system[0, 0]):
@@ -105,6 +111,38 @@ def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix, limit: int | None = No
             solution[r][j] = sympy.cancel(acc / work[r][r])
         _guard(solution[r], limit)
     return sympy.Matrix(solution)
+
+
+def _solve_in_ring(system: sympy.Matrix, rhs: sympy.Matrix) -> sympy.Matrix | None:
+    """The solution :func:`solve_linear` gives, found by elimination over the field of fractions of a
+    polynomial ring (each sine, cosine or other function in the entries a variable of its own), which is
+    many times faster than cancelling SymPy expressions at every step. Each entry is then cancelled, as
+    elimination leaves it: ``cancel`` writes a rational function in one way, so the result is the same
+    expression. None when the entries are not polynomials in such variables, or the system is singular
+    (elimination then says why)."""
+    from sympy.polys.matrices import DomainMatrix
+
+    size = system.rows
+    augmented = system.row_join(rhs)
+    atoms = sorted({f for e in augmented for f in e.atoms(sympy.Function, sympy.Derivative)},
+                   key=sympy.default_sort_key)
+    variables = {f: sympy.Dummy() for f in atoms}
+    try:
+        matrix = DomainMatrix.from_Matrix(augmented.xreplace(variables))
+        ring = matrix.domain
+        if not (ring.is_ZZ or ring.is_QQ or (ring.is_PolynomialRing and (ring.domain.is_ZZ or ring.domain.is_QQ))):
+            return None
+        field = matrix.to_field()
+        reduced, pivots = field.rref()
+    except (sympy.polys.polyerrors.PolynomialError, sympy.CoercionFailed, ValueError, TypeError,
+            NotImplementedError):
+        return None
+    if tuple(pivots[:size]) != tuple(range(size)):
+        return None
+    back = {v: f for f, v in variables.items()}
+    to_sympy = reduced.domain.to_sympy
+    return sympy.Matrix(size, rhs.cols, lambda i, j: sympy.cancel(
+        to_sympy(reduced[i, size + j].element).xreplace(back)))
 
 
 def _nonzero(value: Any) -> bool:

@@ -31,8 +31,58 @@ def measure(expr: Any) -> tuple[int, int, str]:
     ``sin(2*theta)`` counts extra, as textbooks write ``sin(theta)*cos(theta)``),
     then shorter text, then the text itself (so ties break deterministically)."""
     text = sympy.sstr(expr)
+    return (_weight(expr), len(text), text)
+
+
+def smallest(candidates: list[Any]) -> Any:
+    """``min(candidates, key=measure)``, printing only the candidates with the fewest operations
+    (printing is the dear part of :func:`measure`, and the operation count decides most choices)."""
+    weights = [_weight(c) for c in candidates]
+    low = min(weights)
+    # equal candidates print alike, so only the first of each is printed (min keeps the first of a tie)
+    tied = list(dict.fromkeys(c for c, w in zip(candidates, weights, strict=True) if w == low))
+    if len(tied) == 1:
+        return tied[0]
+    return min(tied, key=_text_key)
+
+
+@functools.lru_cache(maxsize=8192, typed=True)
+def _text_key(expr: Any) -> tuple[int, str]:
+    """The last two items of :func:`measure`."""
+    text = sympy.sstr(expr)
+    return len(text), text
+
+
+@functools.lru_cache(maxsize=8192)
+def _weight(expr: Any) -> int:
+    """The first item of :func:`measure`: operations, a multiple angle counting extra (remembered: the
+    same candidates come back often)."""
     compound = sum(1 for f in expr.atoms(*_TRIG) if not f.args[0].is_Symbol)
-    return (sympy.count_ops(expr) + 3 * compound, len(text), text)
+    return ops(expr) + 3 * compound
+
+
+@functools.lru_cache(maxsize=8192, typed=True)
+def factor_terms(expr: Any) -> Any:
+    """``sympy.factor_terms(expr)``, remembered (the same forms come back from several rewritings)."""
+    return sympy.factor_terms(expr)
+
+
+@functools.lru_cache(maxsize=8192, typed=True)
+def cancel(expr: Any) -> Any:
+    """``sympy.cancel(expr)``, remembered (:func:`tidy` and :func:`pythagoras` start from the same one)."""
+    return sympy.cancel(expr)
+
+
+@functools.lru_cache(maxsize=8192, typed=True)
+def factor(expr: Any) -> Any:
+    """``sympy.factor(expr)``, remembered."""
+    return sympy.factor(expr)
+
+
+@functools.lru_cache(maxsize=8192)
+def ops(expr: Any) -> int:
+    """``sympy.count_ops(expr)``, remembered."""
+    return int(sympy.count_ops(expr))
 
 
 #: above this many operations SymPy's general ``simplify`` and ``trigsimp`` are skipped
@@ -61,16 +111,16 @@ def _reduce_squares(expr: Any, of: Any, to: Any) -> Any:
 
 def pythagoras(expr: Any) -> list[Any]:
     """Forms of ``expr`` with sin² + cos² = 1 applied both ways, numerator and denominator apart."""
-    numerator, denominator = sympy.fraction(sympy.cancel(expr))
+    numerator, denominator = sympy.fraction(cancel(expr))
     out = []
     for of, to in ((sympy.cos, sympy.sin), (sympy.sin, sympy.cos)):
         n, d = _reduce_squares(numerator, of, to), _reduce_squares(denominator, of, to)
         try:
-            out.append(sympy.factor(n) / sympy.factor(d))
+            out.append(factor(n) / factor(d))
         except _ERRORS:
             out.append(n / d)
     try:
-        factored = sympy.factor(expr)
+        factored = factor(expr)
     except _ERRORS:
         return out
     # factor first, then reduce each factor: keeps squares such as (x*cos + y*sin)**2 intact
@@ -78,12 +128,12 @@ def pythagoras(expr: Any) -> list[Any]:
     return out
 
 
-def _reduce_factor(factor: Any) -> Any:
-    base, exp = factor.as_base_exp()
+def _reduce_factor(term: Any) -> Any:
+    base, exp = term.as_base_exp()
     if not base.has(sympy.sin, sympy.cos):
-        return factor
+        return term
     forms = [base, _reduce_squares(base, sympy.cos, sympy.sin), _reduce_squares(base, sympy.sin, sympy.cos)]
-    return min(forms, key=measure) ** exp
+    return smallest(forms) ** exp
 
 
 @functools.lru_cache(maxsize=4096)
@@ -97,13 +147,13 @@ def tidy(expr: Any) -> Any:
     """
     if not isinstance(expr, sympy.Basic):
         return _number(expr)
-    if expr.is_Number or expr.is_Symbol:
-        return expr
-    if sympy.count_ops(expr) > TIDY_LIMIT:
+    if expr.is_Number or expr.is_Symbol or _monomial(expr):
+        return expr  # every rewriting below gives a monomial back as it is
+    if ops(expr) > TIDY_LIMIT:
         # a governor: factor and cancel on a large expression cost far more than they gain
-        return min([expr, sympy.factor_terms(expr)], key=measure)
+        return smallest([expr, factor_terms(expr)])
     candidates: list[Any] = [expr]
-    for step in (sympy.cancel, sympy.factor_terms, lambda e: sympy.factor(sympy.cancel(e))):
+    for step in (cancel, factor_terms, lambda e: factor(cancel(e))):
         try:
             candidates.append(step(expr))
         except _ERRORS:
@@ -112,21 +162,28 @@ def tidy(expr: Any) -> Any:
         candidates += pythagoras(expr)
         numerator, denominator = sympy.fraction(candidates[1])
         contracted = compound_angles(sympy.expand(numerator)) / compound_angles(sympy.expand(denominator))
-        candidates += [contracted, sympy.factor_terms(contracted)]
-        if sympy.count_ops(expr) <= TRIGSIMP_LIMIT:
+        candidates += [contracted, factor_terms(contracted)]
+        if ops(expr) <= TRIGSIMP_LIMIT:
             reduced = sympy.trigsimp(candidates[1])
             for step in (sympy.factor, lambda e: sympy.factor(sympy.expand_trig(e))):
                 try:
                     candidates.append(step(reduced))
                 except _ERRORS:
                     continue
-    best = min(candidates, key=measure)
+    best = smallest(candidates)
     candidates += signs(best)  # v/|v| appears only once roots of squares became Abs: look at the best form
-    best = min(candidates, key=measure)
-    if sympy.count_ops(best) <= SIMPLIFY_LIMIT and not best.has(*_TRIG):
+    best = smallest(candidates)
+    if ops(best) <= SIMPLIFY_LIMIT and not best.has(*_TRIG):
         with contextlib.suppress(*_ERRORS):
             candidates.append(sympy.simplify(best))
-    return min(candidates, key=measure)
+    return smallest(candidates)
+
+
+def _monomial(expr: Any) -> bool:
+    """``expr`` is a rational number times integer powers of symbols (``-2*g*l**2/m``)."""
+    factors = expr.args if expr.is_Mul else (expr,)
+    return all(f.is_Rational or f.is_Symbol or (f.is_Pow and f.base.is_Symbol and f.exp.is_Integer)
+               for f in factors)
 
 
 @functools.lru_cache(maxsize=4096)
@@ -140,27 +197,29 @@ def tidy_sum(expr: Any) -> Any:
     if expanded.has(*_TRIG):
         candidates += [_reduce_squares(expanded, sympy.cos, sympy.sin),
                        _reduce_squares(expanded, sympy.sin, sympy.cos)]
-        if sympy.count_ops(expanded) <= TRIGSIMP_LIMIT:
+        if ops(expanded) <= TRIGSIMP_LIMIT:
             reduced = sympy.trigsimp(expanded)
             candidates += [reduced, sympy.expand(sympy.expand_trig(reduced))]
-        if sympy.count_ops(expanded) <= CONTRACT_LIMIT:
+        if ops(expanded) <= CONTRACT_LIMIT:
             candidates += [compound_angles(c) for c in candidates[:3]]
-    if sympy.count_ops(expanded) > TIDY_LIMIT:
+    if ops(expanded) > TIDY_LIMIT:
         # a governor: pull common factors out of the best form only
-        best = min(candidates, key=measure)
-        return min([best, sympy.factor_terms(best)], key=measure)
-    candidates += [sympy.factor_terms(c) for c in candidates]
-    return min(candidates, key=measure)
+        best = smallest(candidates)
+        return smallest([best, factor_terms(best)])
+    candidates += [factor_terms(c) for c in candidates]
+    return smallest(candidates)
 
 
+@functools.lru_cache(maxsize=4096)
 def tidy_sum_light(expr: Any) -> Any:
     """A cheap :func:`tidy_sum` for large systems: expanded, compound angles contracted, common factors out
     (one rewriting each instead of a search over candidates)."""
     if not isinstance(expr, sympy.Basic):
         return _number(expr)
-    return sympy.factor_terms(compound_angles(sympy.expand(expr)))
+    return factor_terms(compound_angles(sympy.expand(expr)))
 
 
+@functools.lru_cache(maxsize=8192, typed=True)
 def compound_angles(expr: Any) -> Any:
     """``sin a sin b + cos a cos b`` → ``cos(a − b)`` and the like (sums of products to a function of a
     sum), term by term of the expanded ``expr``: the textbook form of chains of pendulums.
@@ -170,12 +229,10 @@ def compound_angles(expr: Any) -> Any:
     >>> compound_angles(sympy.sin(a)*sympy.sin(b) + sympy.cos(a)*sympy.cos(b))
     cos(a - b)
     """
-    from sympy.simplify.fu import TR10i
-
     if not isinstance(expr, sympy.Basic) or not expr.has(sympy.sin, sympy.cos):
         return expr
     try:
-        return TR10i(sympy.expand(expr))
+        return _contract(sympy.expand(expr))
     except _ERRORS:
         return expr
 
@@ -216,6 +273,41 @@ def signs(expr: Any) -> list[Any]:
         return [sympy.factor(form), sympy.factor_terms(form)]
     except _ERRORS:
         return []
+
+
+def _contract(expanded: Any) -> Any:
+    """SymPy's ``TR10i`` (sums of products to functions of sums) on ``expanded``, applied class by class.
+
+    ``TR10i`` tries every pair of terms; a pair combines only when, after its common factor, each term
+    is a number times at most two sines, cosines or square roots. So two terms whose other factors
+    differ (:func:`_pairing_key`) never combine, and ``TR10i`` on each class of terms gives exactly
+    what it gives on the whole sum, for a fraction of the pairs. This holds when no sum inside a term
+    holds a sine or cosine (then ``TR10i`` leaves every term itself alone); otherwise the whole sum
+    goes to ``TR10i`` at once.
+    """
+    from sympy.simplify.fu import TR10i
+
+    if not expanded.is_Add or any(a.has(sympy.sin, sympy.cos) for t in expanded.args for a in t.atoms(sympy.Add)):
+        return TR10i(expanded)
+    classes: dict[Any, list[Any]] = {}
+    for term in expanded.args:
+        classes.setdefault(_pairing_key(term), []).append(term)
+    if len(classes) == 1:
+        return TR10i(expanded)
+    return sympy.Add(*[TR10i(sympy.Add(*terms)) if len(terms) > 1 else terms[0] for terms in classes.values()])
+
+
+def _pairing_key(term: Any) -> Any:
+    """The factors of ``term`` a pair of terms must share to combine in ``TR10i``: all but numbers,
+    factors with a sine or cosine, and fractional powers."""
+    rigid = []
+    for factor in sympy.Mul.make_args(term):
+        if factor.is_number or factor.has(sympy.sin, sympy.cos):
+            continue
+        if factor.is_Pow and factor.exp.is_Rational and not factor.exp.is_Integer:
+            continue
+        rigid.append(factor)
+    return tuple(rigid)  # in the Mul's canonical order
 
 
 def tidy_abs(expr: Any) -> Any:
@@ -264,7 +356,7 @@ def norm(components: tuple[Any, ...] | list[Any]) -> Any:
     # so the Pythagorean reduction sees the direction alone
     rest = root_of_square(tidy(unit_signs(sum((sympy.cancel(c / common) ** 2 for c in components),
                                               sympy.Integer(0)))))
-    return min((direct, root_of_square(common**2) * rest), key=measure)
+    return smallest([direct, root_of_square(common**2) * rest])
 
 
 def unit_signs(expr: Any) -> Any:
@@ -306,7 +398,7 @@ def common_factor(components: tuple[Any, ...] | list[Any]) -> Any:
 def root_of_sum_of_squares(terms: list[Any]) -> Any:
     """``sqrt(t1**2 + t2**2 + ...)`` keeping each term's factored form (for the length of a
     sum of orthogonal vectors, whose lengths are the terms)."""
-    return root_of_square(sympy.factor_terms(unit_signs(sum((tidy(t) ** 2 for t in terms), sympy.Integer(0)))))
+    return root_of_square(factor_terms(unit_signs(sum((tidy(t) ** 2 for t in terms), sympy.Integer(0)))))
 
 
 def root_of_square(square: Any) -> Any:
@@ -320,4 +412,4 @@ def root_of_square(square: Any) -> Any:
     for form in (square, sympy.factor(square)):
         root = sympy.sqrt(form.xreplace(reals)).xreplace({v: k for k, v in reals.items()})
         candidates += [root, tidy_abs(root)]
-    return min(candidates, key=measure)
+    return smallest(candidates)
