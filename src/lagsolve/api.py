@@ -388,6 +388,6 @@ def check(path_or_derivation: str | Path | bytes | Problem | Derivation, *, budg
     from lagsolve.mechanics.derivation import Derivation
 
     derivation = path_or_derivation if isinstance(path_or_derivation, Derivation) else derive(
-        path_or_derivation, budget=budget)  # type: ignore[arg-type]
+        path_or_derivation, budget=budget)
     return run(derivation, states=states, seed=seed)
 

@@ -203,7 +203,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
             if golden is not None:
                 status = max(status, _golden(reports, golden, update_golden))
                 continue
-            if single_file and output is not None:
+            if single_file and output is not None and fmt is not None:
                 root, place = output.parent, Path()
                 names = {fmt: output.name}
             else:

@@ -151,7 +151,7 @@ def sign_condition(rows: Sequence[Row], agree: list[bool], expected: tuple[Any, 
         candidates.append(expected[0])
     for u in candidates:
         compiled = Compiled(u, space)
-        values = [compiled(state) for state, _, _ in rows]
+        values: list[Any] = [compiled(state) for state, _, _ in rows]
         if any(v is None or not isinstance(v, mpmath.mpf) or v == 0 for v in values):
             continue
         positive = [v > 0 for v in values]

@@ -9,9 +9,13 @@ import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from lagsolve.simulation import SimulationOptions, SimulationResult, run_simulation
+
+if TYPE_CHECKING:
+    from lagsolve.mechanics.derivation import Derivation
+    from lagsolve.problem.schema import Problem
 
 DEFAULT_TIMEOUT = 120.0
 
@@ -51,13 +55,13 @@ FIGURE_CAPTIONS = {
 STAGE_SHARE = 0.8
 
 
-def _derive_and_render(problem: object, formats: tuple[str, ...], templates: Path | None,
+def _derive_and_render(problem: Problem, formats: tuple[str, ...], templates: Path | None,
                        simulate: SimulationOptions | None = None,
                        budget: float = DEFAULT_TIMEOUT) -> tuple[str, dict[str, str], dict[str, bytes]]:
     from lagsolve.budget import report_partial
     from lagsolve.mechanics.derivation import derive
 
-    derivation = derive(problem, budget=budget * STAGE_SHARE, on_core=report_partial)  # type: ignore[arg-type]
+    derivation = derive(problem, budget=budget * STAGE_SHARE, on_core=report_partial)
     return _render(derivation, formats, templates, simulate)
 
 
@@ -120,13 +124,13 @@ def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
     return tuple(line.strip() for line in lines[lines.index("  not completed:") + 1:] if line.startswith("    "))
 
 
-def _potential_figure(derivation: object) -> dict | None:
+def _potential_figure(derivation: Derivation) -> dict | None:
     """The V_eff plot with its equilibria, for a problem that has an effective potential and numbers
     (simulation values and initial state) to draw it with; None otherwise."""
     from lagsolve.render.plots import png_bytes
     from lagsolve.render.potential_plot import potential_curve, potential_figure
 
-    problem = derivation.problem  # type: ignore[attr-defined]
+    problem = derivation.problem
     spec = problem.simulation
     analysis = getattr(derivation, "analysis", None)
     if spec is None or analysis is None or getattr(analysis, "effective_potential", None) is None:
@@ -134,7 +138,7 @@ def _potential_figure(derivation: object) -> dict | None:
     if problem.functions:  # drawing V_eff with declared functions would need their concrete forms
         return None
     try:
-        curve = potential_curve(derivation, dict(spec.values), initial=dict(spec.initial))  # type: ignore[arg-type]
+        curve = potential_curve(derivation, dict(spec.values), initial=dict(spec.initial))
     except (ValueError, KeyError, TypeError, ZeroDivisionError, StopIteration, NameError, OverflowError):
         return None
     figure = potential_figure(curve.q, curve.v, curve.equilibria, coordinate=curve.coordinate,
@@ -185,14 +189,14 @@ class Checked:
         return self.counts.get("mismatch", 0) == 0
 
 
-def _derive_and_check(problem: object, budget: float = DEFAULT_TIMEOUT
+def _derive_and_check(problem: Problem, budget: float = DEFAULT_TIMEOUT
                       ) -> tuple[str, dict[str, int], tuple[dict[str, str], ...]]:
     from lagsolve.check import MISMATCH, OK, UNCHECKED, WARNING, check
     from lagsolve.mechanics.derivation import derive
     from lagsolve.render.checks import check_table
     from lagsolve.render.machine import verdict_rows
 
-    report = check(derive(problem, budget=budget * STAGE_SHARE))  # type: ignore[arg-type]
+    report = check(derive(problem, budget=budget * STAGE_SHARE))
     return (check_table(report), {s: report.count(s) for s in (OK, WARNING, MISMATCH, UNCHECKED)},
             verdict_rows(report))
 
@@ -255,11 +259,11 @@ def golden_differences(reports: Reports, folder: Path) -> list[str]:
     return diffs
 
 
-def _simulate(problem: object, options: SimulationOptions, progress: object) -> SimulationResult:
+def _simulate(problem: Problem, options: SimulationOptions, progress: object) -> SimulationResult:
     from lagsolve.mechanics.analysis import monitored
     from lagsolve.mechanics.matrix_form import matrix_form
 
-    form = matrix_form(problem, display=False)  # type: ignore[arg-type]
+    form = matrix_form(problem, display=False)
     # the conserved quantities to monitor and the minimal coordinates come from cheap criteria on the matrix
     # form (the same functions derive uses), never from the symbolic solve or the analysis of equilibria
     conserved, chart, chart_note, energy_note = monitored(form, options.analysis_timeout)

@@ -7,7 +7,10 @@ prints, exits or writes files.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from lagsolve.numeric.integrate import Trajectory
 
 
 @dataclass(frozen=True)
@@ -40,7 +43,7 @@ class SimulationResult:
     summary: str
     tables: dict[str, str | bytes]
     figures: dict[str, bytes]
-    trajectory: object
+    trajectory: Trajectory
 
 
 def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progress: Any = None,

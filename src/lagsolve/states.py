@@ -244,8 +244,8 @@ class StateSpace:
     def _newton(self, state: State) -> bool:
         with mpmath.workdps(DIGITS + 10):
             for _ in range(60):
-                residual = [r(state) for r in self._residuals]
-                jac = [[d(state) for d in row] for row in self._jacobian]
+                residual: list[Any] = [r(state) for r in self._residuals]
+                jac: list[list[Any]] = [[d(state) for d in row] for row in self._jacobian]
                 if any(not isinstance(v, mpmath.mpf) for v in [*residual, *(x for row in jac for x in row)]):
                     return False
                 if max(abs(v) for v in residual) < mpmath.mpf(10) ** (-DIGITS + 2):
@@ -266,8 +266,8 @@ class StateSpace:
             return self._gauss_jordan(state)
 
     def _gauss_jordan(self, state: State) -> bool:
-        rows = [[a(state) for a in row] for row in self._velocity_rows]
-        offsets = [b(state) for b in self._velocity_offsets]
+        rows: list[list[Any]] = [[a(state) for a in row] for row in self._velocity_rows]
+        offsets: list[Any] = [b(state) for b in self._velocity_offsets]
         if any(not isinstance(v, mpmath.mpf) for v in [*offsets, *(x for row in rows for x in row)]):
             return False
         tiny = mpmath.mpf(10) ** (-DIGITS + 5)

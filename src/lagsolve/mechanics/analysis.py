@@ -146,13 +146,15 @@ def _contact(derivation: Derivation, reduced: ReducedSystem | None, effective: E
     if reduced is not None:
         velocities.update(dict.fromkeys(reduced.model.velocities, sympy.Integer(0)))
     effective_checks: list[tuple[ContactCheck, ...]] = []
-    for e in effective.equilibria if effective is not None else ():
+    equilibria = effective.equilibria if effective is not None else ()
+    for e in equilibria:
+        assert effective is not None
         if e.value is None:
             effective_checks.append(())
             continue
         rates = {q: v for model in (derivation.model, *((reduced.model,) if reduced is not None else ()))
                  for q, v in zip(model.coordinates, model.velocities, strict=True)}
-        moving = {rates[c]: w for c, _, w in effective.cyclic if c in rates}  # type: ignore[union-attr]
+        moving = {rates[c]: w for c, _, w in effective.cyclic if c in rates}
         effective_checks.append(check_point(derivation.multipliers, unilateral, {effective.coordinate: e.value},
                                             {**velocities, **moving}, substitution))
     modes_checks = [check_point(derivation.multipliers, unilateral, dict(m.point), velocities, substitution)

@@ -48,8 +48,8 @@ def force_terms(problem: Problem, model: Model) -> tuple[ForceTerm, ...]:
             generalized = jac.T * sympy.Matrix(force.value)
             terms.append(ForceTerm(f"force on {particle.name}", tuple(generalized)))
     if problem.dissipation is not None:
-        row = tuple(-sympy.diff(problem.dissipation, qd) for qd in model.velocities)
-        terms.append(ForceTerm("dissipation", row))
+        dissipative = tuple(-sympy.diff(problem.dissipation, qd) for qd in model.velocities)
+        terms.append(ForceTerm("dissipation", dissipative))
     return tuple(terms)
 
 

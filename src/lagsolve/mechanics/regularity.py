@@ -177,7 +177,7 @@ class _Sampler:
     def states(self, count: int) -> list[tuple[list[float], np.ndarray, np.ndarray]]:
         """Up to ``count`` states (fixed values, coordinates, the coordinates they started from)."""
         rng = random.Random(20)
-        out = []
+        out: list[tuple[list[float], np.ndarray, np.ndarray]] = []
         for _ in range(6 * count):
             if len(out) >= count:
                 break
@@ -225,7 +225,7 @@ class _Sampler:
         there = np.linalg.norm(self._matrix(fixed, off)[j])
         if not (np.isfinite(here) and np.isfinite(there)):
             return False
-        return bool(here <= VANISHING * max(there, 1e-300))
+        return bool(here <= VANISHING * max(float(there), 1e-300))
 
     def dependencies(self, states: list[tuple[list[float], np.ndarray, np.ndarray]]) -> list[tuple[int, list[int]]]:
         """Each constraint that depends linearly on earlier ones at every state, with the constraints involved."""

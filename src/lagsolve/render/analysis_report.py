@@ -163,10 +163,10 @@ def analysis_context(derivation: Derivation, note: Notation, math: str = "latex"
             "equilibria": equilibria,
         }
 
-    modes = None
+    modes: dict[str, Any] | None = None
     lin = analysis.linearization
     if lin is not None:
-        modes: dict[str, Any] = {"coordinates": [tex(q) for q in lin.coordinates], "equilibria": []}
+        modes = {"coordinates": [tex(q) for q in lin.coordinates], "equilibria": []}
         checks = analysis.modes_contact or ((),) * len(lin.modes)
         for m, check in zip(lin.modes, checks, strict=True):
             has_g, has_d = any(x != 0 for x in m.gyroscopic), any(x != 0 for x in m.damping)
