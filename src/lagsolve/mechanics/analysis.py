@@ -22,7 +22,6 @@ together with the contract forms ``reduced``, ``conserved`` and ``effective_pote
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import sympy
@@ -32,33 +31,16 @@ from lagsolve.mechanics.conserved import Conservation, MotionSystem, conserved_q
 from lagsolve.mechanics.constraints import constraint_terms
 from lagsolve.mechanics.contact import ContactCheck, check_point
 from lagsolve.mechanics.equilibria import EffectivePotential, effective_potential
-from lagsolve.mechanics.integrability import Classification, classify_all
+from lagsolve.mechanics.integrability import classify_all
 from lagsolve.mechanics.linearize import Linearization, applies, linearize, numeric_linearization
 from lagsolve.mechanics.minimal import ReducedSystem, reduce_system
 from lagsolve.mechanics.names import momentum_name
+from lagsolve.mechanics.results import Analysis
 from lagsolve.mechanics.stages import Stages
 
 if TYPE_CHECKING:
-    from lagsolve.mechanics.derivation import Derivation
     from lagsolve.mechanics.matrix_form import MatrixForm
-
-
-@dataclass(frozen=True)
-class Analysis:
-    """Everything :func:`analyse` found; each ``*_note`` says why a part is absent."""
-
-    classification: tuple[Classification, ...]
-    reduced: ReducedSystem | None
-    reduced_note: str
-    system: MotionSystem
-    conservation: Conservation
-    effective_potential: EffectivePotential | None
-    effective_note: str
-    linearization: Linearization | None
-    linearization_note: str
-    #: per equilibrium of ``effective_potential`` / ``linearization``: the unilateral constraints' forces there
-    effective_contact: tuple[tuple[ContactCheck, ...], ...] = ()
-    modes_contact: tuple[tuple[ContactCheck, ...], ...] = ()
+    from lagsolve.mechanics.results import Derivation
 
 
 #: CPU seconds the symbolic equilibrium solve may take when numeric equilibria can be given instead
