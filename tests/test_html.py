@@ -115,8 +115,8 @@ def test_description_math_reads_as_unicode() -> None:
 
 def test_the_time_slider_moves_the_particles(bead: Derivation, browser: Any, tmp_path: Path) -> None:
     """With a simulation, the slider moves each particle along its path and the plots' cursors follow."""
-    from lagsolve.pipeline import derive_file
-    from lagsolve.simulation import SimulationOptions
+    from lagsolve.app.pipeline import derive_file
+    from lagsolve.app.simulation import SimulationOptions
 
     reports = derive_file(ROOT / "problems" / "bead.yaml", ("html",),
                           simulate=SimulationOptions(values={}, initial={}, samples=201))

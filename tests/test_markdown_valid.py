@@ -16,8 +16,8 @@ import pytest
 markdown_it = pytest.importorskip("markdown_it")
 dollarmath = pytest.importorskip("mdit_py_plugins.dollarmath")
 
+from lagsolve.app.pipeline import derive_file  # noqa: E402
 from lagsolve.mechanics.derivation import derive  # noqa: E402 - after the optional imports are checked
-from lagsolve.pipeline import derive_file  # noqa: E402
 from lagsolve.problem.load import load_problem  # noqa: E402
 from lagsolve.render.report import render  # noqa: E402
 

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import pytest
 
+from lagsolve.app.pipeline import Reports, check_file, derive_file, golden_differences, safe_slug
 from lagsolve.errors import SpecError
-from lagsolve.pipeline import Reports, check_file, derive_file, golden_differences, safe_slug
 
 ROOT = Path(__file__).resolve().parents[1]
 

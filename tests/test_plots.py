@@ -57,7 +57,7 @@ def test_png_and_gif_bytes(trajectory: Trajectory) -> None:
 def test_minimal_coordinates_conservation_figure() -> None:
     """Integrated in minimal coordinates the residual is exactly zero: the figure says so in words instead of
     drawing a line at the log scale's floor, and the energy is drawn once."""
-    from lagsolve.mechanics.chart import minimal_chart
+    from lagsolve.mechanics.minimal_chart import minimal_chart
     from lagsolve.numeric.initial import complete_initial
     from lagsolve.numeric.integrate import integrate_motion
     from lagsolve.numeric.system import bind

@@ -1,4 +1,4 @@
-"""The effective-potential figure (``lagsolve.render.potential_plot``)."""
+"""The effective-potential figure (``lagsolve.numeric.potential``)."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from lagsolve.render.potential_plot import potential_curve, potential_figure
+from lagsolve.numeric.potential import potential_curve, potential_figure
 from mechanics_support import derived_file
 
 pytest.importorskip("matplotlib")

@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 import sympy
 
+from lagsolve.app.pipeline import Reports, derive_file, golden_differences
 from lagsolve.mechanics.derivation import Derivation, derive
-from lagsolve.pipeline import Reports, derive_file, golden_differences
 from lagsolve.problem.load import load_problem
 from mechanics_support import shipped
 

@@ -169,7 +169,7 @@ def test_latex_fits_the_page(name: str, tmp_path: Path) -> None:
 def test_latex_compiles(name: str, tmp_path: Path) -> None:
     """Each problem's LaTeX report compiles with pdflatex, no line runs over 10 pt past the margin, and it is the
     reviewed golden report (skipped where pdflatex is not installed)."""
-    from lagsolve.pipeline import derive_file
+    from lagsolve.app.pipeline import derive_file
 
     reports = derive_file(ROOT / "problems" / f"{name}.yaml", ("tex",))
     tex = reports.outputs["tex"]

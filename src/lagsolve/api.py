@@ -28,7 +28,7 @@ from lagsolve.errors import Issue, SpecError
 if TYPE_CHECKING:
     import numpy as np
 
-    from lagsolve.check import CheckReport
+    from lagsolve.check.compare import CheckReport
     from lagsolve.mechanics.derivation import Derivation
     from lagsolve.numeric.integrate import Event
     from lagsolve.numeric.integrate import Trajectory as Motion
@@ -294,9 +294,9 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
     >>> [round(float(y), 9) for y in run.columns()["y"]]
     [0.0, -0.5, -2.0]
     """
+    from lagsolve.app.simulation import SimulationOptions, run_simulation
     from lagsolve.mechanics.derivation import Derivation
     from lagsolve.numeric.integrate import METHODS
-    from lagsolve.simulation import SimulationOptions, run_simulation
 
     choices = {"method": (method, METHODS), "after_release": (after_release, ("stop", "continue")),
                "coordinates": (coordinates, ("minimal", "full"))}
@@ -315,7 +315,7 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
                                 coordinates=coordinates, analysis_timeout=budget)
     if isinstance(path_or_derivation, Derivation):
         from lagsolve.mechanics.analysis import energy_reason
-        from lagsolve.mechanics.chart import minimal_chart
+        from lagsolve.mechanics.minimal_chart import minimal_chart
 
         derivation = path_or_derivation
         if derivation.form is None:
@@ -335,8 +335,8 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
 
 
 def _simulate_form(form: Any, options: Any) -> Any:
+    from lagsolve.app.simulation import run_simulation
     from lagsolve.mechanics.analysis import monitored
-    from lagsolve.simulation import run_simulation
 
     conserved, chart, chart_note, energy_note = monitored(form, options.analysis_timeout)
     return run_simulation(form, conserved, options, None, "", chart, chart_note, energy_note)
@@ -384,7 +384,7 @@ def check(path_or_derivation: str | Path | bytes | Problem | Derivation, *, budg
     >>> report.passed, [v.status for v in report.verdicts]
     (True, ['ok'])
     """
-    from lagsolve.check import check as run
+    from lagsolve.check.compare import check as run
     from lagsolve.mechanics.derivation import Derivation
 
     derivation = path_or_derivation if isinstance(path_or_derivation, Derivation) else derive(

@@ -1,4 +1,4 @@
-"""The ``lagsolve`` command: a thin shell over :mod:`lagsolve.pipeline`.
+"""The ``lagsolve`` command: a thin shell over :mod:`lagsolve.app.pipeline`.
 
 Parses options, calls one library function, shows or writes the result, and
 maps errors to exit codes: 0 success, 1 the computation failed, 2 invalid input.
@@ -25,7 +25,7 @@ for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_variable, "1")
 
 if TYPE_CHECKING:
-    from lagsolve.pipeline import Reports
+    from lagsolve.app.pipeline import Reports
 
 EXTENSIONS = {"md": ".md", "tex": ".tex", "html": ".html", "json": ".json"}
 
@@ -49,8 +49,8 @@ def _note(text: str, *, err: bool = False, level: int = 1, nl: bool = True) -> N
 
 
 def _golden(reports: Reports, folder: Path, update: bool) -> int:
+    from lagsolve.app.pipeline import golden_differences
     from lagsolve.files import write_file
-    from lagsolve.pipeline import golden_differences
 
     if update:
         for fmt, text in reports.outputs.items():
@@ -110,7 +110,7 @@ def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
     lagsolve check problems/*.yaml
     lagsolve check problems/*.yaml --format junit > check.xml
     """
-    from lagsolve.pipeline import check_file
+    from lagsolve.app.pipeline import check_file
     from lagsolve.render.machine import Unchecked, checks_json, checks_junit
 
     status = 0
@@ -163,8 +163,8 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     lagsolve derive problems/bead.yaml --format tex -o bead.tex
     lagsolve derive problems/bead.yaml --simulate      # the report with the simulation's figures
     """
+    from lagsolve.app.pipeline import SimulationOptions, derive_file, safe_slug
     from lagsolve.files import write_file
-    from lagsolve.pipeline import SimulationOptions, derive_file, safe_slug
 
     if update_golden and golden is None:
         raise click.UsageError("--update-golden needs --golden DIR")
@@ -296,8 +296,8 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
     lagsolve simulate problems/bead.yaml --t-end 20 --set g=1.62 --initial x=0.5 --plot --show
     lagsolve simulate problems/bead.yaml --format csv -o bead.csv
     """
+    from lagsolve.app.pipeline import SimulationOptions, safe_slug, simulate_file
     from lagsolve.files import write_file
-    from lagsolve.pipeline import SimulationOptions, safe_slug, simulate_file
 
     options = SimulationOptions(
         values=_assignments(values, "--set"), initial=_assignments(initial, "--initial"), t_end=t_end,

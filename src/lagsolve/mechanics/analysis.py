@@ -26,7 +26,6 @@ from typing import TYPE_CHECKING, Any
 
 import sympy
 
-from lagsolve.mechanics.chart import MinimalChart, minimal_chart
 from lagsolve.mechanics.conserved import Conservation, MotionSystem, conserved_quantities, constraint_surface
 from lagsolve.mechanics.constraints import constraint_terms
 from lagsolve.mechanics.contact import ContactCheck, check_point
@@ -34,6 +33,7 @@ from lagsolve.mechanics.equilibria import EffectivePotential, effective_potentia
 from lagsolve.mechanics.integrability import classify_all
 from lagsolve.mechanics.linearize import Linearization, applies, linearize, numeric_linearization
 from lagsolve.mechanics.minimal import ReducedSystem, reduce_system
+from lagsolve.mechanics.minimal_chart import MinimalChart, minimal_chart
 from lagsolve.mechanics.names import momentum_name
 from lagsolve.mechanics.results import Analysis
 from lagsolve.mechanics.stages import Stages

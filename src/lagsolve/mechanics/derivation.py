@@ -18,6 +18,7 @@ import sympy
 from lagsolve.errors import DerivationError
 from lagsolve.mechanics.analysis import with_analysis
 from lagsolve.mechanics.constraints import ConstraintTerms
+from lagsolve.mechanics.elimination import Elimination, eliminate
 from lagsolve.mechanics.forces import ForceTerm, FrictionTerm
 from lagsolve.mechanics.lagrange import LagrangeTerms, solve_augmented
 from lagsolve.mechanics.linsolve import SIZE_LIMIT
@@ -25,7 +26,6 @@ from lagsolve.mechanics.matrix_form import MatrixForm, matrix_form
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.normal import NormalForce, normal_forces
 from lagsolve.mechanics.reactions import Reaction
-from lagsolve.mechanics.reduce import Elimination, eliminate
 from lagsolve.mechanics.results import ConstraintForce, Derivation, FrictionResult
 from lagsolve.mechanics.simplify import compound_angles, norm, tidy, tidy_sum, tidy_sum_light
 from lagsolve.mechanics.stages import DEFAULT_BUDGET, StageNote, Stages, StageTimeout, cpu_limit

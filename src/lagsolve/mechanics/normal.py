@@ -38,10 +38,10 @@ import sympy
 
 from lagsolve.errors import DerivationError
 from lagsolve.mechanics.constraints import ConstraintTerms, velocity_form
+from lagsolve.mechanics.elimination import Elimination
 from lagsolve.mechanics.forces import FrictionTerm
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.reactions import Reaction
-from lagsolve.mechanics.reduce import Elimination
 from lagsolve.mechanics.signs import sign_core
 from lagsolve.mechanics.simplify import norm, root_of_sum_of_squares, tidy
 

@@ -15,6 +15,7 @@ if TYPE_CHECKING:
     from lagsolve.mechanics.conserved import Conservation, MotionSystem
     from lagsolve.mechanics.constraints import ConstraintTerms
     from lagsolve.mechanics.contact import ContactCheck
+    from lagsolve.mechanics.elimination import Elimination
     from lagsolve.mechanics.equilibria import EffectivePotential
     from lagsolve.mechanics.forces import ForceTerm, FrictionTerm
     from lagsolve.mechanics.integrability import Classification
@@ -23,7 +24,6 @@ if TYPE_CHECKING:
     from lagsolve.mechanics.matrix_form import MatrixForm
     from lagsolve.mechanics.minimal import ReducedSystem
     from lagsolve.mechanics.model import Model
-    from lagsolve.mechanics.reduce import Elimination
     from lagsolve.mechanics.stages import StageNote
     from lagsolve.problem.schema import Problem
 

@@ -35,7 +35,7 @@ import numpy as np
 from scipy import integrate, optimize
 
 from lagsolve.errors import SimulationError
-from lagsolve.numeric.chart import NumericChart
+from lagsolve.numeric.minimal_state import NumericChart
 from lagsolve.numeric.system import NumericSystem
 
 EXPLICIT = ("DOP853", "RK45", "RK23")

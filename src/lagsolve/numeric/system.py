@@ -30,11 +30,11 @@ import sympy
 from scipy.linalg import lapack
 
 from lagsolve.errors import Issue, SimulationError, SpecError
-from lagsolve.mechanics.chart import MinimalChart
 from lagsolve.mechanics.matrix_form import MatrixForm
+from lagsolve.mechanics.minimal_chart import MinimalChart
 from lagsolve.mechanics.simplify import norm
-from lagsolve.numeric.chart import NumericChart, compile_chart
 from lagsolve.numeric.compile import StateFunction, compile_state_function, substitute_functions
+from lagsolve.numeric.minimal_state import NumericChart, compile_chart
 
 
 @dataclass(frozen=True)
@@ -396,7 +396,7 @@ def _constraint_curve(form: MatrixForm, prepare: Any,
                       arguments: dict[str, Any]) -> tuple[int | None, StateFunction | None]:
     """For one degree of freedom left by explicit position constraints (a bead on a wire), the first
     particle's position as a function of the independent coordinate: the curve the constraint draws."""
-    from lagsolve.mechanics.reduce import eliminate
+    from lagsolve.mechanics.elimination import eliminate
 
     problem, model = form.problem, form.model
     if not problem.particles or not form.constraints or any(c.kind != "holonomic" for c in form.constraints):

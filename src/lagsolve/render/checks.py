@@ -14,7 +14,7 @@ import sympy
 from lagsolve.render.notation import Notation
 
 if TYPE_CHECKING:
-    from lagsolve.check import CheckReport, Verdict, Witness
+    from lagsolve.check.compare import CheckReport, Verdict, Witness
 
 MARKS = {"ok": "✓", "warning": "!", "mismatch": "✗", "unchecked": "–"}
 
@@ -72,9 +72,7 @@ def label(verdict: Verdict, note: Notation, coordinates: tuple[str, ...] = ()) -
 
 def describe(verdict: Verdict, note: Notation) -> str:
     """The verdict in words."""
-    import importlib
-
-    c = importlib.import_module("lagsolve.check")  # the module; the attribute ``lagsolve.check`` is the function
+    from lagsolve.check import compare as c
 
     reason = verdict.reason
     if reason == c.SYMBOLIC:

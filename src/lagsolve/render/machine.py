@@ -1,7 +1,7 @@
 """Output for machines: check verdicts as JSON and JUnit XML, several JSON results as one array or as lines.
 
 A check result is given as plain rows (:func:`verdict_rows`, made where the check ran) so that it
-crosses the process boundary of :mod:`lagsolve.budget`; a file that could not be checked is an
+crosses the process boundary of :mod:`lagsolve.app.budget`; a file that could not be checked is an
 :class:`Unchecked` (its error message and exit code).
 
 JUnit: one ``<testsuite>`` per problem file, one ``<testcase>`` per expected answer (``classname``
@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from lagsolve.check import CheckReport
+    from lagsolve.check.compare import CheckReport
 
 
 @dataclass(frozen=True)
@@ -49,7 +49,7 @@ def verdict_rows(report: CheckReport) -> tuple[dict[str, str], ...]:
 
 
 def checks_json(results: list[Any]) -> str:
-    """Check results (:class:`lagsolve.pipeline.Checked` or :class:`Unchecked`) as one JSON array."""
+    """Check results (:class:`lagsolve.app.pipeline.Checked` or :class:`Unchecked`) as one JSON array."""
     out: list[dict[str, Any]] = []
     for r in results:
         if isinstance(r, Unchecked):
@@ -62,7 +62,7 @@ def checks_json(results: list[Any]) -> str:
 
 def checks_junit(results: list[Any]) -> str:
     """Check results as JUnit XML: ``testsuites`` / ``testsuite`` per file / ``testcase`` per answer."""
-    from lagsolve.pipeline import safe_slug
+    from lagsolve.app.pipeline import safe_slug
 
     root = ET.Element("testsuites", name="lagsolve check")
     totals = {"tests": 0, "failures": 0, "errors": 0, "skipped": 0}

@@ -1,7 +1,7 @@
 r"""What is wrong with an answer that disagrees: the diagnoses of ``lagsolve check``.
 
 Each function looks at *rows*: for every random state on the constraint surface
-(:mod:`lagsolve.states`), the expected values E and the derived values D, one per component.
+(:mod:`lagsolve.check.states`), the expected values E and the derived values D, one per component.
 
 * :func:`constant_relation` — :math:`E/D` (or :math:`E - D`) the same at every state that
   shares the parameters: a missing factor 2 or m, a shifted zero level;
@@ -21,9 +21,9 @@ from typing import Any
 import mpmath
 import sympy
 
+from lagsolve.check.states import DIGITS, Compiled, State, StateSpace
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.simplify import tidy
-from lagsolve.states import DIGITS, Compiled, State, StateSpace
 
 #: relative tolerance of a numeric agreement (values carry 30 digits)
 TOLERANCE = mpmath.mpf(10) ** -12

@@ -4,7 +4,7 @@ A state assigns a number to the time, every parameter, coordinate and velocity, 
 replaces every declared function by a random smooth function, such that every
 constraint holds:
 
-* holonomic constraints that :mod:`lagsolve.mechanics.reduce` solves explicitly give their
+* holonomic constraints that :mod:`lagsolve.mechanics.elimination` solves explicitly give their
   coordinate (``y = f(x)``) and velocity directly;
 * the other holonomic constraints :math:`\psi_j(q, t) = 0` are solved for one coordinate each
   by Newton's method, :math:`q_d \leftarrow q_d - (\partial\psi/\partial q_d)^{-1}\psi`;

@@ -52,7 +52,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     and build the requested tables and figures. ``conserved`` maps names to expressions whose
     drift is reported (the energy is conserved exactly when it has an ``energy``; ``energy_note`` says
     why not); ``note`` is appended to the summary. ``chart`` (a
-    :class:`~lagsolve.mechanics.chart.MinimalChart`) lets the run integrate in minimal
+    :class:`~lagsolve.mechanics.minimal_chart.MinimalChart`) lets the run integrate in minimal
     coordinates; ``chart_note`` says why there is none.
 
     Raises
@@ -130,7 +130,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
                 figures[key] = plots.png_bytes(figure)
         if options.animate and trajectory.particles:
             figures["animation"] = plots.animation_gif(trajectory, name)
-    from lagsolve.pipeline import safe_slug
+    from lagsolve.app.pipeline import safe_slug
 
     return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name) + note, tables,
                             figures, trajectory)

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from lagsolve.simulation import SimulationOptions, SimulationResult, run_simulation
+from lagsolve.app.simulation import SimulationOptions, SimulationResult, run_simulation
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.derivation import Derivation
@@ -58,7 +58,7 @@ STAGE_SHARE = 0.8
 def _derive_and_render(problem: Problem, formats: tuple[str, ...], templates: Path | None,
                        simulate: SimulationOptions | None = None,
                        budget: float = DEFAULT_TIMEOUT) -> tuple[str, dict[str, str], dict[str, bytes]]:
-    from lagsolve.budget import report_partial
+    from lagsolve.app.budget import report_partial
     from lagsolve.mechanics.derivation import derive
 
     derivation = derive(problem, budget=budget * STAGE_SHARE, on_core=report_partial)
@@ -91,7 +91,7 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
         files[potential["file"]] = potential.pop("png")
     text = summary(derivation)
     if simulate is not None:
-        from lagsolve.mechanics.chart import minimal_chart
+        from lagsolve.mechanics.minimal_chart import minimal_chart
 
         chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
         from lagsolve.mechanics.analysis import energy_reason
@@ -127,8 +127,8 @@ def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
 def _potential_figure(derivation: Derivation) -> dict | None:
     """The V_eff plot with its equilibria, for a problem that has an effective potential and numbers
     (simulation values and initial state) to draw it with; None otherwise."""
+    from lagsolve.numeric.potential import potential_curve, potential_figure
     from lagsolve.render.plots import png_bytes
-    from lagsolve.render.potential_plot import potential_curve, potential_figure
 
     problem = derivation.problem
     spec = problem.simulation
@@ -153,7 +153,7 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json
     """Load, derive and render one problem file.
 
     Loading (validation) runs here; derivation and rendering run in a child
-    process under ``timeout`` seconds (see :mod:`lagsolve.budget`).
+    process under ``timeout`` seconds (see :mod:`lagsolve.app.budget`).
 
     Raises
     ------
@@ -162,7 +162,7 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json
     DerivationError
         The derivation failed or ran out of time.
     """
-    from lagsolve.budget import run_with_budget
+    from lagsolve.app.budget import run_with_budget
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
@@ -191,7 +191,7 @@ class Checked:
 
 def _derive_and_check(problem: Problem, budget: float = DEFAULT_TIMEOUT
                       ) -> tuple[str, dict[str, int], tuple[dict[str, str], ...]]:
-    from lagsolve.check import MISMATCH, OK, UNCHECKED, WARNING, check
+    from lagsolve.check.compare import MISMATCH, OK, UNCHECKED, WARNING, check
     from lagsolve.mechanics.derivation import derive
     from lagsolve.render.checks import check_table
     from lagsolve.render.machine import verdict_rows
@@ -202,7 +202,7 @@ def _derive_and_check(problem: Problem, budget: float = DEFAULT_TIMEOUT
 
 
 def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked:
-    """Load and derive one problem file and compare its ``expected:`` answers (:func:`lagsolve.check.check`).
+    """Load and derive one problem file and compare its ``expected:`` answers (:func:`lagsolve.check.compare.check`).
 
     Loading runs here; derivation and check run in a child process under ``timeout`` seconds.
 
@@ -213,7 +213,7 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
     DerivationError
         The derivation failed or ran out of time.
     """
-    from lagsolve.budget import run_with_budget
+    from lagsolve.app.budget import run_with_budget
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
@@ -225,10 +225,7 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
 def _preload() -> None:
     """Import the heavy modules here, before the budgeted child is forked, so that the child inherits them and
     its CPU budget goes to the problem, not to importing SymPy (and several files share one import)."""
-    import lagsolve.mechanics.analysis
-    import lagsolve.mechanics.derivation
-    import lagsolve.render.report
-    import lagsolve.simulation  # noqa: F401
+    import lagsolve.app.simulation  # noqa: F401
 
 
 def golden_differences(reports: Reports, folder: Path) -> list[str]:
@@ -284,7 +281,7 @@ def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: floa
     DerivationError, SimulationError
         The derivation or the integration failed, or ran out of time.
     """
-    from lagsolve.budget import run_with_budget
+    from lagsolve.app.budget import run_with_budget
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)

@@ -9,7 +9,7 @@ derived D:
    and velocities eliminated), and :math:`E - D` is reduced by cheap steps first (structural
    equality, ``cancel``), then :func:`lagsolve.mechanics.simplify.tidy`. Zero → *ok (symbolic)*.
 2. **Numeric.** Otherwise both are evaluated at random states on the constraint surface
-   (:mod:`lagsolve.states`; declared functions become random smooth functions). Agreement at
+   (:mod:`lagsolve.check.states`; declared functions become random smooth functions). Agreement at
    every state → *ok (numeric)*.
 3. **Diagnosis** of a disagreement, from the values at those states:
 
@@ -51,7 +51,7 @@ from typing import Any
 import mpmath
 import sympy
 
-from lagsolve.diagnose import (
+from lagsolve.check.diagnose import (
     SYMBOLIC_LIMIT,
     ReleasedConstraints,
     Row,
@@ -59,9 +59,9 @@ from lagsolve.diagnose import (
     constant_relation,
     sign_condition,
 )
+from lagsolve.check.states import Compiled, State, StateSpace
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.simplify import tidy
-from lagsolve.states import Compiled, State, StateSpace
 
 OK, WARNING, MISMATCH, UNCHECKED = "ok", "warning", "mismatch", "unchecked"
 
