@@ -163,8 +163,8 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     lagsolve derive problems/bead.yaml --format tex -o bead.tex
     lagsolve derive problems/bead.yaml --simulate      # the report with the simulation's figures
     """
-    from lagsolve.app.pipeline import SimulationOptions, derive_file, safe_slug
-    from lagsolve.files import write_file
+    from lagsolve.app.pipeline import SimulationOptions, derive_file
+    from lagsolve.files import safe_slug, write_file
 
     if update_golden and golden is None:
         raise click.UsageError("--update-golden needs --golden DIR")
@@ -296,8 +296,8 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
     lagsolve simulate problems/bead.yaml --t-end 20 --set g=1.62 --initial x=0.5 --plot --show
     lagsolve simulate problems/bead.yaml --format csv -o bead.csv
     """
-    from lagsolve.app.pipeline import SimulationOptions, safe_slug, simulate_file
-    from lagsolve.files import write_file
+    from lagsolve.app.pipeline import SimulationOptions, simulate_file
+    from lagsolve.files import safe_slug, write_file
 
     options = SimulationOptions(
         values=_assignments(values, "--set"), initial=_assignments(initial, "--initial"), t_end=t_end,

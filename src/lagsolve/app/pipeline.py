@@ -5,13 +5,13 @@ Nothing here prints, exits or writes files; results come back as data.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from lagsolve.app.simulation import SimulationOptions, SimulationResult, run_simulation
+from lagsolve.files import safe_slug
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.derivation import Derivation
@@ -32,14 +32,6 @@ class Reports:
     outputs: dict[str, str]
     files: dict[str, bytes] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
-
-
-def safe_slug(path: str | Path) -> str:
-    """A file-name-safe stem for output names: ``problems/My bead.yaml`` → ``My_bead``."""
-    stem = Path(path).name
-    stem = stem.rsplit(".", 1)[0] if "." in stem else stem
-    slug = re.sub(r"[^A-Za-z0-9_-]+", "_", stem).strip("_")
-    return slug or "problem"
 
 
 FIGURE_CAPTIONS = {
@@ -127,8 +119,9 @@ def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
 def _potential_figure(derivation: Derivation) -> dict | None:
     """The V_eff plot with its equilibria, for a problem that has an effective potential and numbers
     (simulation values and initial state) to draw it with; None otherwise."""
-    from lagsolve.numeric.potential import potential_curve, potential_figure
+    from lagsolve.numeric.potential import potential_curve
     from lagsolve.render.plots import png_bytes
+    from lagsolve.render.potential_plot import potential_figure
 
     problem = derivation.problem
     spec = problem.simulation

@@ -130,7 +130,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
                 figures[key] = plots.png_bytes(figure)
         if options.animate and trajectory.particles:
             figures["animation"] = plots.animation_gif(trajectory, name)
-    from lagsolve.app.pipeline import safe_slug
+    from lagsolve.files import safe_slug
 
     return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name) + note, tables,
                             figures, trajectory)

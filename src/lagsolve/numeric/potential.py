@@ -1,25 +1,20 @@
-"""A figure of the effective potential with its equilibria marked.
+"""The effective potential in numbers, for its figure.
 
-:func:`potential_figure` takes plain numbers and returns a matplotlib ``Figure`` (Agg; it
-never shows itself); :func:`potential_curve` computes those numbers from a derivation's
-effective potential, numeric parameter values and the conserved momenta (or the initial
-state they follow from). matplotlib is imported only when a figure is made.
-
-Not embedded in the reports yet: reports are single text files, and a figure needs a file
-of its own next to them, which is the command line's job.
+:func:`potential_curve` samples a derivation's effective potential at numeric parameter values and
+the conserved momenta (or the initial state they follow from), and finds its equilibria on the
+grid; :func:`lagsolve.render.potential_plot.potential_figure` draws the result.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import sympy
 
 if TYPE_CHECKING:
-    from matplotlib.figure import Figure
 
     from lagsolve.mechanics.derivation import Derivation
 
@@ -33,41 +28,6 @@ class PotentialCurve:
     q: tuple[float, ...]
     v: tuple[float, ...]
     equilibria: tuple[tuple[float, float, bool | None], ...]
-
-
-def potential_figure(q: Sequence[float], v: Sequence[float],
-                     equilibria: Sequence[tuple[float, float, bool | None]] = (), *,
-                     coordinate: str = "q", title: str = "") -> Figure:
-    """V_eff against the coordinate; stable equilibria as filled dots, unstable as open ones,
-    undecided ones as crosses.
-
-    >>> fig = potential_figure([1.0, 2.0, 3.0], [1.0, 0.0, 1.0], [(2.0, 0.0, True)], coordinate="r")
-    >>> fig.axes[0].get_xlabel()
-    '$r$'
-    """
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    if len(q) != len(v):
-        raise ValueError(f"q and v differ in length ({len(q)} and {len(v)})")
-    figure = Figure(figsize=(6.0, 4.0), layout="constrained")
-    FigureCanvasAgg(figure)
-    axes = figure.add_subplot()
-    axes.plot(list(q), list(v), color="C0", label=r"$V_{\mathrm{eff}}$")
-    styles = {True: ("o", "C2", "stable"), False: ("o", "none", "unstable"), None: ("x", "C3", "not decided")}
-    shown: set[Any] = set()
-    for q0, v0, stable in equilibria:
-        marker, face, label = styles[stable]
-        axes.plot([q0], [v0], marker=marker, markersize=8, markerfacecolor=face, markeredgecolor="C3"
-                  if stable is not True else "C2", linestyle="none", label=None if stable in shown else label)
-        shown.add(stable)
-    axes.set_xlabel(f"${coordinate}$")
-    axes.set_ylabel(r"$V_{\mathrm{eff}}$")
-    if title:
-        axes.set_title(title, parse_math=False)  # user text: a "$" in a name is not mathtext
-    axes.grid(True, alpha=0.3)
-    axes.legend()
-    return figure
 
 
 def potential_curve(derivation: Derivation, values: Mapping[str, float], momenta: Mapping[str, float] | None = None,
