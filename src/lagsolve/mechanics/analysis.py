@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Any
 
 import sympy
 
-from lagsolve.mechanics.conserved import Conservation, MotionSystem, conserved_quantities, constraint_surface
+from lagsolve.mechanics.conserved import Conservation, MotionSystem, conserved_quantities
 from lagsolve.mechanics.constraints import constraint_terms
 from lagsolve.mechanics.contact import ContactCheck, check_point
 from lagsolve.mechanics.equilibria import EffectivePotential, effective_potential
@@ -37,6 +37,7 @@ from lagsolve.mechanics.minimal_chart import MinimalChart, minimal_chart
 from lagsolve.mechanics.names import momentum_name
 from lagsolve.mechanics.results import Analysis
 from lagsolve.mechanics.stages import Stages
+from lagsolve.mechanics.surface import constraint_surface
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.matrix_form import MatrixForm

@@ -19,7 +19,8 @@ from lagsolve.errors import DerivationError
 from lagsolve.mechanics.analysis import with_analysis
 from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.elimination import Elimination, eliminate
-from lagsolve.mechanics.forces import ForceTerm, FrictionTerm
+from lagsolve.mechanics.forces import ForceTerm
+from lagsolve.mechanics.friction import FrictionTerm
 from lagsolve.mechanics.lagrange import LagrangeTerms, solve_augmented
 from lagsolve.mechanics.linsolve import SIZE_LIMIT
 from lagsolve.mechanics.matrix_form import MatrixForm, matrix_form

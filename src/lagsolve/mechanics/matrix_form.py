@@ -16,7 +16,8 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.constraints import ConstraintTerms, constraint_terms
-from lagsolve.mechanics.forces import ForceTerm, FrictionTerm, force_terms, friction_term
+from lagsolve.mechanics.forces import ForceTerm, force_terms
+from lagsolve.mechanics.friction import FrictionTerm, friction_term
 from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms
 from lagsolve.mechanics.model import Model, build_model
 from lagsolve.mechanics.reactions import Reaction, reaction

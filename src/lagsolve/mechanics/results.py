@@ -17,7 +17,8 @@ if TYPE_CHECKING:
     from lagsolve.mechanics.contact import ContactCheck
     from lagsolve.mechanics.elimination import Elimination
     from lagsolve.mechanics.equilibria import EffectivePotential
-    from lagsolve.mechanics.forces import ForceTerm, FrictionTerm
+    from lagsolve.mechanics.forces import ForceTerm
+    from lagsolve.mechanics.friction import FrictionTerm
     from lagsolve.mechanics.integrability import Classification
     from lagsolve.mechanics.lagrange import LagrangeTerms
     from lagsolve.mechanics.linearize import Linearization
