@@ -294,12 +294,12 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
     >>> [round(float(y), 9) for y in run.columns()["y"]]
     [0.0, -0.5, -2.0]
     """
-    from lagsolve.app.simulation import SimulationOptions, run_simulation
+    from lagsolve.app.simulation import Coordinates, SimulationOptions, run_simulation
     from lagsolve.mechanics.derivation import Derivation
-    from lagsolve.numeric.integrate import METHODS
+    from lagsolve.numeric.integrate import METHODS, AfterRelease
 
-    choices = {"method": (method, METHODS), "after_release": (after_release, ("stop", "continue")),
-               "coordinates": (coordinates, ("minimal", "full"))}
+    choices = {"method": (method, METHODS), "after_release": (after_release, tuple(AfterRelease)),
+               "coordinates": (coordinates, tuple(Coordinates))}
     bad = [Issue("<argument>", 0, key, f"expected one of {', '.join(allowed)}, found {given!r}")
            for key, (given, allowed) in choices.items() if given is not None and given not in allowed]
     for key, value in (("t_end", t_end), ("rtol", rtol), ("atol", atol), ("max_step", max_step), ("budget", budget)):

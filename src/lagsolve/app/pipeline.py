@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from lagsolve.app.simulation import SimulationOptions, SimulationResult, run_simulation
+from lagsolve.check.status import Status
 from lagsolve.files import safe_slug
 
 if TYPE_CHECKING:
@@ -179,7 +180,7 @@ class Checked:
     @property
     def passed(self) -> bool:
         """True when no expected answer is a mismatch (warnings and unchecked answers pass)."""
-        return self.counts.get("mismatch", 0) == 0
+        return self.counts.get(Status.MISMATCH, 0) == 0
 
 
 def _derive_and_check(problem: Problem, budget: float = DEFAULT_TIMEOUT

@@ -9,8 +9,17 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from lagsolve.enums import TextEnum
+
 if TYPE_CHECKING:
     from lagsolve.numeric.integrate import Trajectory
+
+
+class Coordinates(TextEnum):
+    """Which state a run integrates (``--coordinates``)."""
+
+    MINIMAL = "minimal"  # the independent coordinates, where the constraints are solved in closed form
+    FULL = "full"  # every coordinate, the constraints held by their multipliers and projection
 
 
 @dataclass(frozen=True)
@@ -25,8 +34,8 @@ class SimulationOptions:
     rtol: float | None = None
     atol: float | None = None
     max_step: float | None = None
-    after_release: str = "stop"
-    coordinates: str = "minimal"  # "minimal" where the constraints are solved in closed form, else "full"
+    after_release: str = "stop"  # an AfterRelease
+    coordinates: str = Coordinates.MINIMAL  # MINIMAL where the constraints are solved in closed form, else FULL
     tables: tuple[str, ...] = ()  # "csv", "npz"
     plots: bool = False
     animate: bool = False
@@ -73,9 +82,9 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     problem = form.problem
     spec = problem.simulation
     source = problem.source
-    if options.coordinates not in ("minimal", "full"):
+    if options.coordinates not in tuple(Coordinates):
         raise ValueError(f"unknown coordinates option {options.coordinates!r}")
-    minimal = options.coordinates == "minimal"
+    minimal = options.coordinates == Coordinates.MINIMAL
     system = bind(form, options.values, conserved, chart if minimal else None, energy_note)
     if minimal and chart is None and chart_note and form.constraints:
         note = f"  not in minimal coordinates: {chart_note}\n" + note

@@ -60,10 +60,11 @@ from lagsolve.check.diagnose import (
     sign_condition,
 )
 from lagsolve.check.states import Compiled, State, StateSpace
+from lagsolve.check.status import Status
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.simplify import tidy
 
-OK, WARNING, MISMATCH, UNCHECKED = "ok", "warning", "mismatch", "unchecked"
+OK, WARNING, MISMATCH, UNCHECKED = Status.OK, Status.WARNING, Status.MISMATCH, Status.UNCHECKED
 
 #: reasons (``Verdict.reason``)
 SYMBOLIC, NUMERIC = "symbolic", "numeric"
@@ -108,7 +109,7 @@ class Verdict:
 
     quantity: str
     name: str
-    status: str
+    status: Status
     reason: str
     expected: tuple[Any, ...]
     derived: tuple[Any, ...] | None = None
@@ -135,7 +136,7 @@ class CheckReport:
     coordinates: tuple[str, ...]
     verdicts: tuple[Verdict, ...]
 
-    def count(self, status: str) -> int:
+    def count(self, status: Status) -> int:
         return sum(1 for v in self.verdicts if v.status == status)
 
     @property
@@ -155,7 +156,7 @@ class _Item:
     note: str = ""
     shifts: bool = False  # an additive constant is harmless (conserved quantities, potentials)
     real: bool = True  # values must be real (not so for equilibria, which may not exist everywhere)
-    missing: str = UNCHECKED  # status when there is nothing derived to compare with
+    missing: Status = UNCHECKED  # status when there is nothing derived to compare with
     rate: bool = False  # a claimed constant of the motion, checked by its rate dC/dt along the equations
     extra: dict[str, Any] = field(default_factory=dict)
 

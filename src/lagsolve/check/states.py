@@ -33,6 +33,7 @@ import sympy
 
 from lagsolve.mechanics.constraints import velocity_form
 from lagsolve.mechanics.derivation import Derivation
+from lagsolve.problem.schema import ConstraintKind
 
 DIGITS = 30
 #: states share their parameter values in groups of this size, so that a ratio that depends only on
@@ -120,7 +121,7 @@ class StateSpace:
         explicit = {name for q, name in elimination.sources.items() if q in elimination.positions}
         residuals, dependents = [], []
         for c in derivation.constraints:
-            if c.kind != "holonomic" or c.name in explicit:
+            if c.kind != ConstraintKind.HOLONOMIC or c.name in explicit:
                 continue
             psi = elimination.apply(c.expression)
             free = [q for q in reversed(self.coordinates) if q not in dependents and psi.has(q)]

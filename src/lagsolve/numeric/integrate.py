@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 from scipy import integrate, optimize
 
+from lagsolve.enums import TextEnum
 from lagsolve.errors import SimulationError
 from lagsolve.numeric.minimal_state import NumericChart
 from lagsolve.numeric.system import NumericSystem
@@ -41,6 +42,21 @@ from lagsolve.numeric.system import NumericSystem
 EXPLICIT = ("DOP853", "RK45", "RK23")
 METHODS = (*EXPLICIT, "Radau", "BDF", "LSODA")
 HOLD_TOLERANCE = 1e-12  # relative slack in |needed force| <= mu_s N when deciding to stick
+
+
+class EventKind(TextEnum):
+    """What changed the equations during a run (:class:`Event` ``kind``)."""
+
+    RELEASE = "release"
+    STICK = "stick"
+    SLIP = "slip"
+
+
+class AfterRelease(TextEnum):
+    """What a run does when a unilateral constraint lets go (``--after-release``)."""
+
+    STOP = "stop"
+    CONTINUE = "continue"
 
 
 @dataclass(frozen=True)
@@ -53,7 +69,7 @@ class Event:
     """
 
     time: float
-    kind: str
+    kind: EventKind
     name: str
     state: Mapping[str, float]
     action: str
@@ -225,8 +241,8 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
     while not finished:
         pulling = [j for j in system.unilateral if run.active[j] and run.solve(t0, y0)[1][j] < 0]
         if pulling:  # a unilateral constraint that would have to pull: contact is lost at once
-            stop = after_release == "stop"
-            events.append(Event(float(t0), "release", system.constraints[pulling[0]], _state(system, y0),
+            stop = after_release == AfterRelease.STOP
+            events.append(Event(float(t0), EventKind.RELEASE, system.constraints[pulling[0]], _state(system, y0),
                                 "stopped" if stop else "released"))
             if stop:
                 rows.append(_sample(run, t0, y0))
@@ -362,7 +378,7 @@ def _start_contacts(run: _Run, t: float, y: np.ndarray, events: list[Event]) -> 
             run.stuck[c] = False
             run.direction[c] = -np.sign(needed)
         else:
-            events.append(Event(float(t), "stick", system.contact_names[c], _state(system, y), "stuck"))
+            events.append(Event(float(t), EventKind.STICK, system.contact_names[c], _state(system, y), "stuck"))
 
 
 def _watch(run: _Run, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
@@ -373,14 +389,14 @@ def _watch(run: _Run, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
         lam = run.solve(t, y)[1]
         for j in system.unilateral:
             if run.active[j]:
-                values[("release", j)] = float(lam[j])
+                values[(EventKind.RELEASE, j)] = float(lam[j])
     for c, slide in enumerate(system.slides):
         if slide is None:
             continue
         if run.stuck[c]:
-            values[("slip", c)] = run.holding_margin(t, y, c)[0]
+            values[(EventKind.SLIP, c)] = run.holding_margin(t, y, c)[0]
         else:
-            values[("stick", c)] = float(run.direction[c] * y[n + slide])
+            values[(EventKind.STICK, c)] = float(run.direction[c] * y[n + slide])
     return values
 
 
@@ -392,7 +408,7 @@ def _first_event(run: _Run, dense: Any, t_old: float, t_new: float, old: dict, n
         if after is None:
             continue
         kind, index = key
-        crossed = before >= 0 > after if kind != "stick" else before > 0 >= after
+        crossed = before >= 0 > after if kind != EventKind.STICK else before > 0 >= after
         if not crossed:
             continue
 
@@ -412,22 +428,22 @@ def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_rele
     system, n = run.system, run.system.n
     t, kind, index = event
     y = dense(t)
-    if kind == "stick":
+    if kind == EventKind.STICK:
         y[n + system.slides[index]] = 0.0
     q, qd = run.projected(t, y[:n], y[n:])
     y = np.concatenate([q, qd])
-    if kind == "release":
-        stop = after_release == "stop"
-        events.append(Event(float(t), "release", system.constraints[index], _state(system, y),
+    if kind == EventKind.RELEASE:
+        stop = after_release == AfterRelease.STOP
+        events.append(Event(float(t), EventKind.RELEASE, system.constraints[index], _state(system, y),
                             "stopped" if stop else "released"))
         if not stop:
             _release(run, index)
         return t, y, stop
-    if kind == "stick":
+    if kind == EventKind.STICK:
         run.stuck[index] = True
         margin, needed = run.holding_margin(t, y, index)
         if margin >= -HOLD_TOLERANCE * max(1.0, abs(needed)):
-            events.append(Event(float(t), "stick", system.contact_names[index], _state(system, y), "stuck"))
+            events.append(Event(float(t), EventKind.STICK, system.contact_names[index], _state(system, y), "stuck"))
         else:  # the rate only passes through zero: it reverses, and so does kinetic friction
             run.stuck[index] = False
             run.direction[index] = -np.sign(needed)
@@ -435,7 +451,7 @@ def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_rele
     _, needed = run.holding_margin(t, y, index)
     run.stuck[index] = False
     run.direction[index] = -np.sign(needed)
-    events.append(Event(float(t), "slip", system.contact_names[index], _state(system, y), "slipped"))
+    events.append(Event(float(t), EventKind.SLIP, system.contact_names[index], _state(system, y), "slipped"))
     return t, y, False
 
 

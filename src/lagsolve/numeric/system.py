@@ -37,6 +37,7 @@ from lagsolve.mechanics.minimal_chart import MinimalChart
 from lagsolve.mechanics.reactions import force_scale
 from lagsolve.numeric.compile import StateFunction, compile_state_function, substitute_functions
 from lagsolve.numeric.minimal_state import NumericChart, compile_chart
+from lagsolve.problem.schema import ConstraintKind
 
 
 @dataclass(frozen=True)
@@ -256,7 +257,7 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
     matrices = [*lagrange.mass_matrix, *forcing_columns, *lagrange.constraint_jacobian, *lagrange.constraint_rhs]
     contacts, directions = contact_directions(problem, form.frictions, form.constraints, form.reactions)
     scales = [force_scale(form.reactions[c.name]) for c in form.constraints]
-    holonomic = tuple(j for j, c in enumerate(form.constraints) if c.kind == "holonomic")
+    holonomic = tuple(j for j, c in enumerate(form.constraints) if c.kind == ConstraintKind.HOLONOMIC)
     psi = [form.constraints[j].expression for j in holonomic]
     energy = jacobi_integral(model)
     groups = {
@@ -339,7 +340,8 @@ def _constraint_curve(form: MatrixForm, prepare: Any,
     from lagsolve.mechanics.elimination import eliminate
 
     problem, model = form.problem, form.model
-    if not problem.particles or not form.constraints or any(c.kind != "holonomic" for c in form.constraints):
+    if not problem.particles or not form.constraints or any(c.kind != ConstraintKind.HOLONOMIC
+                                                            for c in form.constraints):
         return None, None
     elimination = eliminate(form.constraints, model)
     free = [i for i, q in enumerate(model.coordinates) if q not in elimination.positions]

@@ -10,6 +10,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from lagsolve.enums import TextEnum
+
 Expr = Any  # a SymPy expression, made only by lagsolve.problem.expr
 
 
@@ -68,12 +70,19 @@ class Body:
         return len(self.inertia) == 1
 
 
+class ConstraintKind(TextEnum):
+    """How a constraint is written: at position level, psi(q, t) = 0, or at velocity level."""
+
+    HOLONOMIC = "holonomic"
+    NONHOLONOMIC = "nonholonomic"
+
+
 @dataclass(frozen=True)
 class Constraint:
     """``holonomic``: psi(q, t) = 0; ``nonholonomic``: sum a_i q_i_dot + b = 0 as written."""
 
     name: str
-    kind: str  # "holonomic" | "nonholonomic"
+    kind: ConstraintKind
     expression: Expr
     on: tuple[str, ...]  # particles it acts on (or the one body, with ``at``); empty when unknown
     line: int

@@ -18,6 +18,8 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from lagsolve.check.status import Status
+
 if TYPE_CHECKING:
     from lagsolve.check.compare import CheckReport
 
@@ -41,7 +43,7 @@ def verdict_rows(report: CheckReport) -> tuple[dict[str, str], ...]:
     for v in report.verdicts:
         row = {"quantity": v.quantity, "name": v.name, "status": v.status, "reason": v.reason,
                "label": label(v, note, report.coordinates), "description": describe(v, note)}
-        if v.status in ("warning", "mismatch"):
+        if v.status in (Status.WARNING, Status.MISMATCH):
             row["expected"] = ", ".join(note.text(e) for e in v.expected)
             row["derived"] = ", ".join(note.text(d) for d in v.derived) if v.derived is not None else ""
         rows.append(row)
@@ -80,14 +82,14 @@ def checks_junit(results: list[Any]) -> str:
                                  file=r.source)
             counts["tests"] += 1
             detail = "\n".join(f"{k}: {row[k]}" for k in ("label", "description", "expected", "derived") if k in row)
-            if row["status"] == "mismatch":
+            if row["status"] == Status.MISMATCH:
                 ET.SubElement(case, "failure", message=f"{row['label']}: {row['description']}",
                               type=row["reason"]).text = detail
                 counts["failures"] += 1
-            elif row["status"] == "unchecked":
+            elif row["status"] == Status.UNCHECKED:
                 ET.SubElement(case, "skipped", message=f"{row['label']}: {row['description']}")
                 counts["skipped"] += 1
-            elif row["status"] == "warning":
+            elif row["status"] == Status.WARNING:
                 ET.SubElement(case, "system-out").text = detail
         for key, n in counts.items():
             suite.set(key, str(n))

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from lagsolve.numeric.integrate import Trajectory
+from lagsolve.numeric.integrate import EventKind, Trajectory
 
 
 def _pyplot() -> Any:
@@ -38,7 +38,7 @@ def _figure(title: str, rows: int = 1, cols: int = 1, **kwargs: Any) -> tuple[An
 def _events(ax: Any, trajectory: Trajectory) -> None:
     """Release events as dotted lines; sticking phases of friction contacts shaded."""
     for event in trajectory.events:
-        if event.kind == "release":
+        if event.kind == EventKind.RELEASE:
             ax.axvline(event.time, color="0.4", linestyle=":", linewidth=1)
     if trajectory.stuck.size and trajectory.stuck.any():
         stuck = trajectory.stuck.any(axis=1)

@@ -11,6 +11,7 @@ from lagsolve.problem.readers.base import Reader, known_names, shown
 from lagsolve.problem.schema import (
     Body,
     Constraint,
+    ConstraintKind,
     Coordinate,
     Friction,
 )
@@ -39,7 +40,7 @@ class ConstraintsReader(Reader):
             unilateral = False
             if "unilateral" in spec:
                 unilateral = bool(self.flag((*path, "unilateral"), spec["unilateral"]))
-            kinds = [k for k in ("holonomic", "nonholonomic") if k in spec]
+            kinds = [k for k in ConstraintKind if k in spec]
             if len(kinds) != 1:
                 self.issue(path, "give exactly one of 'holonomic: psi(q, t)' or 'nonholonomic: a.q_dot + b'")
                 continue
@@ -59,16 +60,16 @@ class ConstraintsReader(Reader):
             if psi is None:
                 continue
             used = psi.free_symbols & velocities
-            if kind == "holonomic" and used:
+            if kind == ConstraintKind.HOLONOMIC and used:
                 self.issue((*path, kind), "a holonomic constraint cannot contain velocities (found "
                            + ", ".join(sorted(str(s) for s in used)) + ")",
                            "write it under 'nonholonomic:' instead")
                 continue
-            if kind == "holonomic" and not psi.free_symbols & positions:
+            if kind == ConstraintKind.HOLONOMIC and not psi.free_symbols & positions:
                 self.issue((*path, kind), "this constraint contains no coordinate, so it cannot "
                            "restrict the motion", "write psi(q, t) in terms of the coordinates")
                 continue
-            if kind == "nonholonomic":
+            if kind == ConstraintKind.NONHOLONOMIC:
                 if not used:
                     self.issue((*path, kind), "this velocity constraint contains no velocity",
                                "write a position constraint under 'holonomic:'")
