@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import re
 import shutil
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
 
 from lagsolve.mechanics.derivation import Derivation, derive
-from lagsolve.problem.load import load_problem, load_text
+from lagsolve.problem.load import load_text
 from lagsolve.render.report import render
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -27,8 +27,8 @@ potential: k*x**2/2
 
 
 @pytest.fixture(scope="module")
-def bead() -> Derivation:
-    return derive(load_problem(ROOT / "problems" / "bead.yaml"))
+def bead(shipped_derivation: Callable[[str], Derivation]) -> Derivation:
+    return shipped_derivation("bead")
 
 
 @pytest.fixture(scope="module")
