@@ -26,9 +26,11 @@ Samples are taken from the dense output at evenly spaced times.
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import time as clock
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
@@ -80,6 +82,45 @@ class Event:
 
 
 @dataclass(frozen=True)
+class RunStats(Mapping[str, Any]):
+    """What one run did: the integrator and its tolerances, its work, the largest constraint residual,
+    whether the energy is conserved (and why not), the coordinates it integrated, and the relative drift
+    of the energy and of each monitored conserved quantity.
+
+    A typed record; it also reads as a mapping (``stats["steps"]``, ``dict(stats)``) by field name.
+    """
+
+    method: str
+    rtol: float
+    atol: float
+    steps: int
+    evaluations: int
+    solver_evaluations: int
+    wall_time: float
+    max_residual: float
+    energy_conserved: bool
+    energy_note: str
+    coordinates: str
+    projected: bool
+    energy_drift: float = math.nan
+    conserved_drift: Mapping[str, float] = field(default_factory=dict)
+
+    def __getitem__(self, key: str) -> Any:
+        if key not in _RUN_STATS:
+            raise KeyError(key)
+        return getattr(self, key)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(_RUN_STATS)
+
+    def __len__(self) -> int:
+        return len(_RUN_STATS)
+
+
+_RUN_STATS = tuple(f.name for f in fields(RunStats))
+
+
+@dataclass(frozen=True)
 class Trajectory:
     """A simulated motion. Arrays have one row per sample time.
 
@@ -107,7 +148,7 @@ class Trajectory:
     positions: np.ndarray
     particles: tuple[tuple[str, int], ...]
     events: tuple[Event, ...]
-    stats: Mapping[str, Any] = field(default_factory=dict)
+    stats: RunStats
 
 
 @dataclass
@@ -306,12 +347,12 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         progress(t_end)
     if system.chart is not None and minimal and run.chart is None:
         coordinates += "; all, projected onto the constraints after each step, once a constraint was released"
-    return _trajectory(system, rows, events, {
-        "method": method, "rtol": rtol, "atol": atol, "steps": steps, "evaluations": system.evaluations[0],
-        "solver_evaluations": nfev, "wall_time": clock.perf_counter() - start, "max_residual": max_residual,
-        "energy_conserved": system.energy_conserved, "energy_note": system.energy_note,
-        "coordinates": coordinates, "projected": bool(m) and run.chart is None,
-    })
+    return _trajectory(system, rows, events, RunStats(
+        method=method, rtol=rtol, atol=atol, steps=steps, evaluations=system.evaluations[0],
+        solver_evaluations=nfev, wall_time=clock.perf_counter() - start, max_residual=max_residual,
+        energy_conserved=system.energy_conserved, energy_note=system.energy_note,
+        coordinates=coordinates, projected=bool(m) and run.chart is None,
+    ))
 
 
 def _check_finite(run: _Run, t: float, y: np.ndarray, last: tuple[float, np.ndarray] | None,
@@ -470,7 +511,7 @@ def _sample(run: _Run, t: float, y: np.ndarray) -> tuple:
     return (float(t), q, qd, residual, run.active.copy(), run.stuck.copy(), run.direction.copy())
 
 
-def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: dict) -> Trajectory:
+def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: RunStats) -> Trajectory:
     p = system.parameters
     count, k = len(rows), len(system.contacts)
     t = np.array([r[0] for r in rows])
@@ -493,9 +534,9 @@ def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: d
             conserved[i] = system.conserved(ti, qi, qdi, p)
         if positions.shape[1]:
             positions[i] = system.positions(ti, qi, qdi, p)
-    stats = {**stats, "energy_drift": _relative_drift(energy),
-             "conserved_drift": {name: _relative_drift(conserved[:, c])
-                                 for c, name in enumerate(system.conserved_names)}}
+    stats = dataclasses.replace(stats, energy_drift=_relative_drift(energy),
+                                conserved_drift={name: _relative_drift(conserved[:, c])
+                                                 for c, name in enumerate(system.conserved_names)})
     return Trajectory(t, system.coordinates, system.constraints, q, qd, lam, mags, system.contact_names, normals,
                       stuck, energy, {name: conserved[:, c] for c, name in enumerate(system.conserved_names)},
                       residual, positions, system.particles, tuple(events), stats)
