@@ -13,6 +13,9 @@ from lagsolve.problem.schema import (
     Constraint,
     Coordinate,
     Expected,
+    ExpectedEquilibrium,
+    ExpectedForce,
+    ExpectedPotential,
 )
 
 _EXPECTED_KEYS = ("accelerations", "multipliers", "constraint_forces", "reduced", "conserved",
@@ -53,18 +56,22 @@ class AnswersReader(Reader):
         def plain(path: tuple, v: Any) -> Any:
             return self.expression(path, v, names)
 
-        def force(path: tuple, v: Any) -> dict[str, Any] | None:
+        def force(path: tuple, v: Any) -> ExpectedForce | None:
             if isinstance(v, dict):
                 if not self.keys(path, v, ("vector", "magnitude")):
                     return None
-                result: dict[str, Any] = {}
+                magnitude = vector = None
                 if "magnitude" in v:
-                    result["magnitude"] = self.expression((*path, "magnitude"), v["magnitude"], names)
+                    magnitude = self.expression((*path, "magnitude"), v["magnitude"], names)
+                    if magnitude is None:
+                        return None
                 if "vector" in v:
-                    result["vector"] = self.vector((*path, "vector"), v["vector"], names)
-                return None if None in result.values() else result
+                    vector = self.vector((*path, "vector"), v["vector"], names)
+                    if vector is None:
+                        return None
+                return ExpectedForce(magnitude, vector)
             magnitude = self.expression(path, v, names)
-            return None if magnitude is None else {"magnitude": magnitude}
+            return None if magnitude is None else ExpectedForce(magnitude)
 
         reduced_raw = spec.get("reduced", {})
         reduced: dict[str, Any] = {}
@@ -92,7 +99,8 @@ class AnswersReader(Reader):
             effective_potential=effective,
         )
 
-    def effective_potential(self, value: Any, names: gateway.Namespace, coordinates: list[str]) -> dict | None:
+    def effective_potential(self, value: Any, names: gateway.Namespace,
+                            coordinates: list[str]) -> ExpectedPotential | None:
         path = ("expected", "effective_potential")
         spec = self.mapping(path, value)
         if spec is None or not self.keys(path, spec, ("coordinate", "expression", "equilibria"), ("coordinate",)):
@@ -101,10 +109,10 @@ class AnswersReader(Reader):
             self.issue((*path, "coordinate"), f"unknown coordinate {shown(spec['coordinate'])}",
                        known_names("coordinates", coordinates))
             return None
-        result: dict[str, Any] = {"coordinate": spec["coordinate"]}
+        expression = None
         if "expression" in spec:
-            result["expression"] = self.expression((*path, "expression"), spec["expression"], names)
-        equilibria = []
+            expression = self.expression((*path, "expression"), spec["expression"], names)
+        equilibria: list[ExpectedEquilibrium] = []
         raw = spec.get("equilibria") or []
         if not isinstance(raw, list):
             self.issue((*path, "equilibria"), f"expected a list, found {kind_of(raw)}",
@@ -115,14 +123,12 @@ class AnswersReader(Reader):
             item = self.mapping(ipath, item)
             if item is None or not self.keys(ipath, item, ("value", "stable", "frequency"), ("value",)):
                 continue
-            entry: dict[str, Any] = {"value": self.expression((*ipath, "value"), item["value"], names)}
-            if "stable" in item:
-                entry["stable"] = self.flag((*ipath, "stable"), item["stable"])
-            if "frequency" in item:
-                entry["frequency"] = self.expression((*ipath, "frequency"), item["frequency"], names)
-            equilibria.append(entry)
-        result["equilibria"] = equilibria
-        return result
+            stable = self.flag((*ipath, "stable"), item["stable"]) if "stable" in item else None
+            frequency = (self.expression((*ipath, "frequency"), item["frequency"], names) if "frequency" in item
+                         else None)
+            equilibria.append(ExpectedEquilibrium(self.expression((*ipath, "value"), item["value"], names), stable,
+                                                  frequency))
+        return ExpectedPotential(spec["coordinate"], expression, tuple(equilibria))
 
     def independent(self, value: Any, coordinates: list[Coordinate]) -> tuple[str, ...]:
         """``independent: [x]``: the coordinates to keep as minimal coordinates (each once)."""
