@@ -294,7 +294,7 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
     >>> [round(float(y), 9) for y in run.columns()["y"]]
     [0.0, -0.5, -2.0]
     """
-    from lagsolve.app.simulation import Coordinates, SimulationOptions, run_simulation
+    from lagsolve.app.simulation import Coordinates, SimulationOptions, simulate_derivation, simulate_form
     from lagsolve.mechanics.derivation import Derivation
     from lagsolve.numeric.integrate import METHODS, AfterRelease
 
@@ -314,32 +314,12 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
                                 method=method, rtol=rtol, atol=atol, max_step=max_step, after_release=after_release,
                                 coordinates=coordinates, analysis_timeout=budget)
     if isinstance(path_or_derivation, Derivation):
-        from lagsolve.mechanics.analysis import energy_reason
-        from lagsolve.mechanics.minimal_chart import minimal_chart
-
-        derivation = path_or_derivation
-        if derivation.form is None:
-            raise SpecError([Issue(derivation.problem.source, 0, "", "this derivation has no matrix form to simulate")])
-        if derivation.analysis is not None:
-            chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
-            energy_note = energy_reason(derivation.analysis.conservation)
-            result = run_simulation(derivation.form, derivation.conserved or {}, options, chart=chart,
-                                    chart_note=chart_note, energy_note=energy_note)
-        else:
-            result = _simulate_form(derivation.form, options)
+        result = simulate_derivation(path_or_derivation, options)
     else:
         from lagsolve.mechanics.matrix_form import matrix_form
 
-        result = _simulate_form(matrix_form(_problem(path_or_derivation), display=False), options)
+        result = simulate_form(matrix_form(_problem(path_or_derivation), display=False), options)
     return _trajectory(result)
-
-
-def _simulate_form(form: Any, options: Any) -> Any:
-    from lagsolve.app.simulation import run_simulation
-    from lagsolve.mechanics.analysis import monitored
-
-    conserved, chart, chart_note, energy_note = monitored(form, options.analysis_timeout)
-    return run_simulation(form, conserved, options, None, "", chart, chart_note, energy_note)
 
 
 def _trajectory(result: Any) -> Trajectory:

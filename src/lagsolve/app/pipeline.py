@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from lagsolve.app.simulation import SimulationOptions, SimulationResult, run_simulation
+from lagsolve.app.simulation import SimulationOptions, SimulationResult, simulate_derivation, simulate_form
 from lagsolve.check.status import Status
 from lagsolve.files import safe_slug
 
@@ -84,13 +84,7 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
         files[potential["file"]] = potential.pop("png")
     text = summary(derivation)
     if simulate is not None:
-        from lagsolve.mechanics.minimal_chart import minimal_chart
-
-        chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
-        from lagsolve.mechanics.analysis import energy_reason
-
-        run = run_simulation(derivation.form, derivation.conserved, simulate, chart=chart, chart_note=chart_note,
-                             energy_note=energy_reason(derivation.analysis.conservation))
+        run = simulate_derivation(derivation, simulate)
         slug = safe_slug(derivation.problem.source)
         figures = []
         for key, data in run.figures.items():
@@ -251,14 +245,9 @@ def golden_differences(reports: Reports, folder: Path) -> list[str]:
 
 
 def _simulate(problem: Problem, options: SimulationOptions, progress: object) -> SimulationResult:
-    from lagsolve.mechanics.analysis import monitored
     from lagsolve.mechanics.matrix_form import matrix_form
 
-    form = matrix_form(problem, display=False)
-    # the conserved quantities to monitor and the minimal coordinates come from cheap criteria on the matrix
-    # form (the same functions derive uses), never from the symbolic solve or the analysis of equilibria
-    conserved, chart, chart_note, energy_note = monitored(form, options.analysis_timeout)
-    return run_simulation(form, conserved, options, progress, "", chart, chart_note, energy_note)
+    return simulate_form(matrix_form(problem, display=False), options, progress)
 
 
 def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: float = 600.0,

@@ -12,6 +12,8 @@ from typing import TYPE_CHECKING, Any
 from lagsolve.enums import TextEnum
 
 if TYPE_CHECKING:
+    from lagsolve.mechanics.matrix_form import MatrixForm
+    from lagsolve.mechanics.results import Derivation
     from lagsolve.numeric.integrate import Trajectory
 
 
@@ -145,3 +147,33 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
                             figures, trajectory)
 
 
+def simulate_form(form: MatrixForm, options: SimulationOptions, progress: Any = None) -> SimulationResult:
+    """A run from the matrix form alone: the conserved quantities to monitor and the minimal coordinates come
+    from cheap criteria on the matrix form (:func:`lagsolve.mechanics.analysis.monitored`, the functions
+    derive uses), never from the symbolic solve or the analysis of equilibria."""
+    from lagsolve.mechanics.analysis import monitored
+
+    conserved, chart, chart_note, energy_note = monitored(form, options.analysis_timeout)
+    return run_simulation(form, conserved, options, progress, "", chart, chart_note, energy_note)
+
+
+def simulate_derivation(derivation: Derivation, options: SimulationOptions, progress: Any = None) -> SimulationResult:
+    """A run from a finished derivation: it monitors what the derivation's analysis found (without an analysis,
+    as :func:`simulate_form`).
+
+    Raises
+    ------
+    SpecError
+        The derivation has no matrix form (and the errors of :func:`run_simulation`).
+    """
+    from lagsolve.errors import Issue, SpecError
+    from lagsolve.mechanics.analysis import energy_reason
+    from lagsolve.mechanics.minimal_chart import minimal_chart
+
+    if derivation.form is None:
+        raise SpecError([Issue(derivation.problem.source, 0, "", "this derivation has no matrix form to simulate")])
+    if derivation.analysis is None:
+        return simulate_form(derivation.form, options, progress)
+    chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
+    return run_simulation(derivation.form, derivation.conserved or {}, options, progress, chart=chart,
+                          chart_note=chart_note, energy_note=energy_reason(derivation.analysis.conservation))
