@@ -37,6 +37,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/derive.py
 	$(BIN)/python bench/simulate.py
 	$(BIN)/python bench/scale.py
+	$(BIN)/python bench/sweep.py
 
 docs: $(STAMP)
 	$(BIN)/mkdocs build --strict

@@ -62,7 +62,8 @@ def test_overrides_change_the_run(runner: CliRunner) -> None:
                                   "--initial", "x=0.5", "--samples", "5"])
     assert result.exit_code == 0, result.output
     rows = [line.split(",") for line in result.stdout.splitlines()]
-    assert rows[0][:5] == ["t", "x", "y", "x_dot", "y_dot"] and len(rows) == 6
+    # bead.yaml declares units, so the header carries them (docs/format.md, Units)
+    assert rows[0][:5] == ["t [s]", "x [m]", "y [m]", "x_dot [m/s]", "y_dot [m/s]"] and len(rows) == 6
     assert float(rows[1][1]) == 0.5 and float(rows[1][2]) == pytest.approx(0.125)
     assert float(rows[-1][0]) == 1.0
     # with g = 1.62 the bead released at x = 0.5 is slower than on Earth
@@ -86,7 +87,8 @@ def test_csv_and_npz_files(runner: CliRunner, tmp_path: Path) -> None:
     """-o FILE.csv writes that file; --format npz writes the archive in the output folder."""
     target = tmp_path / "bead.csv"
     assert runner.invoke(main, ["simulate", BEAD, "--t-end", "1", "--format", "csv", "-o", str(target)]).exit_code == 0
-    assert target.read_text().startswith("t,x,y,x_dot,y_dot,lambda_wire,F_wire,energy")
+    assert target.read_text().startswith("t [s],x [m],y [m],x_dot [m/s],y_dot [m/s],lambda_wire [N],F_wire [N],"
+                                         "energy [J],residual\n")
     npz = runner.invoke(main, ["simulate", BEAD, "--t-end", "1", "--format", "npz", "-o", str(tmp_path)])
     assert npz.exit_code == 0
     archive = np.load(io.BytesIO((tmp_path / "bead" / "bead.npz").read_bytes()))

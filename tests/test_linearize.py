@@ -55,3 +55,80 @@ def test_cyclic_coordinates_are_left_to_the_effective_potential():
     hole = derived_file("hole_table")
     assert hole.analysis.linearization is None
     assert hole.analysis.effective_potential is not None
+
+
+def test_two_masses_on_a_spring_form_a_continuum_of_equilibria():
+    """Two free masses joined by a spring of rest length L0 are in equilibrium wherever x2 - x1 = L0: the
+    equilibria are one line, not isolated points. It is given once, with x2 arbitrary, and the modes are
+    the textbook ones (Taylor, ch. 11): the free translation (omega^2 = 0) and the stretching mode
+    omega^2 = k (m1 + m2)/(m1 m2), with the reduced mass m1 m2/(m1 + m2)."""
+    spring = derived_file("two_masses_spring")
+    s = names(spring.problem)
+    (mode,) = spring.analysis.linearization.modes
+    assert mode.free == (s["x2"],)
+    assert exactly_equal(dict(mode.point)[s["x1"]], s["x2"] - s["L0"])
+    m1, m2, k = s["m1"], s["m2"], s["k"]
+    expected = [sympy.S(0), k * (m1 + m2) / (m1 * m2)]
+    assert len(mode.squared_frequencies) == 2
+    assert all(any(exactly_equal(got, want) for want in expected) for got in mode.squared_frequencies)
+    assert mode.stable is None and "continuum" in mode.note  # neutral along the line, not "unstable"
+
+
+def test_no_force_at_rest_makes_every_configuration_an_equilibrium():
+    """A charge in a uniform magnetic field feels no force at rest: every (x, y) is an equilibrium, said once
+    (not eight random points of the plane)."""
+    charge = derived_text("""
+name: Charge in a magnetic field
+parameters: {m: mass, q: charge, B: field}
+coordinates: [x, y]
+particles:
+  p: {mass: m, position: [x, y]}
+forces:
+  - on: p
+    force: [q*B*y_dot, -q*B*x_dot]
+simulation:
+  values: {m: 1, q: 1, B: 2}
+  initial: {x: 0.3, y: -0.2}
+""")
+    (mode,) = charge.analysis.linearization.modes
+    assert mode.point == () and {q.name for q in mode.free} == {"x", "y"}
+    assert "every configuration" in mode.note
+
+
+def test_numeric_equilibria_show_one_point_of_a_continuum():
+    """The numeric multi-start lands anywhere on a continuum of equilibria; one point of it is listed, marked
+    as not isolated, and its zero omega^2 is not read as instability."""
+    from lagsolve.mechanics.linearize import numeric_linearization
+
+    system = derived_file("two_masses_spring").analysis.system
+    values = {"m1": 1.0, "m2": 2.0, "k": 5.0, "L0": 1.0}
+    (mode,) = numeric_linearization(system, values, {"x1": 0.0, "x2": 1.0}).modes
+    point = {q.name: float(v) for q, v in mode.point}
+    assert abs(point["x2"] - point["x1"] - 1.0) < 1e-9
+    assert "continuum" in mode.note and mode.stable is None
+    assert sorted(float(w) for w in mode.squared_frequencies) == [0.0, 7.5]  # k (m1 + m2)/(m1 m2)
+
+
+def test_a_singular_point_of_the_coordinates_is_no_equilibrium():
+    """The elastic pendulum in polar coordinates: F(q, 0) = 0 also at r = 0, but only because the theta
+    equation carries the factor r of M (the true theta_ddot = -(2 r_dot theta_dot + g sin theta)/r is
+    singular there). Such points are not listed as (stable!) equilibria. The hanging one is
+    r0 = l0 + m g/k with omega^2 = k/m (the spring) and g/r0 (the pendulum) — Taylor, problem 7.31."""
+    elastic = derived_text("""
+name: Elastic pendulum
+parameters: {m: mass, k: stiffness, l0: rest length, g: gravity}
+coordinates: [r, theta]
+particles:
+  bob: {mass: m, position: [r*sin(theta), -r*cos(theta)]}
+gravity: [0, -g]
+potential: k*(r - l0)**2/2
+""")
+    s = names(elastic.problem)
+    modes = elastic.analysis.linearization.modes
+    assert all(dict(m.point)[s["r"]] != 0 for m in modes)
+    (down,) = [m for m in modes if dict(m.point)[s["theta"]] == 0]
+    r0 = s["l0"] + s["m"] * s["g"] / s["k"]
+    assert exactly_equal(dict(down.point)[s["r"]], r0)
+    assert down.stable is True
+    expected = [s["k"] / s["m"], s["g"] / r0]
+    assert all(any(exactly_equal(got, want) for want in expected) for got in down.squared_frequencies)

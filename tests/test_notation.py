@@ -86,6 +86,10 @@ def test_no_leading_minus_in_a_denominator() -> None:
     note = Notation(["x"])
     assert note.latex(x / (-big - m * sympy.sin(th) ** 2)) == r"- \frac{x}{M + m \sin^{2}{\left(\theta \right)}}"
     assert note.text(x / (-big - m)) == "-x/(M + m)"
+    # mixed signs: the first printed term decides (the disk rolling inside a cylinder's -2 g sin θ/(3 (R - r)))
+    R, r = sympy.symbols("R r", positive=True)
+    assert note.latex(x / (-3 * R + 3 * r)) == r"- \frac{x}{3 R - 3 r}"
+    assert note.latex(x / (3 * R - 3 * r)) == r"\frac{x}{3 R - 3 r}"
 
 
 def test_dotted_letters_in_notes_are_math_in_latex() -> None:

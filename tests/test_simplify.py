@@ -108,3 +108,20 @@ def test_norm_is_the_euclidean_length():
     vector = [m * (g + fpp * v**2) * fp / (1 + fp**2), -m * (g + fpp * v**2) / (1 + fp**2),
               mu * sympy.sin(th) * x]
     assert_same(norm(vector), sympy.sqrt(sum(c**2 for c in vector)), functions={f: _concrete_f})
+
+
+def test_norm_takes_a_shared_factor_out_before_the_squares():
+    """A tension T along the slope (-cos a, sin a), T a long expression: |T u| = |T| once the shared factor is
+    out (summing the squares first hid cos^2 + sin^2 = 1 inside a sqrt of a long polynomial)."""
+    from lagsolve.mechanics.simplify import common_factor
+
+    a, mu, g = sympy.symbols("alpha mu g", positive=True)
+    xd = sympy.Symbol("x_dot", real=True)
+    tension = g * (1 + sympy.sin(a) - mu * sympy.cos(a) * xd / sympy.Abs(xd))
+    got = norm([-tension * sympy.cos(a), tension * sympy.sin(a)])
+    f_got, f_want = sympy.lambdify([a, mu, g, xd], got), sympy.lambdify([a, mu, g, xd], sympy.Abs(tension))
+    for point in [(0.3, 0.2, 9.8, 1.5), (1.2, 0.9, 1.0, -0.4), (0.7, 2.5, 3.0, 2.0), (0.1, 0.05, 9.8, -3.0)]:
+        assert abs(f_got(*point) - f_want(*point)) < 1e-12 * abs(f_want(*point))
+    assert not got.has(sympy.sqrt(2)) and not any(isinstance(e, sympy.Pow) and e.exp == sympy.S.Half
+                                                  for e in sympy.preorder_traversal(got))
+    assert common_factor([x, 0]) == 1 and common_factor([x * v, x * v**2]) == x * v

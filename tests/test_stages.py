@@ -93,3 +93,34 @@ def test_inner_limit_is_cut_to_the_outer_one() -> None:
         with cpu_limit(0.3), pytest.raises(StageTimeout):
             _burn(60.0)
         assert _burn(0.2) == 0.2  # the outer limit is armed again, with time left
+
+
+def test_a_timeout_inside_a_finaliser_is_not_reported_and_the_stage_still_stops() -> None:
+    """A timeout that fires in a ``__del__`` (or a weakref callback during garbage collection) cannot be
+    raised there; it must not reach ``sys.unraisablehook`` (pytest turns that into an error of the next
+    test, the CLI into an "Exception ignored" on stderr), and the stage still times out on the next tick."""
+    import gc
+    import sys
+
+    reported: list[object] = []
+    previous = sys.unraisablehook
+    sys.unraisablehook = lambda unraisable: reported.append(unraisable.exc_value)
+
+    class Finalised:
+        def __del__(self) -> None:
+            raise StageTimeout  # as _raise_timeout does when SIGPROF lands in a finaliser
+
+    try:
+        with pytest.raises(StageTimeout), cpu_limit(0.3):
+            Finalised()
+            gc.collect()
+            _burn(60.0)
+        class Other:
+            def __del__(self) -> None:
+                raise ValueError("not a timeout")
+
+        Other()
+        gc.collect()
+    finally:
+        sys.unraisablehook = previous
+    assert [type(e) for e in reported] == [ValueError]  # other unraisable errors are still reported

@@ -25,12 +25,14 @@ if TYPE_CHECKING:
     from lagsolve.errors import DerivationError, LagsolveError, RenderError, SimulationError, SpecError
     from lagsolve.mechanics.derivation import Derivation
     from lagsolve.problem.schema import Problem
+    from lagsolve.sweep.api import sweep
 
 #: public name → the module that defines it (imported on first use, see ``__getattr__``)
 _PUBLIC = {
     "load_problem": "lagsolve.api",
     "derive": "lagsolve.api",
     "simulate": "lagsolve.api",
+    "sweep": "lagsolve.sweep.api",
     "check": "lagsolve.api",
     "Trajectory": "lagsolve.api",
     "Derivation": "lagsolve.mechanics.derivation",
@@ -45,7 +47,7 @@ _PUBLIC = {
 
 __all__ = [
     "CheckReport", "Derivation", "DerivationError", "LagsolveError", "Problem", "RenderError", "SimulationError",
-    "SpecError", "Trajectory", "__version__", "check", "derive", "load_problem", "simulate",
+    "SpecError", "Trajectory", "__version__", "check", "derive", "load_problem", "simulate", "sweep",
 ]
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 import codecs
 import os
 import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -125,6 +126,8 @@ def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
             results.append(Unchecked(str(path), str(error), code))
             continue
         results.append(checked)
+        for warning in checked.warnings:
+            _note(f"warning: {checked.source}: {warning}", err=True)
         if fmt == "text":
             click.echo(checked.table, nl=False)
         if not checked.passed:
@@ -192,7 +195,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
             status = max(status, _fail(error))
             continue
         for warning in reports.warnings:
-            _note(f"warning: {reports.source}: not completed: {warning}", err=True)
+            _note(f"warning: {reports.source}: {warning}", err=True)
         if stream and golden is None:
             texts.append(reports.outputs["json"])
             continue
@@ -318,6 +321,8 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
         folder = Path(safe_slug(path))
         to_stdout = fmt == "csv" and output is None
         _note(result.summary, nl=False, err=to_stdout)
+        for warning in result.warnings:
+            _note(f"warning: {result.source}: {warning}", err=True)
         written = []
         try:
             for kind, data in result.tables.items():
@@ -352,6 +357,80 @@ def schema(kind: str) -> None:
     from lagsolve.schemas import schema_json
 
     click.echo(schema_json(kind), nl=False)
+
+
+def _sweep_progress() -> Callable[[int, int], None]:
+    """A progress bar over the runs of a sweep (made at the first report), on stderr when it is a terminal."""
+    from tqdm import tqdm
+
+    bars: list[tqdm] = []
+
+    def update(done: int, total: int) -> None:
+        if not bars:
+            bars.append(tqdm(total=total, unit="run", delay=1.0, disable=not sys.stderr.isatty(), leave=False))
+        bars[0].update(done - bars[0].n)
+        if done >= total:
+            bars[0].close()
+
+    return update
+
+
+@main.command()
+@click.argument("file", type=click.Path(path_type=Path))
+@click.option("--grid", multiple=True, metavar="NAME=START:STOP:COUNT",
+              help="Swept parameter, coordinate (theta1) or velocity (theta1_dot); repeat for a Cartesian product.")
+@click.option("--random", "random_", multiple=True, metavar="NAME=LOW:HIGH", help="Uniform random values (repeatable).")
+@click.option("--runs", type=click.IntRange(min=1), help="Random runs (per grid point).")
+@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True, help="Seed of the random values.")
+@click.option("--t-end", type=click.FloatRange(min=0, min_open=True), help="End time (default: simulation.t_end).")
+@click.option("--method", type=click.Choice(["DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA"]), default="DOP853",
+              show_default=True, help="Integrator; DOP853, RK45 and RK23 run batched.")
+@click.option("--rtol", type=click.FloatRange(min=0, min_open=True), default=1e-10, show_default=True)
+@click.option("--atol", type=click.FloatRange(min=0, min_open=True), default=1e-12, show_default=True)
+@click.option("--poincare", metavar="SECTION", help='Record section crossings, e.g. "theta2=0, theta2_dot>0".')
+@click.option("--workers", type=click.IntRange(min=0), default=0, show_default=True,
+              help="Worker processes of a local Dask cluster (0: run in this process).")
+@click.option("--scheduler", metavar="ADDRESS", help="Run on an existing Dask cluster, e.g. tcp://10.0.0.1:8786.")
+@click.option("--chunk-size", type=click.IntRange(min=1), help="Runs per chunk (default: about 4 chunks per worker).")
+@click.option("-o", "--output", type=click.Path(path_type=Path), required=True,
+              help="The table: FILE.parquet or FILE.csv (one row per run).")
+@click.option("--plot", is_flag=True, help="Also write the regime map (two inputs) or bifurcation scatter (one).")
+@click.option("--color", metavar="COLUMN", help="Colour the regime map by this column instead of the outcome.")
+def sweep(file: Path, grid: tuple[str, ...], random_: tuple[str, ...], runs: int | None, seed: int,
+          t_end: float | None, method: str, rtol: float, atol: float, poincare: str | None, workers: int,
+          scheduler: str | None, chunk_size: int | None, output: Path, plot: bool, color: str | None) -> None:
+    """Run problem FILE many times over parameters and initial conditions; one table row per run.
+
+    \b
+    lagsolve sweep problems/double_pendulum.yaml --grid theta1=0.1:1.5:32 --grid theta2=0.1:1.5:32 \\
+        --t-end 5 --workers 2 -o s.parquet --plot
+    lagsolve sweep problems/spring_on_rough_floor.yaml --random mu_s=0.1:0.5 --runs 200 -o s.csv
+    """
+    from lagsolve.files import write_file
+    from lagsolve.sweep.api import sweep as run_sweep
+    from lagsolve.sweep.output import SUFFIXES, table_bytes
+
+    if output.suffix not in SUFFIXES:
+        raise click.BadParameter(f"{output}: name the table FILE.parquet or FILE.csv", param_hint="-o/--output")
+    try:
+        frame = run_sweep(file, grid=grid, random=random_, runs=runs, seed=seed, t_end=t_end, method=method,
+                          rtol=rtol, atol=atol, poincare=poincare, workers=workers, scheduler=scheduler,
+                          chunk_size=chunk_size, progress=_sweep_progress())
+        written = [write_file(output.parent, output.name, table_bytes(frame, output.suffix))]
+        if plot or color:
+            from lagsolve.sweep.figures import figures, png
+
+            for key, figure in figures(frame, frame.attrs["swept"], file.stem, color).items():
+                written.append(write_file(output.parent, f"{output.stem}_{key}.png", png(figure)))
+    except LagsolveError as error:
+        sys.exit(_fail(error))
+    except ImportError as error:
+        click.echo(f"error: {error}", err=True)
+        sys.exit(1)
+    counts = frame["outcome"].value_counts()
+    _note(f"{file}: {len(frame)} runs (" + ", ".join(f"{k} {v}" for k, v in counts.items()) + ")")
+    for target in written:
+        _note(f"  wrote {target}")
 
 
 if __name__ == "__main__":  # pragma: no cover

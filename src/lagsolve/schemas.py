@@ -20,6 +20,7 @@ _EXPR = {"type": ["string", "number"], "description": "an expression in the decl
 _VECTOR = {"type": "array", "items": {"$ref": "#/$defs/expression"}, "minItems": 2, "maxItems": 3}
 _TEXT = {"type": "string"}
 _POSITIVE = {"type": "number", "exclusiveMinimum": 0}
+_UNIT = {"type": ["string", "integer"], "description": "a unit such as kg, m/s^2, N*m or rad (1: a pure number)"}
 
 
 def _closed(properties: dict[str, Any], required: tuple[str, ...] = ()) -> dict[str, Any]:
@@ -54,11 +55,11 @@ def input_schema() -> dict[str, Any]:
     properties = {
         "name": {"type": "string", "minLength": 1},
         "description": _TEXT,
-        "time": {"$ref": "#/$defs/name"},
+        "time": {"anyOf": [{"$ref": "#/$defs/name"}, _closed({"name": {"$ref": "#/$defs/name"}, "unit": _UNIT})]},
         "parameters": _names(_closed({"description": _TEXT, "positive": {"type": "boolean"},
-                                      "real": {"type": "boolean"}, "value": {"type": "number"}})),
-        "functions": _names(_closed({})),
-        "coordinates": _names(_closed({"description": _TEXT, "positive": {"type": "boolean"}})),
+                                      "real": {"type": "boolean"}, "value": {"type": "number"}, "unit": _UNIT})),
+        "functions": _names(_closed({"description": _TEXT, "unit": _UNIT})),
+        "coordinates": _names(_closed({"description": _TEXT, "positive": {"type": "boolean"}, "unit": _UNIT})),
         "particles": _by_name(_closed({"mass": expr, "position": vector}, ("mass", "position"))),
         "bodies": _by_name(_closed({
             "mass": expr, "position": vector,
@@ -172,6 +173,7 @@ def output_schema() -> dict[str, Any]:
                                                                 "(docs/format.md, Output)"},
         "notes": {"type": "array", "items": _closed({"stage": text, "kind": text, "reason": text},
                                                     ("stage", "kind", "reason"))},
+        "units": _units_schema(),
     }
     return {
         "$schema": DRAFT,
@@ -185,6 +187,23 @@ def output_schema() -> dict[str, Any]:
         "additionalProperties": False,
         "$defs": {"name": _NAME},
     }
+
+
+def _units_schema() -> dict[str, Any]:
+    """``units``: present only when the problem declares units (null: a unit that cannot be known)."""
+    unit = {"type": ["string", "null"]}
+    units = _by_name(unit)
+    return {**_closed({
+        "time": {"type": "string"}, "energy": unit, "coordinates": units, "accelerations": units,
+        "generalized_forces": units,
+        "multipliers": _by_name(_closed({"unit": unit, "constraint": unit}, ("unit", "constraint"))),
+        "constraint_forces": _by_name({"anyOf": [unit, _closed({"generalized": units}, ("generalized",))]}),
+        "friction": units,
+        "missing": {"type": "array", "items": {"type": "string"}},
+    }, ("time", "energy", "coordinates", "accelerations", "multipliers", "constraint_forces")),
+        "description": "the unit of each result (docs/format.md, Units); a multiplier's unit is the generalized "
+                       "force's over its constraint's coefficient, so it depends on how the constraint is written "
+                       "('constraint' is the unit of its expression)"}
 
 
 def schema(kind: str) -> dict[str, Any]:

@@ -32,7 +32,7 @@ class Reports:
     summary: str
     outputs: dict[str, str]
     files: dict[str, bytes] = field(default_factory=dict)
-    warnings: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()  # each a sentence: missing units, "not completed: <stage note>"
 
 
 FIGURE_CAPTIONS = {
@@ -108,7 +108,19 @@ def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
     lines = summary_text.splitlines()
     if "  not completed:" not in lines:
         return ()
-    return tuple(line.strip() for line in lines[lines.index("  not completed:") + 1:] if line.startswith("    "))
+    return tuple("not completed: " + line.strip() for line in lines[lines.index("  not completed:") + 1:]
+                 if line.startswith("    "))
+
+
+def _unit_warnings(problem: Problem) -> tuple[str, ...]:
+    """A file that declares some units but not all: the names without one (their dimensions go unchecked)."""
+    from lagsolve.mechanics.result_units import missing_units
+
+    missing = missing_units(problem)
+    if not missing:
+        return ()
+    return (f"units: no unit declared for {', '.join(missing)}, so dimensions involving "
+            f"{'it' if len(missing) == 1 else 'them'} are not checked; add 'unit:' to each (1 for a pure number)",)
 
 
 def _potential_figure(derivation: Derivation) -> dict | None:
@@ -129,8 +141,13 @@ def _potential_figure(derivation: Derivation) -> dict | None:
         curve = potential_curve(derivation, dict(spec.values), initial=dict(spec.initial))
     except (ValueError, KeyError, TypeError, ZeroDivisionError, StopIteration, NameError, OverflowError):
         return None
+    from lagsolve.mechanics.result_units import result_units
+
+    units = result_units(problem, derivation.kinetic)
+    coordinate = str(getattr(analysis.effective_potential, "coordinate", ""))
+    axis_units = (None, None) if units is None else (units.coordinates.get(coordinate), units.energy)
     figure = potential_figure(curve.q, curve.v, curve.equilibria, coordinate=curve.coordinate,
-                              title=f"{problem.name}: effective potential")
+                              title=f"{problem.name}: effective potential", units=axis_units)
     return {"file": f"{safe_slug(problem.source)}_effective_potential.png", "png": png_bytes(figure),
             "caption": "Effective potential with its equilibria, for the simulation's values"}
 
@@ -158,7 +175,8 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json
     text, outputs, files = run_with_budget(_derive_and_render, (problem, formats, templates, simulate, timeout),
                                            timeout, f"the derivation of {path}",
                                            on_partial=_render_core(formats, templates))
-    return Reports(str(path), safe_slug(path), problem.name, text, outputs, files, _warnings(outputs, text))
+    return Reports(str(path), safe_slug(path), problem.name, text, outputs, files,
+                   _unit_warnings(problem) + _warnings(outputs, text))
 
 
 @dataclass(frozen=True)
@@ -170,6 +188,7 @@ class Checked:
     table: str
     counts: dict[str, int]
     rows: tuple[dict[str, str], ...] = ()  # one per verdict (:func:`lagsolve.render.machine.verdict_rows`)
+    warnings: tuple[str, ...] = ()  # about the file (units missing)
 
     @property
     def passed(self) -> bool:
@@ -207,7 +226,7 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
     problem = load_problem(path)
     _preload()
     table, counts, rows = run_with_budget(_derive_and_check, (problem, timeout), timeout, f"the check of {path}")
-    return Checked(str(path), problem.name, table, counts, rows)
+    return Checked(str(path), problem.name, table, counts, rows, _unit_warnings(problem))
 
 
 def _preload() -> None:
@@ -269,4 +288,7 @@ def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: floa
 
     problem = load_problem(path)
     _preload()
-    return run_with_budget(_simulate, (problem, options, progress), timeout, f"the simulation of {path}")
+    from dataclasses import replace
+
+    result = run_with_budget(_simulate, (problem, options, progress), timeout, f"the simulation of {path}")
+    return replace(result, warnings=_unit_warnings(problem))

@@ -55,6 +55,7 @@ class SimulationResult:
     tables: dict[str, str | bytes]
     figures: dict[str, bytes]
     trajectory: Trajectory
+    warnings: tuple[str, ...] = ()  # about the file (units missing), for the command line to show
 
 
 def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progress: Any = None,
@@ -112,8 +113,13 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     )
     name = problem.name
     tables: dict[str, str | bytes] = {}
+    units: dict[str, str] = {}
+    if problem.has_units:
+        from lagsolve.mechanics.result_units import column_units
+
+        units = column_units(problem, form.model.kinetic)
     if "csv" in options.tables:
-        tables["csv"] = table.to_csv(trajectory)
+        tables["csv"] = table.to_csv(trajectory, units)
     if "npz" in options.tables:
         tables["npz"] = table.to_npz(trajectory)
     figures: dict[str, bytes] = {}
@@ -137,7 +143,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
 
             curve = (k, shape)
         if options.plots:
-            for key, figure in plots.figures(trajectory, name, labels, curve).items():
+            for key, figure in plots.figures(trajectory, name, labels, curve, units=units).items():
                 figures[key] = plots.png_bytes(figure)
         if options.animate and trajectory.particles:
             figures["animation"] = plots.animation_gif(trajectory, name)

@@ -21,6 +21,7 @@ from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.elimination import Elimination, eliminate
 from lagsolve.mechanics.forces import ForceTerm
 from lagsolve.mechanics.friction import FrictionTerm
+from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.lagrange import LagrangeTerms, solve_augmented
 from lagsolve.mechanics.linsolve import SIZE_LIMIT
 from lagsolve.mechanics.matrix_form import MatrixForm, matrix_form
@@ -28,7 +29,7 @@ from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.normal import NormalForce, normal_forces
 from lagsolve.mechanics.reactions import Reaction
 from lagsolve.mechanics.results import ConstraintForce, Derivation, FrictionResult
-from lagsolve.mechanics.simplify import compound_angles, norm, tidy, tidy_sum, tidy_sum_light
+from lagsolve.mechanics.simplify import compound_angles, measure, norm, tidy, tidy_sum, tidy_sum_light
 from lagsolve.mechanics.stages import DEFAULT_BUDGET, StageNote, Stages, StageTimeout, cpu_limit
 from lagsolve.problem.schema import Problem
 
@@ -250,8 +251,9 @@ def _constraint_force(react: Reaction, multiplier: Any, terms: ConstraintTerms,
     if len(per_particle) == 1:
         _, vector, magnitude = per_particle[0]
         return ConstraintForce(react.name, vector, magnitude, tuple(per_particle), react.note)
-    sizes = {sympy.srepr(m) for _, _, m in per_particle}
-    common = per_particle[0][2] if len(sizes) == 1 else None
+    sizes = [m for _, _, m in per_particle]
+    # the same size written two ways (one side's direction simplified further) is still one size
+    common = min(sizes, key=measure) if all(proved_zero(m - sizes[0]) for m in sizes[1:]) else None
     return ConstraintForce(react.name, None, common, tuple(per_particle), react.note)
 
 

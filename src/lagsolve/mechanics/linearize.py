@@ -47,7 +47,10 @@ class Mode:
     Matrices have shape (n, n): ``mass`` :math:`M_0`, ``gyroscopic`` G, ``damping`` D,
     ``stiffness`` K. ``squared_frequencies`` are the :math:`\\omega^2` (None when G or D is
     present or the characteristic polynomial is too large); ``frequencies`` their square
-    roots (None for a negative one); ``stable`` True/False/None.
+    roots (None for a negative one); ``stable`` True/False/None. ``free`` are the coordinates
+    left arbitrary when the equilibria are not isolated (a continuum, e.g. two masses joined by a
+    spring, translated together): ``point`` then gives the others in terms of them, and the
+    zero ω² along the continuum is neutral, not a sign of instability.
     """
 
     point: tuple[tuple[Any, Any], ...]
@@ -59,6 +62,7 @@ class Mode:
     frequencies: tuple[Any, ...] | None
     stable: bool | None
     note: str = ""
+    free: tuple[Any, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -105,24 +109,41 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
     static = [tidy(f.xreplace(rest)) for f in terms.forcing]
     if any(sympy.count_ops(f) > SOLVE_LIMIT for f in static):
         return None, "the equilibrium equations are too large to solve symbolically"
-    try:
-        solutions = sympy.solve(static, list(model.coordinates), dict=True)
-    except (NotImplementedError, ValueError, TypeError):
-        return None, "the equilibrium equations could not be solved symbolically"
-    points = []
+    coordinates = list(model.coordinates)
+    if all(f == 0 for f in static):
+        solutions: list[dict[Any, Any]] = [{}]  # no force at rest anywhere: every configuration
+    else:
+        try:
+            solutions = sympy.solve(static, coordinates, dict=True)
+        except (NotImplementedError, ValueError, TypeError):
+            return None, "the equilibrium equations could not be solved symbolically"
+    points = set()
     for s in solutions:
-        if set(s) != set(model.coordinates) or any(v.has(sympy.I) or v.free_symbols & set(model.coordinates)
-                                                    for v in s.values()):
+        free = tuple(q for q in coordinates if q not in s)
+        if any(v.has(sympy.I) or v.free_symbols & (set(s) - set(free)) for v in s.values()):
             continue
-        points.append(tuple((q, _principal(s[q])) for q in model.coordinates))
+        points.add((tuple((q, _principal(s[q])) for q in coordinates if q in s), free))
+    # where M is singular the coordinates themselves are (r = 0 in polar coordinates): F(q, 0) = 0 there only
+    # because the equations were multiplied through by M, so such a point is no equilibrium of the motion
+    mass = sympy.Matrix(terms.mass_matrix)
+    points = {p for p in points if not proved_zero(mass.xreplace(dict(p[0])).det())}
     if not points:
         return None, "no isolated equilibrium was found in closed form"
-    points = sorted(set(points), key=lambda p: sympy.default_sort_key(sympy.Tuple(*[v for _, v in p])))
+    ordered = sorted(points, key=lambda p: (len(p[1]), sympy.default_sort_key(sympy.Tuple(*[v for _, v in p[0]]))))
     F = sympy.Matrix(terms.forcing)
-    K_all = -F.jacobian(list(model.coordinates))
+    K_all = -F.jacobian(coordinates)
     C_all = -F.jacobian(list(model.velocities))
-    modes = tuple(_mode(point, terms.mass_matrix, K_all, C_all, rest, values) for point in points[:MAX_EQUILIBRIA])
+    modes = tuple(_mode(point, terms.mass_matrix, K_all, C_all, rest, values, free)
+                  for point, free in ordered[:MAX_EQUILIBRIA])
     return Linearization(model.coordinates, modes), ""
+
+
+def _continuum_note(free: tuple[Any, ...], n: int) -> str:
+    """The note of a continuum of equilibria with the coordinates ``free`` left arbitrary."""
+    if len(free) == n:
+        return "every configuration is an equilibrium (no force acts at rest)"
+    names = ", ".join(q.name for q in free)
+    return f"a continuum of equilibria: {names} {'is' if len(free) == 1 else 'are'} arbitrary"
 
 
 def _principal(value: Any) -> Any:
@@ -133,7 +154,7 @@ def _principal(value: Any) -> Any:
 
 
 def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any, rest: dict[Any, Any],
-          values: dict[str, float] | None = None) -> Mode:
+          values: dict[str, float] | None = None, free: tuple[Any, ...] = ()) -> Mode:
     at = {**dict(point), **rest}
     M0 = sympy.Matrix(mass).xreplace(at).applyfunc(tidy)
     K = K_all.xreplace(at).applyfunc(tidy)
@@ -163,8 +184,12 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
             signs = [sign_core(r)[0] for r in squares]
             stable = False if any(x == -1 for x in signs) else (True if all(x == 1 for x in signs) else None)
             frequencies = tuple(tidy(sympy.sqrt(r)) if x == 1 else None for r, x in zip(squares, signs, strict=True))
+    if free:
+        # along the continuum ω² = 0 is neutral: stable only in the other directions, so not decided here
+        stable = None if stable is not False else False
+        note = _continuum_note(free, K.rows) + (f"; {note}" if note else "")
     return Mode(point, sympy.ImmutableMatrix(M0), sympy.ImmutableMatrix(G), sympy.ImmutableMatrix(D),
-                sympy.ImmutableMatrix(K), squares, frequencies, stable, note)
+                sympy.ImmutableMatrix(K), squares, frequencies, stable, note, free)
 
 
 def _numeric_squares(M0: Any, K: Any, values: dict[str, float] | None) -> tuple[Any, bool | None, Any] | None:
@@ -244,6 +269,11 @@ def numeric_linearization(system: MotionSystem, values: dict[str, float], initia
             continue
         if any(np.allclose(point, p, atol=1e-7) for p in found):
             continue
+        if np.linalg.cond(np.asarray(f_mass(point), dtype=float)) > 1e12:
+            continue  # a singular point of the coordinates (M singular), not an equilibrium of the motion
+        if _on_continuum(f_static, -np.asarray(f_jac(point), dtype=float), point) and any(
+                _on_continuum(f_static, -np.asarray(f_jac(p), dtype=float), p) for p in found):
+            continue  # the multi-start lands anywhere on a continuum: one point of it is shown
         found.append(point)
     if not found:
         raise StageSkipped(f"no equilibrium found numerically from {STARTS} starting points")
@@ -256,12 +286,17 @@ def numeric_linearization(system: MotionSystem, values: dict[str, float], initia
         squares = frequencies = None
         stable = None
         note = "numeric, at the simulation values"
+        continuum = _on_continuum(f_static, k0, point)
+        if continuum:
+            note = "not isolated: one point of a continuum of equilibria (K is singular along it); " + note
         if np.max(np.abs(c0)) > 1e-12:
             note += "; gyroscopic or damping terms: normal modes are not computed"
         else:
             eig = np.sort(np.linalg.eigvals(np.linalg.solve(m0, k0)).real)
             squares = tuple(sympy.Float(float(e), 8) for e in eig)
             stable = bool(np.all(eig > 1e-12)) if np.all(np.abs(eig) > 1e-12) else None
+            if continuum and stable is None and np.any(eig < -1e-12):
+                stable = False
             frequencies = tuple(sympy.Float(float(np.sqrt(e)), 8) if e > 1e-12 else None for e in eig)
         modes.append(Mode(tuple((c, sympy.Float(float(v), 8)) for c, v in zip(q, point, strict=True)),
                           sympy.ImmutableMatrix(m0.tolist()).applyfunc(lambda e: sympy.Float(e, 8)),
@@ -269,3 +304,23 @@ def numeric_linearization(system: MotionSystem, values: dict[str, float], initia
                           sympy.ImmutableMatrix(k0.tolist()).applyfunc(lambda e: sympy.Float(e, 8)),
                           squares, frequencies, stable, note))
     return Linearization(model.coordinates, tuple(modes))
+
+
+def _on_continuum(f_static: Any, stiffness: Any, point: Any) -> bool:
+    """Whether the equilibrium ``point`` is not isolated: K is singular there and F(q, 0) stays 0 along
+    its null directions (checked a small step away on both sides)."""
+    import numpy as np
+
+    _, sigma, vt = np.linalg.svd(stiffness)
+    scale = max(1.0, float(sigma[0]) if sigma.size else 1.0)
+    for k, value in enumerate(sigma):
+        if value > 1e-9 * scale:
+            continue
+        for step in (1e-3, -1e-3):
+            with np.errstate(all="ignore"):
+                moved = np.asarray(f_static(point + step * vt[k]), dtype=float)
+            if not np.all(np.isfinite(moved)) or np.max(np.abs(moved)) > 1e-9 * scale:
+                break
+        else:
+            return True
+    return False

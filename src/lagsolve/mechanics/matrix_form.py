@@ -16,8 +16,10 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.constraints import ConstraintTerms, constraint_terms
+from lagsolve.mechanics.dimensions import check_dimensions
 from lagsolve.mechanics.forces import ForceTerm, force_terms
 from lagsolve.mechanics.friction import FrictionTerm, friction_term
+from lagsolve.mechanics.inertia import check_inertia, check_masses
 from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms
 from lagsolve.mechanics.model import Model, build_model
 from lagsolve.mechanics.reactions import Reaction, reaction
@@ -51,6 +53,8 @@ def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
     :func:`~lagsolve.mechanics.lagrange.lagrange_terms`). The equations are the same; only their
     written shape differs.
     """
+    check_dimensions(problem)  # with units: wrong dimensions refused before anything is derived
+    check_masses(problem)  # negative masses: refused with a fix
     model = build_model(problem, tidy=True if display else None)
     constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
     check_constraints(problem, model, constraints)  # degenerate or redundant ones: refused with a fix
@@ -60,5 +64,6 @@ def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
     terms: tuple[ForceTerm | FrictionTerm, ...] = (*loads, *frictions)
     q_forces = tuple(sum((t.generalized[i] for t in terms), sympy.Integer(0)) for i in range(n))
     lagrange = lagrange_terms(model, constraints, q_forces, engine="sympy" if display else "symengine")
+    check_inertia(problem, model.coordinates, lagrange.mass_matrix, constraints)  # undetermined coordinates
     reactions = {c.name: reaction(problem, model, c) for c in constraints}
     return MatrixForm(problem, model, constraints, loads, frictions, q_forces, lagrange, reactions)

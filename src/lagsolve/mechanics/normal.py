@@ -42,7 +42,7 @@ from lagsolve.mechanics.friction import FrictionTerm
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.reactions import Reaction
 from lagsolve.mechanics.signs import sign_core
-from lagsolve.mechanics.simplify import norm, root_of_sum_of_squares, tidy
+from lagsolve.mechanics.simplify import norm, root_of_sum_of_squares, tidy, unit_signs
 from lagsolve.mechanics.surface import Surface
 
 
@@ -106,7 +106,7 @@ def normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, .
     for f in coupled:
         total = a_vec[f.name] + sum((b_vec[f.name, g.normal] * g.normal for g in coupled), sympy.zeros(
             a_vec[f.name].rows, 1))
-        system = sympy.Eq(f.normal, norm([_unit_signs(tidy(c)) for c in total]))
+        system = sympy.Eq(f.normal, norm([unit_signs(tidy(c)) for c in total]))
         out[f.name] = NormalForce(None, "", None, system)
     if len(coupled) == 1:
         f = coupled[0]
@@ -116,16 +116,16 @@ def normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, .
             length = norm(list(parts[f.name][0][0]))
             lam = parts[f.name][0][1]
             a_s = tidy(length * elimination.apply(lam.xreplace(zero_n).xreplace(known)))
-            b_s = tidy(_unit_signs(length * elimination.apply(sympy.diff(lam, f.normal))))
+            b_s = tidy(unit_signs(length * elimination.apply(sympy.diff(lam, f.normal))))
             known_sign, core = sign_core(a_s)
             sign_a = sympy.Integer(known_sign) if known_sign is not None and core == 1 else sympy.sign(core)
             value = tidy(sympy.Abs(a_s)) / tidy(1 - b_s * sign_a)
-            valid = sympy.StrictLessThan(tidy(_unit_signs(sympy.expand(b_s**2))), 1)
+            valid = sympy.StrictLessThan(tidy(unit_signs(sympy.expand(b_s**2))), 1)
             case = ("coupled, one contact: the friction changes the multiplier, so N solves N = |a + b N|; "
                     "N = |a|/(1 - b sign(a)) while |b| < 1")
         else:
-            aa, ab, bb = (tidy(_unit_signs(e)) for e in ((a.T * a)[0], (a.T * b)[0], (b.T * b)[0]))
-            value = tidy(_unit_signs((ab + sympy.sqrt(ab**2 + (1 - bb) * aa)) / (1 - bb)))
+            aa, ab, bb = (tidy(unit_signs(e)) for e in ((a.T * a)[0], (a.T * b)[0], (b.T * b)[0]))
+            value = tidy(unit_signs((ab + sympy.sqrt(ab**2 + (1 - bb) * aa)) / (1 - bb)))
             valid = sympy.StrictLessThan(bb, 1)
             case = ("coupled, one contact: the friction changes the multipliers, so N solves N = |a + b N|, a "
                     "quadratic with one non-negative root")
@@ -169,7 +169,7 @@ def _several(coupled: list[FrictionTerm], parts: dict[str, list[tuple[sympy.Matr
         u = parts[f.name][0][0]
         k = next(j for j in range(u.rows) if u[j] != 0)
         for j, g in enumerate(coupled):
-            B[i, j] = tidy(_unit_signs(b_vec[f.name, g.normal][k] / u[k] * norm(list(u))))
+            B[i, j] = tidy(unit_signs(b_vec[f.name, g.normal][k] / u[k] * norm(list(u))))
     S = sympy.diag(*signs)
     try:
         values = (sympy.eye(n) - S * B).LUsolve(S * sympy.Matrix(a_s))
@@ -188,8 +188,3 @@ def _length(pieces: list[tuple[sympy.Matrix, Any]]) -> Any:
     total = sum((u * lam for u, lam in pieces), sympy.zeros(pieces[0][0].rows, 1))
     return norm(list(total))
 
-
-def _unit_signs(expr: Any) -> Any:
-    """Even powers of sign(v) are 1 where v ≠ 0 (while a contact slides)."""
-    return expr.replace(lambda e: e.is_Pow and isinstance(e.base, sympy.sign) and e.exp.is_even,
-                        lambda e: sympy.Integer(1))

@@ -121,6 +121,8 @@ def tidy(expr: Any) -> Any:
                 except _ERRORS:
                     continue
     best = min(candidates, key=measure)
+    candidates += signs(best)  # v/|v| appears only once roots of squares became Abs: look at the best form
+    best = min(candidates, key=measure)
     if sympy.count_ops(best) <= SIMPLIFY_LIMIT and not best.has(*_TRIG):
         with contextlib.suppress(*_ERRORS):
             candidates.append(sympy.simplify(best))
@@ -178,6 +180,44 @@ def compound_angles(expr: Any) -> Any:
         return expr
 
 
+def signs(expr: Any) -> list[Any]:
+    """``expr`` with ``|v| = v sign(v)`` for each symbol ``v`` whose ``Abs`` divides and that also stands
+    outside one, and ``sign(v)**2 = 1``: the friction direction ``v/|v|`` written ``sign(v)`` as textbooks do
+    (an empty list when no such ``v`` is there). Equal to ``expr`` wherever ``v != 0``.
+
+    >>> import sympy
+    >>> v, a, b = sympy.symbols("v a b", real=True)
+    >>> signs((a*v - b*sympy.Abs(v))/sympy.Abs(v))
+    [a*sign(v) - b]
+    """
+    outside = expr.xreplace({a: sympy.Integer(1) for a in expr.atoms(sympy.Abs)}).free_symbols
+    denominator = sympy.fraction(sympy.together(expr))[1]
+    # only a |v| that divides (v/|v|, the direction of a velocity): elsewhere |v| is already the short form
+    targets = sorted({a for a in denominator.atoms(sympy.Abs) if a.args[0].is_Symbol and a.args[0] in outside},
+                     key=sympy.default_sort_key)
+    if not targets:
+        return []
+    marks = {a: sympy.Dummy(f"s_{a.args[0].name}") for a in targets}
+    form = expr.xreplace({a: a.args[0] * marks[a] for a in targets})
+    hidden = [node for node in sympy.preorder_traversal(form)
+              if (isinstance(node, sympy.Function) or (node.is_Pow and not node.exp.is_Integer))
+              and node.has(*marks.values())]
+    if hidden:
+        return []  # sign(v)**2 = 1 is used on polynomials in sign(v) only, never inside a root or a function
+    try:
+        for a, mark in marks.items():
+            numerator, denominator = sympy.fraction(sympy.cancel(form))
+            power = sympy.degree(denominator, mark)
+            numerator = sympy.rem(sympy.expand(numerator * mark**power), mark**2 - 1, mark)
+            denominator = sympy.rem(sympy.expand(denominator * mark**power), mark**2 - 1, mark)
+            if denominator.has(mark):
+                return []
+            form = (numerator / denominator).xreplace({mark: sympy.sign(a.args[0])})
+        return [sympy.factor(form), sympy.factor_terms(form)]
+    except _ERRORS:
+        return []
+
+
 def tidy_abs(expr: Any) -> Any:
     """Pull factors of known sign out of every ``Abs``: ``Abs(m*X/(1 + f'(x)**2))`` → ``m*Abs(X)/(1 + f'(x)**2)``.
 
@@ -216,13 +256,57 @@ def norm(components: tuple[Any, ...] | list[Any]) -> Any:
     >>> norm([-2*m*v*sympy.sin(th), 2*m*v*sympy.cos(th)])
     2*m*Abs(v)
     """
-    return root_of_square(tidy(sum((c**2 for c in components), sympy.Integer(0))))
+    direct = root_of_square(tidy(unit_signs(sum((c**2 for c in components), sympy.Integer(0)))))
+    common = common_factor(components)
+    if common == 1:
+        return direct
+    # |c u| = |c| |u|: the shared factor (a tension times a direction) comes out before the squares are summed,
+    # so the Pythagorean reduction sees the direction alone
+    rest = root_of_square(tidy(unit_signs(sum((sympy.cancel(c / common) ** 2 for c in components),
+                                              sympy.Integer(0)))))
+    return min((direct, root_of_square(common**2) * rest), key=measure)
+
+
+def unit_signs(expr: Any) -> Any:
+    """Even powers of sign(v) are 1 where v ≠ 0 (where a direction v/|v| is defined, or a contact slides).
+
+    >>> import sympy
+    >>> v = sympy.Symbol("v", real=True)
+    >>> unit_signs(3*sympy.sign(v)**2 + sympy.sign(v)**3)
+    sign(v)**3 + 3
+    """
+    return expr.replace(lambda e: e.is_Pow and isinstance(e.base, sympy.sign) and e.exp.is_even,
+                        lambda e: sympy.Integer(1))
+
+
+def common_factor(components: tuple[Any, ...] | list[Any]) -> Any:
+    """The factors that every nonzero component shares, each to its smallest power (1 when none is).
+
+    >>> import sympy
+    >>> T, a = sympy.symbols("T alpha", real=True)
+    >>> common_factor([-T*sympy.cos(a)/(T + 1), T*sympy.sin(a)/(T + 1), 0])
+    T/(T + 1)
+    """
+    nonzero = [c for c in components if c != 0]
+    if len(nonzero) < 2:
+        return sympy.Integer(1)
+    powers = [sympy.factor(c).as_coeff_Mul()[1].as_powers_dict() for c in nonzero]
+    common = sympy.Integer(1)
+    for base in sorted(powers[0], key=sympy.default_sort_key):
+        exponents = [p.get(base) for p in powers]
+        if base.is_number or any(e is None or not e.is_Rational for e in exponents):
+            continue
+        if all(e > 0 for e in exponents):
+            common *= base ** min(exponents)
+        elif all(e < 0 for e in exponents):
+            common *= base ** max(exponents)
+    return common
 
 
 def root_of_sum_of_squares(terms: list[Any]) -> Any:
     """``sqrt(t1**2 + t2**2 + ...)`` keeping each term's factored form (for the length of a
     sum of orthogonal vectors, whose lengths are the terms)."""
-    return root_of_square(sympy.factor_terms(sum((tidy(t) ** 2 for t in terms), sympy.Integer(0))))
+    return root_of_square(sympy.factor_terms(unit_signs(sum((tidy(t) ** 2 for t in terms), sympy.Integer(0)))))
 
 
 def root_of_square(square: Any) -> Any:

@@ -10,14 +10,18 @@ stage that runs out of its slice, or that does not apply, is recorded as a
 The slices are CPU time of this process (``ITIMER_PROF``: user plus system time), not wall
 time, so a loaded machine does not cut a stage short. When the slice is used up a
 :class:`StageTimeout` is raised inside the stage, again every 0.1 s of CPU until the stage
-returns (so code that swallows one exception still stops). Outside the main thread, where
-Python cannot take signals, the slices are not enforced.
+returns (so code that swallows one exception still stops). A timeout that lands where Python
+cannot raise it (a ``__del__`` or a weakref callback during garbage collection) would be
+reported as an "Exception ignored" on stderr; while a limit is armed such reports of
+:class:`StageTimeout` are dropped, since the next tick raises it again. Outside the main thread,
+where Python cannot take signals, the slices are not enforced.
 """
 
 from __future__ import annotations
 
 import contextlib
 import signal
+import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -150,6 +154,22 @@ def _raise_timeout(signum: int, frame: Any) -> None:
 
 
 @contextlib.contextmanager
+def _quiet_unraisable_timeouts() -> Iterator[None]:
+    """Drop the "Exception ignored" report of a :class:`StageTimeout` that fired inside a finaliser."""
+    previous = sys.unraisablehook
+
+    def hook(unraisable: Any) -> None:
+        if not isinstance(unraisable.exc_value, StageTimeout):
+            previous(unraisable)
+
+    sys.unraisablehook = hook
+    try:
+        yield
+    finally:
+        sys.unraisablehook = previous
+
+
+@contextlib.contextmanager
 def cpu_limit(seconds: float) -> Iterator[None]:
     """Raise :class:`StageTimeout` inside the block once it has used ``seconds`` of CPU time.
 
@@ -169,7 +189,8 @@ def cpu_limit(seconds: float) -> Iterator[None]:
     _armed[0] = True
     signal.setitimer(signal.ITIMER_PROF, max(seconds, 1e-3), 0.1)
     try:
-        yield
+        with _quiet_unraisable_timeouts():
+            yield
     finally:
         _armed[0] = False
         signal.setitimer(signal.ITIMER_PROF, 0, 0)

@@ -78,6 +78,10 @@ class NumericSystem:
     energy_note: str
     chart: NumericChart | None = None  # minimal coordinates, when the constraints are solved in closed form
     evaluations: list[int] = field(default_factory=lambda: [0])
+    # what was compiled, for batch compilers (lagsolve.sweep): each group's expressions (NaN where a symbol
+    # has no value) and the ordered arguments (time, coordinates, velocities, parameters)
+    expressions: Mapping[str, tuple[Any, ...]] = field(default_factory=dict)
+    arguments: tuple[Any, ...] = ()
 
     @property
     def n(self) -> int:
@@ -288,10 +292,11 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
                  "parameters": parameter_symbols}
     allowed = {model.time, *model.coordinates, *model.velocities, *parameter_symbols}
 
+    def usable_group(group: str) -> list[Any]:
+        return [e if isinstance(e, sympy.Basic) and e.free_symbols <= allowed else sympy.nan for e in prepared[group]]
+
     def compile_group(group: str) -> StateFunction:
-        exprs = [e if isinstance(e, sympy.Basic) and e.free_symbols <= allowed else sympy.nan
-                 for e in prepared[group]]
-        return compile_state_function(exprs, **arguments)
+        return compile_state_function(usable_group(group), **arguments)
 
     conserved_names = list(conserved or {})
     usable = [i for i, e in enumerate(prepared["conserved"]) if e.free_symbols <= allowed]
@@ -328,6 +333,9 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
             energy_conserved=energy_conserved,
             energy_note=note,
             chart=None if chart is None else compile_chart(chart, prepare, **arguments),
+            expressions={**{group: tuple(usable_group(group)) for group in prepared if group != "conserved"},
+                         "conserved": tuple(prepared["conserved"][i] for i in usable)},
+            arguments=(model.time, tuple(model.coordinates), tuple(model.velocities), tuple(parameter_symbols)),
         )
     except (ValueError, TypeError, NameError) as exc:  # pragma: no cover - lambdify of a derived expression
         raise SimulationError(f"could not compile the equations of {source}: {exc}") from None

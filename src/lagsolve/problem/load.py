@@ -83,7 +83,9 @@ class _Loader(BodiesReader, ConstraintsReader, AnswersReader, SimulationReader):
         if "description" in data:
             description = self.text(("description",), data["description"], limit=MAX_PROBLEM_DESCRIPTION_LENGTH) or ""
 
-        time_name = data.get("time", "t")
+        time_name, time_unit = data.get("time", "t"), None
+        if isinstance(time_name, dict):  # time: {name: t, unit: ms}
+            time_name, time_unit = self.time_spec(time_name)
         if not isinstance(time_name, str) or not self.declare(("time",), time_name, "the time"):
             if not isinstance(time_name, str):
                 self.issue(("time",), f"expected a name, found {kind_of(time_name)}")
@@ -147,17 +149,25 @@ class _Loader(BodiesReader, ConstraintsReader, AnswersReader, SimulationReader):
             potential=potential, dissipation=dissipation, forces=tuple(forces),
             constraints=tuple(constraints), friction=tuple(friction), expected=expected,
             simulation=simulation, symbols=dict(self.symbols),
-            lines={dotted(k): v for k, v in self.lines.items()}, independent=independent,
+            lines={dotted(k): v for k, v in self.lines.items()}, independent=independent, time_unit=time_unit,
+            texts=self.texts,
         )
+
+    def time_spec(self, value: dict[str, Any]) -> tuple[Any, str | None]:
+        """``time: {name: t, unit: ms}`` → the name and the unit."""
+        self.keys(("time",), value, ("name", "unit"))
+        unit = self.unit(("time", "unit"), value["unit"]) if "unit" in value else None
+        return value.get("name", "t"), unit
 
     def parameters(self, value: Any) -> list[Parameter]:
         out = []
         for name, detail, path in self.names_list(("parameters",), value):
-            description, positive, real, default = "", True, True, None
+            description, positive, real, default, unit = "", True, True, None, None
             if isinstance(detail, str):
                 description = detail
             elif isinstance(detail, dict):
-                self.keys(path, detail, ("description", "positive", "real", "value"))
+                self.keys(path, detail, ("description", "positive", "real", "value", "unit"))
+                unit = self.unit((*path, "unit"), detail["unit"]) if "unit" in detail else None
                 description = self.text((*path, "description"), detail.get("description", "")) or ""
                 if "positive" in detail:
                     positive = bool(self.flag((*path, "positive"), detail["positive"]))
@@ -173,19 +183,24 @@ class _Loader(BodiesReader, ConstraintsReader, AnswersReader, SimulationReader):
                 continue
             symbol = sympy.Symbol(name, positive=True) if positive else sympy.Symbol(name, real=real or None)
             self.symbols[name] = symbol
-            out.append(Parameter(name, description.strip(), positive, real, default, symbol))
+            out.append(Parameter(name, description.strip(), positive, real, default, symbol, unit))
         return out
 
     def function_decls(self, value: Any) -> list[FunctionDecl]:
         out = []
         for name, detail, path in self.names_list(("functions",), value):
-            if detail is not None and not isinstance(detail, str):
-                self.issue(path, f"expected a description, found {kind_of(detail)}")
+            unit = None
+            if isinstance(detail, dict):  # f: {description: ..., unit: m}
+                self.keys(path, detail, ("description", "unit"))
+                unit = self.unit((*path, "unit"), detail["unit"]) if "unit" in detail else None
+                detail = self.text((*path, "description"), detail.get("description", "")) or ""
+            elif detail is not None and not isinstance(detail, str):
+                self.issue(path, f"expected a description or a mapping, found {kind_of(detail)}")
             if not self.declare(path, name, "a function"):
                 continue
             fn = sympy.Function(name, real=True)
             self.functions[name] = fn
-            out.append(FunctionDecl(name, (detail or "").strip() if isinstance(detail, str) else "", fn))
+            out.append(FunctionDecl(name, (detail or "").strip() if isinstance(detail, str) else "", fn, unit))
         return out
 
     def coordinates(self, value: Any) -> list[Coordinate]:
@@ -194,9 +209,10 @@ class _Loader(BodiesReader, ConstraintsReader, AnswersReader, SimulationReader):
         if not entries and "coordinates" in self.data:
             self.issue(("coordinates",), "no coordinates given", "list at least one, e.g. [x, y]")
         for name, detail, path in entries:
-            positive = False
+            positive, unit = False, None
             if isinstance(detail, dict):
-                self.keys(path, detail, ("description", "positive"))
+                self.keys(path, detail, ("description", "positive", "unit"))
+                unit = self.unit((*path, "unit"), detail["unit"]) if "unit" in detail else None
                 if "positive" in detail:
                     positive = bool(self.flag((*path, "positive"), detail["positive"]))
                 detail = self.text((*path, "description"), detail.get("description", "")) or ""
@@ -215,5 +231,6 @@ class _Loader(BodiesReader, ConstraintsReader, AnswersReader, SimulationReader):
             self.symbols[name] = q
             self.symbols[velocity] = qd
             self.acceleration_names[acceleration] = "accelerations may not appear in problem expressions"
-            out.append(Coordinate(name, (detail or "").strip() if isinstance(detail, str) else "", q, qd, qdd))
+            out.append(Coordinate(name, (detail or "").strip() if isinstance(detail, str) else "", q, qd, qdd,
+                                  unit))
         return out

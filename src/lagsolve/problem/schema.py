@@ -25,6 +25,7 @@ class Parameter:
     real: bool
     value: float | None
     symbol: Expr
+    unit: str | None = None  # as written in the file (checked by lagsolve.problem.units); None: not declared
 
 
 @dataclass(frozen=True)
@@ -34,6 +35,7 @@ class FunctionDecl:
     name: str
     description: str
     function: Any  # sympy UndefinedFunction
+    unit: str | None = None  # the unit of its value
 
 
 @dataclass(frozen=True)
@@ -45,6 +47,7 @@ class Coordinate:
     symbol: Expr
     velocity: Expr
     acceleration: Expr
+    unit: str | None = None
 
 
 @dataclass(frozen=True)
@@ -224,6 +227,19 @@ class Problem:
     symbols: Mapping[str, Expr]
     lines: Mapping[str, int]
     independent: tuple[str, ...] = ()  # optional choice of minimal coordinates (names, input order)
+    time_unit: str | None = None  # declared with ``time: {name: t, unit: ms}``; seconds otherwise
+    texts: Mapping[str, str] = field(default_factory=dict)  # dotted field -> expression as written
+
+    @property
+    def units(self) -> dict[str, str | None]:
+        """The declared unit of each parameter, declared function and coordinate (None: not declared)."""
+        return {**{p.name: p.unit for p in self.parameters}, **{f.name: f.unit for f in self.functions},
+                **{c.name: c.unit for c in self.coordinates}}
+
+    @property
+    def has_units(self) -> bool:
+        """Whether the file declares any unit (then its dimensions are checked and results carry units)."""
+        return self.time_unit is not None or any(u is not None for u in self.units.values())
 
     @property
     def slug(self) -> str:

@@ -173,6 +173,7 @@ def analysis_context(derivation: Derivation, note: Notation, math: str = "latex"
             has_g, has_d = any(x != 0 for x in m.gyroscopic), any(x != 0 for x in m.damping)
             modes["equilibria"].append({
                 "point": [{"coordinate": tex(q), "value": tex(x)} for q, x in m.point],
+                "free": [tex(q) for q in m.free],
                 "mass": tex(m.mass), "stiffness": tex(m.stiffness),
                 "gyroscopic": tex(m.gyroscopic) if has_g else "", "damping": tex(m.damping) if has_d else "",
                 "squares": [tex(s) for s in m.squared_frequencies] if m.squared_frequencies is not None else [],
@@ -282,6 +283,7 @@ def analysis_json(derivation: Derivation) -> dict[str, Any] | None:
                 "squared_frequencies": ([to_json(s) for s in m.squared_frequencies]
                                         if m.squared_frequencies is not None else None),
                 "stable": m.stable,
+                **({"free": [q.name for q in m.free]} if m.free else {}),
                 **_contact_json(check),
             } for m, check in zip(lin.modes, analysis.modes_contact or ((),) * len(lin.modes), strict=True)],
         }
@@ -339,7 +341,8 @@ def analysis_summary(derivation: Derivation, note: Notation) -> list[str]:
     if lin is not None:
         lines.append("  equilibria:")
         for k, m in enumerate(lin.modes):
-            point = ", ".join(f"{text(q)} = {text(x)}" for q, x in m.point)
+            point = ", ".join([f"{text(q)} = {text(x)}" for q, x in m.point]
+                              + ([f"any {', '.join(text(q) for q in m.free)}"] if m.free else []))
             verdict = {True: "stable", False: "unstable", None: "stability not decided"}[m.stable]
             squares = ""
             if m.squared_frequencies is not None and m.stable:

@@ -114,7 +114,7 @@ def describe(verdict: Verdict, note: Notation) -> str:
         if verdict.states:
             return f"mismatch: differs at {verdict.states - verdict.agreeing} of {verdict.states} states"
         return "mismatch: differs"
-    prefix = "mismatch: " if verdict.status == "mismatch" else ""
+    prefix = "mismatch: " if verdict.status == Status.MISMATCH else ""
     return prefix + verdict.note
 
 

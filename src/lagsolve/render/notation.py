@@ -107,12 +107,13 @@ def _worded(label: str) -> bool:
 
 
 def _positive_denominators(expr: Any) -> Any:
-    """``x/(-M - m)`` → ``-x/(M + m)``: a denominator whose terms are all negative gives up its sign."""
+    """``x/(-M - m)`` → ``-x/(M + m)``, ``x/(-3 R + 3 r)`` → ``-x/(3 R - 3 r)``: a denominator that would be
+    printed with a leading minus (its first term in the printers' order is negative) gives up its sign."""
     factors = list(sympy.Mul.make_args(expr))
     sign = 1
     for k, f in enumerate(factors):
         if (isinstance(f, sympy.Pow) and f.exp.is_Integer and f.exp < 0 and isinstance(f.base, sympy.Add)
-                and all(t.could_extract_minus_sign() for t in f.base.args)):
+                and f.base.as_ordered_terms()[0].could_extract_minus_sign()):
             factors[k] = sympy.Pow(-f.base, f.exp)
             sign *= -1 if f.exp % 2 else 1
     if all(a is b for a, b in zip(factors, sympy.Mul.make_args(expr), strict=True)):

@@ -49,8 +49,14 @@ def _events(ax: Any, trajectory: Trajectory) -> None:
                        label="sticking" if first == edges[0] else None)
 
 
+def _in(units: Mapping[str, str] | None, column: str) -> str:
+    """`` [m]``: the unit of a trajectory column for an axis label or legend, or nothing when it is not known."""
+    return f" [{units[column]}]" if units and column in units else ""
+
+
 def path_figure(trajectory: Trajectory, title: str,
-                curve: tuple[int, Callable[[np.ndarray], np.ndarray]] | None = None) -> Any:
+                curve: tuple[int, Callable[[np.ndarray], np.ndarray]] | None = None,
+                units: Mapping[str, str] | None = None) -> Any:
     """Each particle's path in physical space (x–y; x–z added for 3-D motion), with the
     constraint curve dashed when ``curve = (k, c)``: ``c`` maps values of coordinate ``k``
     to the first particle's positions, shape (samples, components)."""
@@ -69,8 +75,8 @@ def path_figure(trajectory: Trajectory, title: str,
             ax.plot(xy[0, i], xy[0, j], "o", color=line.get_color(), markersize=5)
             ax.plot(xy[-1, i], xy[-1, j], "s", color=line.get_color(), markersize=5)
             offset += d
-        ax.set_xlabel(xl)
-        ax.set_ylabel(yl)
+        ax.set_xlabel(xl + _in(units, "position"))
+        ax.set_ylabel(yl + _in(units, "position"))
         ax.set_aspect("equal", adjustable="datalim")
         ax.grid(alpha=0.3)
         ax.legend(loc="best", fontsize="small", title="○ start, □ end", title_fontsize="small")
@@ -83,21 +89,23 @@ def _padded(values: np.ndarray) -> tuple[float, float]:
     return low - pad, high + pad
 
 
-def coordinates_figure(trajectory: Trajectory, title: str, labels: Mapping[str, str]) -> Any:
+def coordinates_figure(trajectory: Trajectory, title: str, labels: Mapping[str, str],
+                       units: Mapping[str, str] | None = None) -> Any:
     """Each coordinate against time."""
     n = len(trajectory.coordinates)
     fig, axes = _figure(f"{title}: coordinates", n, 1, sharex=True)
     for k, name in enumerate(trajectory.coordinates):
         ax = axes[k][0]
         ax.plot(trajectory.t, trajectory.q[:, k], linewidth=1.2)
-        ax.set_ylabel(f"${labels.get(name, name)}$")
+        ax.set_ylabel(f"${labels.get(name, name)}$" + _in(units, name))
         ax.grid(alpha=0.3)
         _events(ax, trajectory)
-    axes[-1][0].set_xlabel("$t$")
+    axes[-1][0].set_xlabel("$t$" + _in(units, "t"))
     return fig
 
 
-def phase_figure(trajectory: Trajectory, title: str, labels: Mapping[str, str]) -> Any:
+def phase_figure(trajectory: Trajectory, title: str, labels: Mapping[str, str],
+                 units: Mapping[str, str] | None = None) -> Any:
     """Phase portraits q against q̇ for every coordinate that moves."""
     moving = [k for k in range(len(trajectory.coordinates)) if np.ptp(trajectory.q[:, k]) > 1e-12]
     moving = moving or [0]
@@ -109,23 +117,25 @@ def phase_figure(trajectory: Trajectory, title: str, labels: Mapping[str, str]) 
         name = trajectory.coordinates[k]
         ax.plot(trajectory.q[:, k], trajectory.qd[:, k], linewidth=1)
         ax.plot(trajectory.q[0, k], trajectory.qd[0, k], "o", markersize=4)
-        ax.set_xlabel(f"${labels.get(name, name)}$")
-        ax.set_ylabel(f"$\\dot{{{labels.get(name, name)}}}$")
+        ax.set_xlabel(f"${labels.get(name, name)}$" + _in(units, name))
+        ax.set_ylabel(f"$\\dot{{{labels.get(name, name)}}}$" + _in(units, f"{name}_dot"))
         ax.grid(alpha=0.3)
     for idx in range(len(moving), rows * cols):
         axes[idx // cols][idx % cols].set_visible(False)
     return fig
 
 
-def forces_figure(trajectory: Trajectory, title: str) -> Any:
+def forces_figure(trajectory: Trajectory, title: str, units: Mapping[str, str] | None = None) -> Any:
     """Multipliers λ_j and force-of-constraint magnitudes |F_j| against time."""
     fig, axes = _figure(f"{title}: forces of constraint", 2, 1, sharex=True)
     for j, name in enumerate(trajectory.constraints):
-        axes[0][0].plot(trajectory.t, trajectory.multipliers[:, j], linewidth=1.2, label=f"$\\lambda_{{{name}}}$")
-        axes[1][0].plot(trajectory.t, trajectory.magnitudes[:, j], linewidth=1.2, label=f"$|F_{{{name}}}|$")
+        axes[0][0].plot(trajectory.t, trajectory.multipliers[:, j], linewidth=1.2,
+                        label=f"$\\lambda_{{{name}}}$" + _in(units, f"lambda_{name}"))
+        axes[1][0].plot(trajectory.t, trajectory.magnitudes[:, j], linewidth=1.2,
+                        label=f"$|F_{{{name}}}|$" + _in(units, f"F_{name}"))
     axes[0][0].set_ylabel("multiplier $\\lambda$")
     axes[1][0].set_ylabel("magnitude $|F|$")
-    axes[1][0].set_xlabel("$t$")
+    axes[1][0].set_xlabel("$t$" + _in(units, "t"))
     for ax in (axes[0][0], axes[1][0]):
         ax.grid(alpha=0.3)
         ax.axhline(0, color="0.5", linewidth=0.6)
@@ -174,15 +184,18 @@ def conservation_figure(trajectory: Trajectory, title: str) -> Any:
 
 
 def figures(trajectory: Trajectory, title: str, labels: Mapping[str, str],
-            curve: tuple[int, Callable[[np.ndarray], np.ndarray]] | None = None) -> dict[str, Any]:
-    """All figures of a trajectory, by stable name."""
+            curve: tuple[int, Callable[[np.ndarray], np.ndarray]] | None = None,
+            units: Mapping[str, str] | None = None) -> dict[str, Any]:
+    """All figures of a trajectory, by stable name. ``units`` maps a trajectory column (``t``, ``x``,
+    ``x_dot``, ``lambda_c``, ``F_c``, and ``position`` for the paths) to its unit, shown on the axes as
+    ``x [m]``; without it the labels carry no unit."""
     out: dict[str, Any] = {}
     if trajectory.particles:
-        out["path"] = path_figure(trajectory, title, curve)
-    out["coordinates"] = coordinates_figure(trajectory, title, labels)
-    out["phase"] = phase_figure(trajectory, title, labels)
+        out["path"] = path_figure(trajectory, title, curve, units)
+    out["coordinates"] = coordinates_figure(trajectory, title, labels, units)
+    out["phase"] = phase_figure(trajectory, title, labels, units)
     if trajectory.constraints:
-        out["forces"] = forces_figure(trajectory, title)
+        out["forces"] = forces_figure(trajectory, title, units)
     out["conservation"] = conservation_figure(trajectory, title)
     return out
 

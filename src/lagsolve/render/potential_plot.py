@@ -16,9 +16,10 @@ if TYPE_CHECKING:
 
 def potential_figure(q: Sequence[float], v: Sequence[float],
                      equilibria: Sequence[tuple[float, float, bool | None]] = (), *,
-                     coordinate: str = "q", title: str = "") -> Figure:
+                     coordinate: str = "q", title: str = "", units: tuple[str | None, str | None] = (None, None)
+                     ) -> Figure:
     """V_eff against the coordinate; stable equilibria as filled dots, unstable as open ones,
-    undecided ones as crosses.
+    undecided ones as crosses. ``units`` (the coordinate's, the energy's) label the axes ``r [m]``.
 
     >>> fig = potential_figure([1.0, 2.0, 3.0], [1.0, 0.0, 1.0], [(2.0, 0.0, True)], coordinate="r")
     >>> fig.axes[0].get_xlabel()
@@ -40,8 +41,8 @@ def potential_figure(q: Sequence[float], v: Sequence[float],
         axes.plot([q0], [v0], marker=marker, markersize=8, markerfacecolor=face, markeredgecolor="C3"
                   if stable is not True else "C2", linestyle="none", label=None if stable in shown else label)
         shown.add(stable)
-    axes.set_xlabel(f"${coordinate}$")
-    axes.set_ylabel(r"$V_{\mathrm{eff}}$")
+    axes.set_xlabel(f"${coordinate}$" + (f" [{units[0]}]" if units[0] else ""))
+    axes.set_ylabel(r"$V_{\mathrm{eff}}$" + (f" [{units[1]}]" if units[1] else ""))
     if title:
         axes.set_title(title, parse_math=False)  # user text: a "$" in a name is not mathtext
     axes.grid(True, alpha=0.3)

@@ -22,6 +22,7 @@ from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.render.analysis_report import analysis_context, analysis_json, analysis_summary, contract_json
 from lagsolve.render.notation import FILTERS, Notation, symbol_table, to_json
+from lagsolve.render.units import units_context, units_json
 
 FORMAT_VERSION = 1
 #: above this many coordinates the matrix form is written one equation per row instead of as matrices
@@ -178,6 +179,7 @@ def context(derivation: Derivation, math: str = "latex") -> dict[str, Any]:
         "symbols": symbol_table(dict(problem.symbols), note),
         "math": math,
         "stage_notes": {n.stage: n.reason for n in derivation.notes},
+        "units": units_context(derivation, tex),
     }
 
 
@@ -322,6 +324,7 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
         **contract_json(derivation),
         "analysis": analysis_json(derivation),
         "notes": [{"stage": n.stage, "kind": n.kind, "reason": n.reason} for n in derivation.notes],
+        **({"units": units} if (units := units_json(derivation)) is not None else {}),
     }
 
 
@@ -355,6 +358,9 @@ def summary(derivation: Derivation) -> str:
             if f["generalized"]:
                 parts = ", ".join(f"Q_{g['coordinate_text']} = {g['value']['text']}" for g in f["generalized"])
                 lines.append(f"    {f['name']}: generalized forces of constraint (no point named): {parts}")
+                continue
+            if f["magnitude"] is None and f["particles"]:
+                lines += [f"    |F_{f['name']}| on {p['name']} = {p['magnitude']['text']}" for p in f["particles"]]
                 continue
             value = f["magnitude"]["text"] if f["magnitude"] else "— " + f["note"]
             lines.append(f"    |F_{f['name']}| = {value}")

@@ -3,12 +3,14 @@
 CSV columns (format section 3): ``t``, each coordinate, each ``<q>_dot``, then
 ``lambda_<c>`` and ``F_<c>`` per constraint, ``energy`` (the Jacobi integral,
 conserved or not), then ``N_<contact>`` per friction contact, ``residual`` and any
-conserved quantities.
+conserved quantities. With units (a problem that declares them) each header cell carries its column's
+unit, ``x [m]``; a column whose unit is not known keeps its bare name.
 """
 
 from __future__ import annotations
 
 import io
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -39,10 +41,13 @@ def columns(trajectory: Trajectory) -> dict[str, np.ndarray]:
     return out
 
 
-def to_csv(trajectory: Trajectory) -> str:
-    """The trajectory as CSV text with a header row (17 significant digits: no information lost)."""
+def to_csv(trajectory: Trajectory, units: Mapping[str, str] | None = None) -> str:
+    """The trajectory as CSV text with a header row (17 significant digits: no information lost).
+
+    ``units`` maps a column name to its unit (``{"x": "m"}`` gives the header cell ``x [m]``)."""
     data = columns(trajectory)
-    lines = [",".join(data)]
+    units = units or {}
+    lines = [",".join(f"{name} [{units[name]}]" if name in units else name for name in data)]
     table = np.column_stack(list(data.values()))
     lines += [",".join(f"{v:.17g}" for v in row) for row in table]
     return "\n".join(lines) + "\n"

@@ -14,6 +14,7 @@ from typing import Any
 
 from lagsolve.errors import ExpressionError, Issue
 from lagsolve.problem import expr as gateway
+from lagsolve.problem import units
 from lagsolve.problem.yamlread import Document, dotted
 
 #: longest free text, in characters: the name (a title, drawn on every figure), the problem's
@@ -39,6 +40,7 @@ class Reader:
         self.declared_particles: list[str] = []
         self.particles_readable = True  # False: references to particles cannot be checked
         self.acceleration_names: dict[str, Any] = {}
+        self.texts: dict[str, str] = {}  # dotted field -> expression text as written (for messages)
 
     # -- reporting ---------------------------------------------------------------------------
 
@@ -132,7 +134,17 @@ class Reader:
 
     def expression(self, path: tuple, value: Any, names: gateway.Namespace) -> Any | None:
         try:
-            return gateway.parse(value, names)
+            parsed = gateway.parse(value, names)
+        except ExpressionError as exc:
+            self.issue(path, exc.message, exc.hint)
+            return None
+        self.texts[dotted(path)] = str(value)
+        return parsed
+
+    def unit(self, path: tuple, value: Any) -> str | None:
+        """A ``unit:`` field (:mod:`lagsolve.problem.units`); None and an issue when it is not a unit."""
+        try:
+            return units.canonical(value)
         except ExpressionError as exc:
             self.issue(path, exc.message, exc.hint)
             return None

@@ -1,0 +1,171 @@
+"""``lagsolve.sweep``: many runs of one problem over parameters and initial conditions, as a DataFrame.
+
+The runs are cut into chunks; each chunk is integrated by :func:`lagsolve.sweep.run.run_chunk`, in
+this process, on a local Dask cluster (``workers``) or on an existing one (``scheduler``). A
+chunk carries the problem's *text*, so a worker compiles the problem itself (once) and nothing
+unpicklable travels. Every run's numbers depend on its inputs alone, never on the chunk it is in
+or the worker that ran it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+from lagsolve.errors import Issue, SpecError
+
+ProgressCallback = Callable[[int, int], None]  # (runs done, runs in all)
+
+#: how to install what the distributed runs need, for messages
+INSTALL = "pip install 'lagsolve[sweep]' (or: pip install 'dask[distributed]' pyarrow)"
+
+
+def _text(path_or_text: str | Path | bytes) -> tuple[str, str]:
+    if isinstance(path_or_text, bytes):
+        return path_or_text.decode("utf-8", errors="replace"), "<text>"
+    if isinstance(path_or_text, str) and "\n" in path_or_text:
+        return path_or_text, "<text>"
+    path = Path(path_or_text)
+    try:
+        return path.read_text(encoding="utf-8"), str(path)
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SpecError([Issue(str(path), 0, "", f"cannot read the problem file: {exc}",
+                               "give the path of a YAML problem file")]) from None
+
+
+def _as_specs(given: Mapping[str, Any] | Sequence[str] | None, option: str) -> list[str] | Mapping[str, Any]:
+    if given is None:
+        return []
+    if isinstance(given, str):
+        return [given]
+    return given if isinstance(given, Mapping) else list(given)
+
+
+def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequence[str] | None = None,
+          random: Mapping[str, tuple[float, float]] | Sequence[str] | None = None, runs: int | None = None,
+          seed: int = 0, t_end: float | None = None, method: str = "DOP853", rtol: float = 1e-10,
+          atol: float = 1e-12, poincare: str | None = None, workers: int = 0, scheduler: str | None = None,
+          chunk_size: int | None = None, progress: ProgressCallback | None = None) -> Any:
+    """Run a problem many times and return one row per run (a :class:`pandas.DataFrame`).
+
+    Parameters
+    ----------
+    path_or_text : str, pathlib.Path or bytes
+        A problem file, or its YAML text.
+    grid : mapping or sequence of str
+        Swept names (parameters, coordinates ``theta1``, velocities ``theta1_dot``) to a
+        ``"START:STOP:COUNT"`` string or a sequence of values; or ``"NAME=START:STOP:COUNT"``
+        strings. Several names give their Cartesian product (the first varies slowest).
+    random : mapping or sequence of str
+        Names to ``(low, high)``, or ``"NAME=LOW:HIGH"`` strings: ``runs`` uniform draws
+        (per grid point) from ``numpy.random.default_rng(seed)``.
+    t_end, method, rtol, atol
+        End time (default the file's ``simulation.t_end``), integrator (DOP853, RK45, RK23 are
+        batched; Radau, BDF, LSODA run one by one) and tolerances (those of ``simulate``).
+    poincare : str, optional
+        A section such as ``"theta2=0, theta2_dot>0"`` (grammar in :mod:`lagsolve.sweep.spec`):
+        each run's crossings, located on the dense output.
+    workers : int
+        0 runs in this process; N starts a local Dask cluster of N worker processes.
+    scheduler : str, optional
+        Address of an existing Dask scheduler (``tcp://host:8786``) to run on instead.
+    chunk_size : int, optional
+        Runs per chunk (default: about four chunks per worker, at most 1024 runs each).
+    progress : callable, optional
+        Called as ``progress(done, total)`` as chunks finish.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per run, in input order: ``run``, the swept inputs, ``status`` (ok, released,
+        failed), ``reason``, ``outcome`` (ok, flipped, stick, slip, released, failed), ``path``,
+        the final state ``final_<name>``, ``max_residual``, ``energy_drift``, ``drift_<quantity>``,
+        the events, and with ``poincare`` the crossings (columns in ``docs/format.md``).
+
+    Raises
+    ------
+    SpecError
+        Bad input: an unknown name, a malformed range or section, no end time.
+    ImportError
+        pandas (or, with workers or a scheduler, Dask) is not installed.
+
+    Examples
+    --------
+    >>> frame = sweep("problems/double_pendulum.yaml", grid={"theta1": "0.1:0.5:3"}, t_end=1.0)  # doctest: +SKIP
+    >>> len(frame), frame["status"].unique().tolist()                                            # doctest: +SKIP
+    (3, ['ok'])
+    """
+    try:
+        import pandas
+    except ImportError as exc:  # pragma: no cover - pandas comes with the sweep extra
+        raise ImportError(f"lagsolve sweep needs pandas: {INSTALL}") from exc
+    from lagsolve.problem.load import load_text
+    from lagsolve.sweep import spec
+    from lagsolve.sweep.rk import METHODS as BATCHED
+    from lagsolve.sweep.run import Settings, compiled, run_chunk
+
+    text, source = _text(path_or_text)
+    problem = load_text(text, source)
+    names = spec.Names(tuple(p.name for p in problem.parameters),
+                       frozenset(p.name for p in problem.parameters if p.positive),
+                       tuple(c.name for c in problem.coordinates))
+    _check_options(method, rtol, atol, workers, runs, chunk_size, seed, BATCHED)
+    grid_specs = _as_specs(grid, "--grid")
+    if isinstance(grid_specs, Mapping):
+        grid_values = spec.grid_from_mapping(grid_specs, names)
+    else:
+        grid_values = [spec.parse_grid(g, names) for g in grid_specs]
+    random_specs = _as_specs(random, "--random")
+    if isinstance(random_specs, Mapping):
+        random_values = [spec.parse_random(f"{k}={float(v[0])!r}:{float(v[1])!r}", names)
+                         for k, v in random_specs.items()]
+    else:
+        random_values = [spec.parse_random(r, names) for r in random_specs]
+    end = t_end if t_end is not None else problem.simulation.t_end if problem.simulation is not None else None
+    if end is None or not (math.isfinite(end) and end > 0):
+        raise SpecError([Issue(source, 0, "simulation.t_end", "no positive end time",
+                               "give simulation.t_end in the file or --t-end")])
+    section = spec.parse_section(poincare, names) if poincare is not None else None
+    inputs = spec.inputs(grid_values, random_values, runs, seed)
+    settings = Settings(float(end), method, float(rtol), float(atol), section)
+    compiled(text, source)  # bad values surface here, as SpecError, before any worker starts
+    total = len(next(iter(inputs.values())))
+    size = chunk_size or min(1024, max(1, math.ceil(total / (4 * max(1, workers)))))
+    chunks = [(start, {k: v[start: start + size] for k, v in inputs.items()}) for start in range(0, total, size)]
+    if workers == 0 and scheduler is None:
+        frames = []
+        for start, chunk in chunks:
+            frames.append(run_chunk(text, source, settings, chunk, start))
+            if progress is not None:
+                progress(start + len(frames[-1]), total)
+    else:
+        from lagsolve.sweep.cluster import run_distributed
+
+        frames = run_distributed(run_chunk, [(text, source, settings, chunk, start) for start, chunk in chunks],
+                                 workers, scheduler, progress, total)
+    frame = pandas.concat(frames, ignore_index=True)
+    frame.attrs["swept"] = list(inputs)
+    if section is not None:
+        frame.attrs["section"] = section.name
+    return frame
+
+
+def _check_options(method: str, rtol: float, atol: float, workers: int, runs: int | None, chunk_size: int | None,
+                   seed: int, batched: tuple[str, ...]) -> None:
+    from lagsolve.numeric.integrate import METHODS
+
+    bad = []
+    if method not in METHODS:
+        bad.append(Issue("<argument>", 0, "method", f"expected one of {', '.join(METHODS)}, found {method!r}",
+                         f"{', '.join(batched)} run batched; the others one run at a time"))
+    for key, value in (("rtol", rtol), ("atol", atol)):
+        if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
+            bad.append(Issue("<argument>", 0, key, f"expected a positive finite number, found {value!r}"))
+    for key, count, low in (("workers", workers, 0), ("runs", runs, 1), ("chunk_size", chunk_size, 1),
+                            ("seed", seed, 0)):
+        if count is not None and (isinstance(count, bool) or not isinstance(count, int) or count < low):
+            bad.append(Issue("<argument>", 0, key, f"expected a whole number >= {low}, found {count!r}"))
+    if bad:
+        raise SpecError(bad)

@@ -1,0 +1,369 @@
+"""Run one chunk of a sweep: the problem compiled once per process, then every run of the chunk.
+
+A chunk is plain data (the problem's text, the settings, the inputs of its runs), so it can be
+shipped to a Dask worker; the worker compiles the problem on first use and keeps it
+(:func:`compiled`). Two paths:
+
+* **batched** (no friction contact, no unilateral constraint, an explicit method): every run of
+  the chunk is integrated together by :func:`lagsolve.sweep.rk.integrate_batch`, with its own
+  steps and error control, the right-hand side evaluated for all runs at once; holonomic
+  constraints are projected onto after each accepted step (as ``simulate --coordinates full``);
+* **per run** (stick–slip, release, implicit methods): the single-run integrator of ``lagsolve
+  simulate`` (:func:`lagsolve.numeric.integrate.integrate_motion`, with the same minimal coordinates),
+  one run after the other; the ``path`` column says so.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from lagsolve.errors import LagsolveError
+from lagsolve.sweep.spec import Section
+
+#: samples a per-run integration keeps (the drift of the conserved quantities is measured on them)
+FALLBACK_SAMPLES = 201
+
+
+@dataclass(frozen=True)
+class Settings:
+    """How every run of a sweep is integrated."""
+
+    t_end: float
+    method: str = "DOP853"
+    rtol: float = 1e-10
+    atol: float = 1e-12
+    section: Section | None = None
+
+
+@dataclass(frozen=True)
+class Compiled:
+    """A problem bound and compiled once in a process."""
+
+    source: str
+    system: Any  # NumericSystem with the file's parameter values
+    batch: Any  # BatchSystem, or None where only the per-run path applies
+    why_per_run: str
+    initial: Mapping[str, float]
+    angular: tuple[bool, ...]  # per coordinate: L depends on it, and L and the positions repeat when it grows by 2π
+    conserved: tuple[str, ...]
+
+
+_CACHE: dict[tuple[str, str], Compiled] = {}
+
+
+def compiled(text: str, source: str) -> Compiled:
+    """The problem of ``text`` compiled, once per process (a Dask worker keeps it between chunks)."""
+    key = (hashlib.sha256(text.encode("utf-8")).hexdigest(), source)
+    found = _CACHE.get(key)
+    if found is None:
+        found = _compile(text, source)
+        _CACHE.clear()  # one problem at a time: a long-lived worker does not collect them
+        _CACHE[key] = found
+    return found
+
+
+def _compile(text: str, source: str) -> Compiled:
+    import sympy
+
+    from lagsolve.mechanics.analysis import monitored
+    from lagsolve.mechanics.matrix_form import matrix_form
+    from lagsolve.numeric.system import bind
+    from lagsolve.problem.load import load_text
+    from lagsolve.sweep.batch import batch_system
+
+    problem = load_text(text, source)
+    form = matrix_form(problem, display=False)
+    conserved, chart, _, energy_note = monitored(form)
+    system = bind(form, {}, conserved, chart, energy_note)
+    why = ""
+    if system.contacts:
+        why = "friction contacts (stick–slip restarts)"
+    elif system.unilateral:
+        why = "unilateral constraints (release events)"
+    batch = batch_system(system) if not why else None
+    model = form.model
+    positions = [r for p in problem.particles for r in p.position]
+    angular = []
+    for q in model.coordinates:
+        shifted = {q: q + 2 * sympy.pi}
+        same = all(sympy.expand(e.xreplace(shifted) - e) == 0 for e in [model.lagrangian, *positions])
+        # a cyclic angle (a turning tube's φ, a spherical pendulum's azimuth) goes round; it does not flip
+        angular.append(bool(same) and sympy.diff(model.lagrangian, q) != 0)
+    initial = dict(problem.simulation.initial) if problem.simulation is not None else {}
+    return Compiled(source, system, batch, why, initial, tuple(angular), system.conserved_names)
+
+
+def run_chunk(text: str, source: str, settings: Settings, inputs: Mapping[str, np.ndarray],
+              start: int = 0) -> Any:
+    """The result rows (a pandas DataFrame) of the runs ``inputs`` (one array per swept name).
+
+    ``start`` numbers the runs (the ``run`` column), so chunks put together keep the sweep's order.
+    """
+    import pandas
+
+    problem = compiled(text, source)
+    count = len(next(iter(inputs.values())))
+    names = problem.system.parameter_names
+    parameters = np.tile(problem.system.parameters, (count, 1))
+    for name, values in inputs.items():
+        if name in names:
+            parameters[:, names.index(name)] = values
+    starts, failures = _initial_states(problem, inputs, parameters, count)
+    batched = problem.batch is not None and settings.method in _BATCH_METHODS
+    if batched:
+        rows = _batched(problem, settings, parameters, starts, failures)
+    else:
+        why = problem.why_per_run or f"the {settings.method} method (implicit) is not batched"
+        rows = _per_run(problem, settings, parameters, starts, failures, why)
+    table = {"run": np.arange(start, start + count)}
+    table.update({name: np.asarray(values, dtype=float) for name, values in inputs.items()})
+    frame = pandas.DataFrame(table)
+    return pandas.concat([frame, pandas.DataFrame(rows)], axis=1)
+
+
+_BATCH_METHODS = ("DOP853", "RK45", "RK23")
+
+
+def _initial_states(problem: Compiled, inputs: Mapping[str, np.ndarray], parameters: np.ndarray,
+                    count: int) -> tuple[np.ndarray, list[str]]:
+    """Each run's whole initial state (dependent values completed from the constraints), or why it has none."""
+    from lagsolve.numeric.initial import complete_initial
+
+    system = problem.system
+    n = system.n
+    states = np.full((count, 2 * n), np.nan)
+    failures = [""] * count
+    swept = [name for name in inputs if name not in system.parameter_names]
+    for r in range(count):
+        given = {**problem.initial, **{name: float(inputs[name][r]) for name in swept}}
+        own = dataclasses.replace(system, parameters=parameters[r], evaluations=[0])
+        try:
+            q0, qd0 = complete_initial(own, given, problem.source, field="initial state")
+        except LagsolveError as error:
+            failures[r] = str(error)
+            continue
+        states[r] = np.concatenate([q0, qd0])
+    return states, failures
+
+
+def _state_names(system: Any) -> list[str]:
+    return [*system.coordinates, *(f"{c}_dot" for c in system.coordinates)]
+
+
+def _empty_row(problem: Compiled, settings: Settings, path: str) -> dict[str, Any]:
+    system = problem.system
+    row: dict[str, Any] = {"status": "failed", "reason": "", "outcome": "failed", "path": path, "note": "",
+                           "t_final": np.nan}
+    for name in _state_names(system):
+        row[f"final_{name}"] = np.nan
+    row.update({"max_residual": np.nan, "energy_conserved": bool(system.energy_conserved), "energy_drift": np.nan})
+    for name in problem.conserved:
+        row[f"drift_{name}"] = np.nan
+    row.update({"flipped": False, "flip_time": np.nan, "stick_count": 0, "slip_count": 0, "stick_times": [],
+                "slip_times": [],
+                "stuck_at_end": False, "release_time": np.nan, "release_constraint": ""})
+    for c in system.coordinates:
+        row[f"release_{c}"] = np.nan
+    row["steps"] = 0
+    if settings.section is not None:
+        row["poincare_count"] = 0
+        row["poincare_t"] = []
+        for name in _state_names(system):
+            row[f"poincare_{name}"] = []
+    return row
+
+
+def _outcome(row: dict[str, Any], has_contacts: bool, angular: bool) -> str:
+    if row["status"] == "failed":
+        return "failed"
+    if row["status"] == "released":
+        return "released"
+    if has_contacts:  # friction problems are mapped by their contacts (a turning tube's angle always "flips")
+        return "stick" if row["stuck_at_end"] else "slip"
+    if row["flipped"]:
+        return "flipped"
+    return "no flip" if angular else "ok"
+
+
+def _drift(first: np.ndarray, worst: np.ndarray) -> np.ndarray:
+    """max |v − v₀| / |v₀| from the largest deviation (absolute where v₀ is zero), as simulate reports it."""
+    scale = np.where(np.abs(first) > 1e-300, np.abs(first), 1.0)
+    return worst / scale
+
+
+def _batched(problem: Compiled, settings: Settings, parameters: np.ndarray, starts: np.ndarray,
+             failures: list[str]) -> list[dict[str, Any]]:
+    from lagsolve.sweep.rk import Step, Tableau, integrate_batch
+
+    batch, system = problem.batch, problem.system
+    n = system.n
+    count = len(starts)
+    ok = np.array([not f for f in failures], dtype=bool)
+    rows = [_empty_row(problem, settings, "batched") for _ in range(count)]
+    for r in np.flatnonzero(~ok):
+        rows[r]["reason"] = failures[r]
+    index = np.flatnonzero(ok)
+    if not len(index):
+        return rows
+    p = parameters[index]
+    y0 = starts[index]
+    live = len(index)
+    t0 = np.zeros(live)
+    energy0 = batch.energy(t0, y0[:, :n], y0[:, n:], p)[:, 0]
+    conserved0 = batch.conserved(t0, y0[:, :n], y0[:, n:], p)
+    worst_energy = np.zeros(live)
+    worst_conserved = np.zeros_like(conserved0)
+    residual = batch.residual(t0, y0[:, :n], y0[:, n:], p)
+    angular = np.array(problem.angular, dtype=bool)
+    flipped = np.any(np.abs(y0[:, :n][:, angular]) > np.pi, axis=1)
+    flip_time = np.where(flipped, 0.0, np.nan)
+    section = settings.section
+    crossings: list[list[np.ndarray]] = [[] for _ in range(live)]
+    project = batch.m > 0
+
+    def rhs(t: np.ndarray, y: np.ndarray, which: np.ndarray) -> np.ndarray:
+        qdd = batch.accelerations(t, y[:, :n], y[:, n:], p[which])
+        return np.concatenate([y[:, n:], qdd], axis=1)
+
+    def accepted(step: Step) -> np.ndarray | None:
+        which, t, y = step.rows, step.t_new, step.y_new
+        q, qd, pw = y[:, :n], y[:, n:], p[which]
+        residual[which] = np.maximum(residual[which], batch.residual(t, q, qd, pw))
+        if section is not None:
+            _crossings(step, section, crossings)
+        if project:
+            q, qd = batch.project(t, q, qd, pw)
+        with np.errstate(all="ignore"):
+            worst_energy[which] = np.maximum(worst_energy[which],
+                                             np.abs(batch.energy(t, q, qd, pw)[:, 0] - energy0[which]))
+            if conserved0.shape[1]:
+                worst_conserved[which] = np.maximum(worst_conserved[which],
+                                                    np.abs(batch.conserved(t, q, qd, pw) - conserved0[which]))
+        if angular.any():
+            over = np.any(np.abs(step.y_new[:, :n][:, angular]) > np.pi, axis=1) & ~flipped[which]
+            if over.any():
+                subset = np.flatnonzero(over)
+                flip_time[which[subset]] = _first_root(step, subset, lambda y: np.max(
+                    np.abs(y[:, :n][:, angular]), axis=1) - np.pi)
+                flipped[which[subset]] = True
+        return np.concatenate([q, qd], axis=1) if project else None
+
+    with np.errstate(all="ignore"):
+        t, y, steps, failed = integrate_batch(rhs, y0, settings.t_end, Tableau.of(settings.method),
+                                              settings.rtol, settings.atol, accepted)
+    energy_drift = _drift(energy0, worst_energy)
+    conserved_drift = _drift(conserved0, worst_conserved)
+    names = _state_names(system)
+    for i, r in enumerate(index):
+        row = rows[r]
+        row["status"] = "failed" if failed[i] else "ok"
+        row["reason"] = failed[i]
+        row["t_final"] = float(t[i])
+        for j, name in enumerate(names):
+            row[f"final_{name}"] = float(y[i, j])
+        row["max_residual"] = float(residual[i])
+        row["energy_drift"] = float(energy_drift[i])
+        for c, name in enumerate(problem.conserved):
+            row[f"drift_{name}"] = float(conserved_drift[i, c])
+        row["flipped"] = bool(flipped[i])
+        row["flip_time"] = float(flip_time[i])
+        row["steps"] = int(steps[i])
+        if section is not None:
+            found = crossings[i]
+            row["poincare_count"] = len(found)
+            row["poincare_t"] = [float(c[0]) for c in found]
+            for j, name in enumerate(names):
+                row[f"poincare_{name}"] = [float(c[1 + j]) for c in found]
+        row["outcome"] = _outcome(row, False, bool(angular.any()))
+    return rows
+
+
+def _first_root(step: Any, subset: np.ndarray, g: Any) -> np.ndarray:
+    """For the steps ``subset`` where ``g`` (a function of states, one value per row) goes from ≤ 0 to
+    > 0, the time where it first becomes > 0, by bisection on the dense output to machine precision."""
+    dense = step.dense(subset)
+    low, high = step.t_old[subset].copy(), step.t_new[subset].copy()
+    for _ in range(64):
+        middle = 0.5 * (low + high)
+        above = g(dense(middle)) > 0
+        low, high = np.where(above, low, middle), np.where(above, middle, high)
+        if np.all(high - low <= 4 * np.finfo(float).eps * np.maximum(1.0, np.abs(high))):
+            break
+    return high
+
+
+def _crossings(step: Any, section: Section, crossings: list[list[np.ndarray]]) -> None:
+    """Record where each accepted step crosses the section: the root of the dense output's component
+    located by bisection to machine precision, kept where the section's conditions hold there."""
+    g_old = step.y_old[:, section.index] - section.value
+    g_new = step.y_new[:, section.index] - section.value
+    crossing = ((g_old < 0) & (g_new >= 0)) | ((g_old > 0) & (g_new <= 0))
+    if not crossing.any():
+        return
+    subset = np.flatnonzero(crossing)
+    sign = np.where(g_old[subset] < 0, 1.0, -1.0)
+    times = _first_root(step, subset, lambda y: sign * (y[:, section.index] - section.value) + 0.0)
+    states = step.dense(subset)(times)
+    states[:, section.index] = section.value
+    keep = section.holds(states)
+    for k in np.flatnonzero(keep):
+        crossings[step.rows[subset[k]]].append(np.concatenate([[times[k]], states[k]]))
+
+
+def _per_run(problem: Compiled, settings: Settings, parameters: np.ndarray, starts: np.ndarray,
+             failures: list[str], why: str) -> list[dict[str, Any]]:
+    from lagsolve.numeric.integrate import AfterRelease, EventKind, integrate_motion
+
+    system = problem.system
+    n = system.n
+    path = f"per run: {why}"
+    names = _state_names(system)
+    angular = np.array(problem.angular, dtype=bool)
+    rows = []
+    for r in range(len(starts)):
+        row = _empty_row(problem, settings, path)
+        rows.append(row)
+        if failures[r]:
+            row["reason"] = failures[r]
+            continue
+        own = dataclasses.replace(system, parameters=parameters[r], evaluations=[0])
+        try:
+            with np.errstate(all="ignore"):
+                motion = integrate_motion(own, starts[r, :n], starts[r, n:], settings.t_end,
+                                          samples=FALLBACK_SAMPLES, method=settings.method, rtol=settings.rtol,
+                                          atol=settings.atol, after_release=AfterRelease.STOP)
+        except LagsolveError as error:
+            row["reason"] = str(error)
+            continue
+        release = next((e for e in motion.events if e.kind == EventKind.RELEASE), None)
+        row["status"] = "released" if release is not None else "ok"
+        row["t_final"] = float(motion.t[-1])
+        for j, name in enumerate(names):
+            row[f"final_{name}"] = float(motion.q[-1, j] if j < n else motion.qd[-1, j - n])
+        row["max_residual"] = float(motion.stats["max_residual"])
+        row["energy_drift"] = float(motion.stats["energy_drift"])
+        for name in problem.conserved:
+            row[f"drift_{name}"] = float(motion.stats["conserved_drift"].get(name, np.nan))
+        over = np.flatnonzero(np.any(np.abs(motion.q[:, angular]) > np.pi, axis=1))
+        row["flipped"] = bool(len(over))
+        row["flip_time"] = float(motion.t[over[0]]) if len(over) else np.nan  # the first sample past π
+        row["stick_times"] = [float(e.time) for e in motion.events if e.kind == EventKind.STICK]
+        row["slip_times"] = [float(e.time) for e in motion.events if e.kind == EventKind.SLIP]
+        row["stick_count"], row["slip_count"] = len(row["stick_times"]), len(row["slip_times"])
+        row["stuck_at_end"] = bool(motion.stuck[-1].any()) if motion.stuck.size else False
+        if release is not None:
+            row["release_time"] = float(release.time)
+            row["release_constraint"] = release.name
+            for c in system.coordinates:
+                row[f"release_{c}"] = float(release.state[c])
+        row["steps"] = int(motion.stats["steps"])
+        if settings.section is not None:
+            row["note"] = "Poincaré crossings are recorded on the batched path only"
+        row["outcome"] = _outcome(row, bool(system.contacts), bool(angular.any()))
+    return rows
