@@ -34,10 +34,10 @@ from lagsolve.mechanics.integrability import classify_all
 from lagsolve.mechanics.linearize import Linearization, applies, linearize, numeric_linearization
 from lagsolve.mechanics.minimal import ReducedSystem, reduce_system
 from lagsolve.mechanics.minimal_chart import MinimalChart, minimal_chart
-from lagsolve.mechanics.names import momentum_name
 from lagsolve.mechanics.results import Analysis
 from lagsolve.mechanics.stages import Stages
 from lagsolve.mechanics.surface import constraint_surface
+from lagsolve.problem.names import momentum_name
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.matrix_form import MatrixForm
