@@ -63,6 +63,7 @@ from lagsolve.check.states import Compiled, State, StateSpace
 from lagsolve.check.status import Status
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.simplify import tidy
+from lagsolve.problem.names import momentum_name, momentum_symbol
 
 OK, WARNING, MISMATCH, UNCHECKED = Status.OK, Status.WARNING, Status.MISMATCH, Status.UNCHECKED
 
@@ -282,7 +283,7 @@ def _names(derivation: Derivation) -> Any:
     problem = derivation.problem
     symbols = dict(problem.symbols)
     for c in problem.coordinates:
-        symbols.setdefault(f"p_{c.name}", sympy.Symbol(f"p_{c.name}", real=True))
+        symbols.setdefault(momentum_name(c.name), momentum_symbol(c.name))
     functions = {f.name: f.function for f in problem.functions}
     return gateway.Namespace(symbols, functions)
 

@@ -42,6 +42,7 @@ from lagsolve.mechanics.conserved import Conservation, MotionSystem
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.signs import relation, sign_core
 from lagsolve.mechanics.simplify import tidy, tidy_sum
+from lagsolve.problem.names import momentum_symbol
 
 #: factors of V_eff' larger than this are not handed to ``sympy.solve``
 SOLVE_LIMIT = 40
@@ -99,11 +100,6 @@ class EffectivePotential:
     equilibria: tuple[Equilibrium, ...]
     damped: bool = False
     note: str = ""
-
-
-def momentum_symbol(q: Any) -> Any:
-    """The symbol ``p_<q>`` (real, as the loader declares it for expected answers)."""
-    return sympy.Symbol(f"p_{q.name}", real=True)
 
 
 def effective_potential(system: MotionSystem, conservation: Conservation,

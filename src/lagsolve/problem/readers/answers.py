@@ -8,6 +8,7 @@ from typing import Any
 import sympy
 
 from lagsolve.problem import expr as gateway
+from lagsolve.problem.names import momentum_name, momentum_symbol
 from lagsolve.problem.readers.base import Reader, kind_of, known_names, shown
 from lagsolve.problem.schema import (
     Constraint,
@@ -27,8 +28,8 @@ class AnswersReader(Reader):
 
     def answer_names(self, constraints: list[Constraint]) -> gateway.Namespace:
         extra = {f"lambda_{c.name}": sympy.Symbol(f"lambda_{c.name}", real=True) for c in constraints}
-        extra.update({f"p_{n}": sympy.Symbol(f"p_{n}", real=True)
-                      for n, k in self.kinds.items() if k == "a coordinate" and f"p_{n}" not in self.kinds})
+        extra.update({momentum_name(n): momentum_symbol(n)
+                      for n, k in self.kinds.items() if k == "a coordinate" and momentum_name(n) not in self.kinds})
         return gateway.Namespace({**self.symbols, **extra}, self.functions, self.acceleration_names)
 
     def expected(self, value: Any, constraints: list[Constraint]) -> Expected:
