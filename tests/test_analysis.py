@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 import sympy
 
-from lagsolve.check import CONSERVED, OK, check
+from lagsolve.check.compare import CONSERVED, OK, check
 from lagsolve.errors import SpecError
 from lagsolve.mechanics.analysis import contract_forms
 from mechanics_support import (

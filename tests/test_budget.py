@@ -6,7 +6,7 @@ import time
 
 import pytest
 
-from lagsolve.budget import run_with_budget
+from lagsolve.app.budget import run_with_budget
 from lagsolve.errors import DerivationError, SpecError
 
 
@@ -44,7 +44,7 @@ def test_uninterruptible_c_loop_is_killed() -> None:
 
 
 def _partial_then_burn() -> int:
-    from lagsolve.budget import report_partial
+    from lagsolve.app.budget import report_partial
 
     report_partial("the core")
     return _busy_integer_power()

@@ -1,12 +1,13 @@
-"""Minimal charts (``lagsolve.mechanics.chart``): the dependent variables in closed form, for the numeric stage."""
+"""Minimal charts (``lagsolve.mechanics.minimal_chart``): the dependent variables in closed form, for the numeric
+stage."""
 
 from __future__ import annotations
 
 import pytest
 import sympy
 
-from lagsolve.mechanics.chart import minimal_chart
 from lagsolve.mechanics.constraints import constraint_terms
+from lagsolve.mechanics.minimal_chart import minimal_chart
 from mechanics_support import TUBE, derived_file, derived_text, exactly_equal, names, shipped
 
 

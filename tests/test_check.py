@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 import sympy
 
-from lagsolve.check import (
+from lagsolve.check.compare import (
     ABSENT,
     CONSERVED,
     CONVENTION,

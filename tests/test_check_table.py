@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sympy
 
-from lagsolve.check import (
+from lagsolve.check.compare import (
     CONSERVED,
     CONVENTION,
     FACTOR,

@@ -8,9 +8,10 @@ import random
 
 import sympy
 
-from lagsolve.mechanics.conserved import MotionSystem, conserved_quantities, constraint_surface
+from lagsolve.mechanics.conserved import MotionSystem, conserved_quantities
 from lagsolve.mechanics.constraints import constraint_terms
 from lagsolve.mechanics.model import build_model
+from lagsolve.mechanics.surface import constraint_surface
 from mechanics_support import derived_file, derived_text, exactly_equal, names, problem_file
 
 MAGNETIC = """

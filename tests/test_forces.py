@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import sympy
 
-from lagsolve.mechanics.forces import force_terms, friction_term, position_jacobian
+from lagsolve.mechanics.forces import force_terms, position_jacobian
+from lagsolve.mechanics.friction import friction_term
 from lagsolve.mechanics.model import build_model
 from mechanics_support import (
     assert_same,

@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import re
 import shutil
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
 
 from lagsolve.mechanics.derivation import Derivation, derive
-from lagsolve.problem.load import load_problem, load_text
+from lagsolve.problem.load import load_text
 from lagsolve.render.report import render
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -27,8 +27,8 @@ potential: k*x**2/2
 
 
 @pytest.fixture(scope="module")
-def bead() -> Derivation:
-    return derive(load_problem(ROOT / "problems" / "bead.yaml"))
+def bead(shipped_derivation: Callable[[str], Derivation]) -> Derivation:
+    return shipped_derivation("bead")
 
 
 @pytest.fixture(scope="module")
@@ -115,8 +115,8 @@ def test_description_math_reads_as_unicode() -> None:
 
 def test_the_time_slider_moves_the_particles(bead: Derivation, browser: Any, tmp_path: Path) -> None:
     """With a simulation, the slider moves each particle along its path and the plots' cursors follow."""
-    from lagsolve.pipeline import derive_file
-    from lagsolve.simulation import SimulationOptions
+    from lagsolve.app.pipeline import derive_file
+    from lagsolve.app.simulation import SimulationOptions
 
     reports = derive_file(ROOT / "problems" / "bead.yaml", ("html",),
                           simulate=SimulationOptions(values={}, initial={}, samples=201))
@@ -140,8 +140,8 @@ def test_the_time_slider_moves_the_particles(bead: Derivation, browser: Any, tmp
 def test_the_slider_drawing_moves_the_rods(browser: Any, tmp_path: Path) -> None:
     """The double pendulum's page draws its two rods and the pivot; the slider moves the rods' ends with the
     particles (the lower rod starts where the upper particle is)."""
-    from lagsolve.pipeline import derive_file
-    from lagsolve.simulation import SimulationOptions
+    from lagsolve.app.pipeline import derive_file
+    from lagsolve.app.simulation import SimulationOptions
 
     reports = derive_file(ROOT / "problems" / "double_pendulum.yaml", ("html",),
                           simulate=SimulationOptions(values={}, initial={}, samples=201))

@@ -208,8 +208,8 @@ def test_full_problem_expected_answers(full: Problem) -> None:
     assert expected.reduced == {"x": 0}
     potential = expected.effective_potential
     assert potential is not None and potential["coordinate"] == "x"
-    assert potential["equilibria"] == [
-        {"value": 0, "stable": True, "frequency": sympy.sqrt(s["k"] / s["m"])}]
+    assert potential["equilibria"] == (
+        {"value": 0, "stable": True, "frequency": sympy.sqrt(s["k"] / s["m"])},)
     assert not expected.is_empty()
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import xml.etree.ElementTree as ET
 
-from lagsolve.pipeline import Checked
+from lagsolve.app.pipeline import Checked
 from lagsolve.render.machine import Unchecked, checks_json, checks_junit, json_stream
 
 ROW = {"quantity": "accelerations", "name": "x", "status": "warning", "reason": "holds only where",

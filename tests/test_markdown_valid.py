@@ -9,16 +9,15 @@ with markdown-it-py (CommonMark with the dollar-math plugin) and check the block
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import pytest
 
 markdown_it = pytest.importorskip("markdown_it")
 dollarmath = pytest.importorskip("mdit_py_plugins.dollarmath")
 
-from lagsolve.mechanics.derivation import derive  # noqa: E402 - after the optional imports are checked
-from lagsolve.pipeline import derive_file  # noqa: E402
-from lagsolve.problem.load import load_problem  # noqa: E402
 from lagsolve.render.report import render  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -81,15 +80,15 @@ def test_golden_markdown_is_valid(path: Path) -> None:
 
 
 @pytest.mark.parametrize("name", ["bead", "double_pendulum"])
-def test_fresh_markdown_report_is_valid(name: str) -> None:
+def test_fresh_markdown_report_is_valid(name: str, shipped_reports: Callable[[str], Any]) -> None:
     """A freshly rendered report, with constraints (bead) and without (double pendulum), is valid Markdown."""
-    reports = derive_file(ROOT / "problems" / f"{name}.yaml", ("md",))
+    reports = shipped_reports(name)
     assert markdown_problems(reports.outputs["md"]) == []
 
 
-def test_simulation_section_fence_closes() -> None:
+def test_simulation_section_fence_closes(shipped_derivation: Callable[[str], Any]) -> None:
     """The simulation summary's ```text fence closes on its own line, with or without a final newline."""
-    derivation = derive(load_problem(ROOT / "problems" / "bead.yaml"))
+    derivation = shipped_derivation("bead")
     for summary in ("Bead on a wire: simulated to t = 10\n  steps: 3", "Bead: simulated\n  steps: 3\n"):
         text = render(derivation, "md", simulation={"summary": summary, "figures": []})
         assert "## Simulation" in text

@@ -1,4 +1,4 @@
-"""Integration in minimal coordinates (``lagsolve.numeric.chart``): the independent coordinates alone are
+"""Integration in minimal coordinates (``lagsolve.numeric.minimal_state``): the independent coordinates alone are
 integrated and the dependent ones follow from the constraints' closed forms.
 
 Checked against independent routes: the reduced Lagrangian's own accelerations (symbolic, from the
@@ -14,11 +14,11 @@ import numpy as np
 import pytest
 import sympy
 
-from lagsolve.mechanics.chart import minimal_chart
+from lagsolve.app.simulation import SimulationOptions, run_simulation
+from lagsolve.mechanics.minimal_chart import minimal_chart
 from lagsolve.numeric.initial import complete_initial
 from lagsolve.numeric.integrate import integrate_motion
 from lagsolve.numeric.system import bind
-from lagsolve.simulation import SimulationOptions, run_simulation
 from mechanics_support import derived_file, derived_text, shipped
 
 

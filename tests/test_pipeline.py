@@ -6,8 +6,9 @@ from pathlib import Path
 
 import pytest
 
+from lagsolve.app.pipeline import Reports, check_file, derive_file, golden_differences
 from lagsolve.errors import SpecError
-from lagsolve.pipeline import Reports, check_file, derive_file, golden_differences, safe_slug
+from lagsolve.files import safe_slug
 
 ROOT = Path(__file__).resolve().parents[1]
 

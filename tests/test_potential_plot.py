@@ -1,4 +1,5 @@
-"""The effective-potential figure (``lagsolve.render.potential_plot``)."""
+"""The effective potential in numbers (``lagsolve.numeric.potential``) and its figure
+(``lagsolve.render.potential_plot``)."""
 
 from __future__ import annotations
 
@@ -6,7 +7,8 @@ import math
 
 import pytest
 
-from lagsolve.render.potential_plot import potential_curve, potential_figure
+from lagsolve.numeric.potential import potential_curve
+from lagsolve.render.potential_plot import potential_figure
 from mechanics_support import derived_file
 
 pytest.importorskip("matplotlib")

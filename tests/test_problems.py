@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import json
 import random
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
 import sympy
 
-from lagsolve.mechanics.derivation import Derivation, derive
-from lagsolve.pipeline import Reports, derive_file, golden_differences
+from lagsolve.app.pipeline import Reports, golden_differences
+from lagsolve.mechanics.derivation import Derivation
 from lagsolve.problem.load import load_problem
 from mechanics_support import shipped
 
@@ -25,13 +26,13 @@ CONCRETE = [lambda u: sympy.sin(u) + u**2 / 3, lambda u: sympy.exp(u / 2) - u, l
 
 
 @pytest.fixture(scope="module", params=REVIEWED, ids=[p.stem for p in REVIEWED])
-def reports(request: pytest.FixtureRequest) -> Reports:
-    return derive_file(request.param, ("md", "tex", "json"))
+def reports(request: pytest.FixtureRequest, shipped_reports: Callable[[str], Reports]) -> Reports:
+    return shipped_reports(request.param.stem)
 
 
 @pytest.fixture(scope="module")
-def derivations() -> dict[str, Derivation]:
-    return {p.stem: derive(load_problem(p)) for p in PROBLEMS}
+def derivations(shipped_derivation: Callable[[str], Derivation]) -> dict[str, Derivation]:
+    return {p.stem: shipped_derivation(p.stem) for p in PROBLEMS}
 
 
 def test_reports_match_golden_files(reports: Reports) -> None:

@@ -6,7 +6,9 @@ import json
 import re
 import shutil
 import subprocess
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import pytest
 import sympy
@@ -14,7 +16,7 @@ from sympy.parsing.sympy_parser import parse_expr
 
 from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation, derive
-from lagsolve.problem.load import load_problem, load_text
+from lagsolve.problem.load import load_text
 from lagsolve.render.report import context, render, result_dict, summary, template_dirs
 from mechanics_support import shipped
 
@@ -31,8 +33,8 @@ potential: k*x**2/2
 
 
 @pytest.fixture(scope="module")
-def bead() -> Derivation:
-    return derive(load_problem(ROOT / "problems" / "bead.yaml"))
+def bead(shipped_derivation: Callable[[str], Derivation]) -> Derivation:
+    return shipped_derivation("bead")
 
 
 @pytest.fixture(scope="module")
@@ -155,9 +157,9 @@ def overfull(log: str, tex: str) -> list[str]:
 
 
 @pytest.mark.parametrize("name", ["knife_edge", "rotating_tube", "double_pendulum", "ladder_rough_floor"])
-def test_latex_fits_the_page(name: str, tmp_path: Path) -> None:
+def test_latex_fits_the_page(name: str, tmp_path: Path, shipped_derivation: Callable[[str], Derivation]) -> None:
     """A freshly rendered report of a problem with long results compiles with no line over 10 pt past the margin."""
-    derivation = derive(load_problem(ROOT / "problems" / f"{name}.yaml"))
+    derivation = shipped_derivation(name)
     tex = render(derivation, "tex")
     run, log = compile_latex(tex, {}, tmp_path)
     assert run.returncode == 0, run.stdout[-2000:]
@@ -166,12 +168,10 @@ def test_latex_fits_the_page(name: str, tmp_path: Path) -> None:
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", shipped())
-def test_latex_compiles(name: str, tmp_path: Path) -> None:
+def test_latex_compiles(name: str, tmp_path: Path, shipped_reports: Callable[[str], Any]) -> None:
     """Each problem's LaTeX report compiles with pdflatex, no line runs over 10 pt past the margin, and it is the
     reviewed golden report (skipped where pdflatex is not installed)."""
-    from lagsolve.pipeline import derive_file
-
-    reports = derive_file(ROOT / "problems" / f"{name}.yaml", ("tex",))
+    reports = shipped_reports(name)
     tex = reports.outputs["tex"]
     run, log = compile_latex(tex, reports.files, tmp_path)
     assert run.returncode == 0, run.stdout[-2000:]

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import pytest
 from ruamel.yaml import YAML
@@ -62,13 +64,11 @@ def test_golden_result_is_valid(path: Path) -> None:
 
 
 @pytest.mark.parametrize("name", ["bead", "atwood", "rolling_coin", "central_force"])
-def test_rendered_result_is_valid(name: str) -> None:
+def test_rendered_result_is_valid(name: str, shipped_derivation: Callable[[str], Any]) -> None:
     """A result rendered now (with mass_matrix, forcing and notes) is valid against the output schema."""
-    from lagsolve.mechanics.derivation import derive
-    from lagsolve.problem.load import load_problem
     from lagsolve.render.report import result_json
 
-    data = json.loads(result_json(derive(load_problem(ROOT / "problems" / f"{name}.yaml"))))
+    data = json.loads(result_json(shipped_derivation(name)))
     assert {"mass_matrix", "forcing", "notes"} <= set(data)
     assert _errors(_validator(output_schema()), data) == []
 

@@ -1,12 +1,12 @@
-"""`lagsolve.states`: random states on the constraint surface, with random smooth functions."""
+"""`lagsolve.check.states`: random states on the constraint surface, with random smooth functions."""
 
 from __future__ import annotations
 
 import mpmath
 import sympy
 
+from lagsolve.check.states import GROUP, Compiled, StateSpace
 from lagsolve.mechanics.constraints import velocity_form
-from lagsolve.states import GROUP, Compiled, StateSpace
 from mechanics_support import derived_file
 
 

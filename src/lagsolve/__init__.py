@@ -21,7 +21,7 @@ __version__ = "0.1.0"
 
 if TYPE_CHECKING:
     from lagsolve.api import Trajectory, check, derive, load_problem, simulate
-    from lagsolve.check import CheckReport
+    from lagsolve.check.compare import CheckReport
     from lagsolve.errors import DerivationError, LagsolveError, RenderError, SimulationError, SpecError
     from lagsolve.mechanics.derivation import Derivation
     from lagsolve.problem.schema import Problem
@@ -36,7 +36,7 @@ _PUBLIC = {
     "check": "lagsolve.api",
     "Trajectory": "lagsolve.api",
     "Derivation": "lagsolve.mechanics.derivation",
-    "CheckReport": "lagsolve.check",
+    "CheckReport": "lagsolve.check.compare",
     "Problem": "lagsolve.problem.schema",
     "LagsolveError": "lagsolve.errors",
     "SpecError": "lagsolve.errors",

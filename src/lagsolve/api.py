@@ -28,7 +28,7 @@ from lagsolve.errors import Issue, SpecError
 if TYPE_CHECKING:
     import numpy as np
 
-    from lagsolve.check import CheckReport
+    from lagsolve.check.compare import CheckReport
     from lagsolve.mechanics.derivation import Derivation
     from lagsolve.numeric.integrate import Event
     from lagsolve.numeric.integrate import Trajectory as Motion
@@ -295,12 +295,12 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
     >>> [round(float(y), 9) for y in run.columns()["y"]]
     [0.0, -0.5, -2.0]
     """
+    from lagsolve.app.simulation import Coordinates, SimulationOptions, simulate_derivation, simulate_form
     from lagsolve.mechanics.derivation import Derivation
-    from lagsolve.numeric.integrate import METHODS
-    from lagsolve.simulation import SimulationOptions, run_simulation
+    from lagsolve.numeric.integrate import METHODS, AfterRelease
 
-    choices = {"method": (method, METHODS), "after_release": (after_release, ("stop", "continue")),
-               "coordinates": (coordinates, ("minimal", "full"))}
+    choices = {"method": (method, METHODS), "after_release": (after_release, tuple(AfterRelease)),
+               "coordinates": (coordinates, tuple(Coordinates))}
     bad = [Issue("<argument>", 0, key, f"expected one of {', '.join(allowed)}, found {given!r}")
            for key, (given, allowed) in choices.items() if given is not None and given not in allowed]
     for key, value in (("t_end", t_end), ("rtol", rtol), ("atol", atol), ("max_step", max_step), ("budget", budget)):
@@ -315,32 +315,12 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
                                 method=method, rtol=rtol, atol=atol, max_step=max_step, after_release=after_release,
                                 coordinates=coordinates, analysis_timeout=budget, scene=True)
     if isinstance(path_or_derivation, Derivation):
-        from lagsolve.mechanics.analysis import energy_reason
-        from lagsolve.mechanics.chart import minimal_chart
-
-        derivation = path_or_derivation
-        if derivation.form is None:
-            raise SpecError([Issue(derivation.problem.source, 0, "", "this derivation has no matrix form to simulate")])
-        if derivation.analysis is not None:
-            chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
-            energy_note = energy_reason(derivation.analysis.conservation)
-            result = run_simulation(derivation.form, derivation.conserved or {}, options, chart=chart,
-                                    chart_note=chart_note, energy_note=energy_note)
-        else:
-            result = _simulate_form(derivation.form, options)
+        result = simulate_derivation(path_or_derivation, options)
     else:
         from lagsolve.mechanics.matrix_form import matrix_form
 
-        result = _simulate_form(matrix_form(_problem(path_or_derivation), display=False), options)
+        result = simulate_form(matrix_form(_problem(path_or_derivation), display=False), options)
     return _trajectory(result)
-
-
-def _simulate_form(form: Any, options: Any) -> Any:
-    from lagsolve.mechanics.analysis import monitored
-    from lagsolve.simulation import run_simulation
-
-    conserved, chart, chart_note, energy_note = monitored(form, options.analysis_timeout)
-    return run_simulation(form, conserved, options, None, "", chart, chart_note, energy_note)
 
 
 def _trajectory(result: Any) -> Trajectory:
@@ -385,10 +365,10 @@ def check(path_or_derivation: str | Path | bytes | Problem | Derivation, *, budg
     >>> report.passed, [v.status for v in report.verdicts]
     (True, ['ok'])
     """
-    from lagsolve.check import check as run
+    from lagsolve.check.compare import check as run
     from lagsolve.mechanics.derivation import Derivation
 
     derivation = path_or_derivation if isinstance(path_or_derivation, Derivation) else derive(
-        path_or_derivation, budget=budget)  # type: ignore[arg-type]
+        path_or_derivation, budget=budget)
     return run(derivation, states=states, seed=seed)
 

@@ -1,4 +1,4 @@
-"""The ``lagsolve`` command: a thin shell over :mod:`lagsolve.pipeline`.
+"""The ``lagsolve`` command: a thin shell over :mod:`lagsolve.app.pipeline`.
 
 Parses options, calls one library function, shows or writes the result, and
 maps errors to exit codes: 0 success, 1 the computation failed, 2 invalid input.
@@ -26,7 +26,7 @@ for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_variable, "1")
 
 if TYPE_CHECKING:
-    from lagsolve.pipeline import Reports
+    from lagsolve.app.pipeline import Reports
 
 EXTENSIONS = {"md": ".md", "tex": ".tex", "html": ".html", "json": ".json"}
 
@@ -50,8 +50,8 @@ def _note(text: str, *, err: bool = False, level: int = 1, nl: bool = True) -> N
 
 
 def _golden(reports: Reports, folder: Path, update: bool) -> int:
+    from lagsolve.app.pipeline import golden_differences
     from lagsolve.files import write_file
-    from lagsolve.pipeline import golden_differences
 
     if update:
         for fmt, text in reports.outputs.items():
@@ -111,7 +111,7 @@ def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
     lagsolve check problems/*.yaml
     lagsolve check problems/*.yaml --format junit > check.xml
     """
-    from lagsolve.pipeline import check_file
+    from lagsolve.app.pipeline import check_file
     from lagsolve.render.machine import Unchecked, checks_json, checks_junit
 
     status = 0
@@ -166,8 +166,8 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     lagsolve derive problems/bead.yaml --format tex -o bead.tex
     lagsolve derive problems/bead.yaml --simulate      # the report with the simulation's figures
     """
-    from lagsolve.files import write_file
-    from lagsolve.pipeline import SimulationOptions, derive_file, safe_slug
+    from lagsolve.app.pipeline import SimulationOptions, derive_file
+    from lagsolve.files import safe_slug, write_file
 
     if update_golden and golden is None:
         raise click.UsageError("--update-golden needs --golden DIR")
@@ -206,7 +206,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
             if golden is not None:
                 status = max(status, _golden(reports, golden, update_golden))
                 continue
-            if single_file and output is not None:
+            if single_file and output is not None and fmt is not None:
                 root, place = output.parent, Path()
                 names = {fmt: output.name}
             else:
@@ -299,8 +299,8 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
     lagsolve simulate problems/bead.yaml --t-end 20 --set g=1.62 --initial x=0.5 --plot --show
     lagsolve simulate problems/bead.yaml --format csv -o bead.csv
     """
-    from lagsolve.files import write_file
-    from lagsolve.pipeline import SimulationOptions, safe_slug, simulate_file
+    from lagsolve.app.pipeline import SimulationOptions, simulate_file
+    from lagsolve.files import safe_slug, write_file
 
     options = SimulationOptions(
         values=_assignments(values, "--set"), initial=_assignments(initial, "--initial"), t_end=t_end,

@@ -19,6 +19,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import re
 import secrets
 import stat
 from pathlib import Path
@@ -206,3 +207,11 @@ def read_text(path: Path, *, option: str = "--golden") -> str | None:
     except UnicodeDecodeError as exc:
         raise _refuse(path, option, f"is not UTF-8 text (byte {exc.start} cannot be decoded)",
                       "replace it with the report, e.g. with --update-golden") from None
+
+
+def safe_slug(path: str | Path) -> str:
+    """A file-name-safe stem for output names: ``problems/My bead.yaml`` → ``My_bead``."""
+    stem = Path(path).name
+    stem = stem.rsplit(".", 1)[0] if "." in stem else stem
+    slug = re.sub(r"[^A-Za-z0-9_-]+", "_", stem).strip("_")
+    return slug or "problem"

@@ -22,43 +22,26 @@ together with the contract forms ``reduced``, ``conserved`` and ``effective_pote
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import sympy
 
-from lagsolve.mechanics.chart import MinimalChart, minimal_chart
-from lagsolve.mechanics.conserved import Conservation, MotionSystem, conserved_quantities, constraint_surface
+from lagsolve.mechanics.conserved import Conservation, MotionSystem, conserved_quantities
 from lagsolve.mechanics.constraints import constraint_terms
 from lagsolve.mechanics.contact import ContactCheck, check_point
 from lagsolve.mechanics.equilibria import EffectivePotential, effective_potential
-from lagsolve.mechanics.integrability import Classification, classify_all
+from lagsolve.mechanics.integrability import classify_all
 from lagsolve.mechanics.linearize import Linearization, applies, linearize, numeric_linearization
 from lagsolve.mechanics.minimal import ReducedSystem, reduce_system
-from lagsolve.mechanics.names import momentum_name
+from lagsolve.mechanics.minimal_chart import MinimalChart, minimal_chart
+from lagsolve.mechanics.results import Analysis
 from lagsolve.mechanics.stages import Stages
+from lagsolve.mechanics.surface import constraint_surface
+from lagsolve.problem.names import momentum_name
 
 if TYPE_CHECKING:
-    from lagsolve.mechanics.derivation import Derivation
     from lagsolve.mechanics.matrix_form import MatrixForm
-
-
-@dataclass(frozen=True)
-class Analysis:
-    """Everything :func:`analyse` found; each ``*_note`` says why a part is absent."""
-
-    classification: tuple[Classification, ...]
-    reduced: ReducedSystem | None
-    reduced_note: str
-    system: MotionSystem
-    conservation: Conservation
-    effective_potential: EffectivePotential | None
-    effective_note: str
-    linearization: Linearization | None
-    linearization_note: str
-    #: per equilibrium of ``effective_potential`` / ``linearization``: the unilateral constraints' forces there
-    effective_contact: tuple[tuple[ContactCheck, ...], ...] = ()
-    modes_contact: tuple[tuple[ContactCheck, ...], ...] = ()
+    from lagsolve.mechanics.results import Derivation
 
 
 #: CPU seconds the symbolic equilibrium solve may take when numeric equilibria can be given instead
@@ -146,13 +129,15 @@ def _contact(derivation: Derivation, reduced: ReducedSystem | None, effective: E
     if reduced is not None:
         velocities.update(dict.fromkeys(reduced.model.velocities, sympy.Integer(0)))
     effective_checks: list[tuple[ContactCheck, ...]] = []
-    for e in effective.equilibria if effective is not None else ():
+    equilibria = effective.equilibria if effective is not None else ()
+    for e in equilibria:
+        assert effective is not None
         if e.value is None:
             effective_checks.append(())
             continue
         rates = {q: v for model in (derivation.model, *((reduced.model,) if reduced is not None else ()))
                  for q, v in zip(model.coordinates, model.velocities, strict=True)}
-        moving = {rates[c]: w for c, _, w in effective.cyclic if c in rates}  # type: ignore[union-attr]
+        moving = {rates[c]: w for c, _, w in effective.cyclic if c in rates}
         effective_checks.append(check_point(derivation.multipliers, unilateral, {effective.coordinate: e.value},
                                             {**velocities, **moving}, substitution))
     modes_checks = [check_point(derivation.multipliers, unilateral, dict(m.point), velocities, substitution)

@@ -30,9 +30,11 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.constraints import ConstraintTerms
+from lagsolve.mechanics.energy import jacobi_integral
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.simplify import tidy, tidy_sum
+from lagsolve.mechanics.surface import on_surface
 
 
 @dataclass(frozen=True)
@@ -55,7 +57,7 @@ class MotionSystem:
     def rate(self, expr: Any) -> Any:
         """Total time derivative of ``expr`` along the motion, on the constraint surface."""
         rate = self.model.time_derivative(expr, second_order=True).xreplace(self.accelerations)
-        return _on(rate, self.surface)
+        return on_surface(rate, self.surface)
 
     def constant(self, expr: Any) -> bool:
         """``expr`` is constant along the motion: its :meth:`rate` is proved identically zero.
@@ -125,29 +127,6 @@ def _numerator_vanishes_symengine(model: Model, expr: Any, accelerations: dict[A
         return bool(symengine.expand(numerator) == 0)
     except (RuntimeError, TypeError, ValueError, NotImplementedError, AttributeError):
         return None
-
-
-def _on(expr: Any, surface: dict[Any, Any]) -> Any:
-    for _ in range(len(surface) + 1):
-        new = expr.xreplace(surface)
-        if new == expr:
-            break
-        expr = new
-    return expr
-
-
-def constraint_surface(constraints: tuple[ConstraintTerms, ...], model: Model) -> dict[Any, Any]:
-    """One velocity per constraint in terms of the others (the simplest non-zero coefficient)."""
-    surface: dict[Any, Any] = {}
-    for c in constraints:
-        rate = _on(sum((a * v for a, v in zip(c.coefficients, model.velocities, strict=True)), c.offset), surface)
-        options = [(sympy.count_ops(sympy.diff(rate, v)), -i, v) for i, v in enumerate(model.velocities)
-                   if v not in surface and sympy.diff(rate, v) != 0]
-        if not options:
-            continue
-        _, _, v = min(options, key=lambda o: (o[0], o[1]))
-        surface[v] = sympy.cancel(v - rate / sympy.diff(rate, v))
-    return surface
 
 
 @dataclass(frozen=True)
@@ -223,7 +202,7 @@ def _jacobi(system: MotionSystem, friction: bool, notes: list[str]) -> Conserved
     if not proved_zero(sympy.diff(L, model.time)):
         notes.append("energy: not conserved, L depends explicitly on the time")
         return None
-    power = _on(sum((f * v for f, v in zip(system.generalized_forces, model.velocities, strict=True)),
+    power = on_surface(sum((f * v for f, v in zip(system.generalized_forces, model.velocities, strict=True)),
                     sympy.Integer(0)), system.surface)
     if friction or not proved_zero(power):
         what = "friction does" if friction else "the non-conservative forces do"
@@ -233,7 +212,7 @@ def _jacobi(system: MotionSystem, friction: bool, notes: list[str]) -> Conserved
     if moving:
         notes.append(f"energy: not conserved, constraint {', '.join(moving)} has b != 0, so its force does work")
         return None
-    h = sum((v * sympy.diff(L, v) for v in model.velocities), sympy.Integer(0)) - L
+    h = jacobi_integral(model)
     if system.accelerations and not system.constant(h):
         notes.append("energy: the conditions hold but dh/dt did not simplify to 0; not claimed")
         return None

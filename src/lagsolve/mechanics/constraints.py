@@ -16,7 +16,7 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.model import Model
-from lagsolve.problem.schema import Constraint
+from lagsolve.problem.schema import Constraint, ConstraintKind
 
 
 @dataclass(frozen=True)
@@ -29,7 +29,7 @@ class ConstraintTerms:
     """
 
     name: str
-    kind: str
+    kind: ConstraintKind
     expression: Any
     on: tuple[str, ...]
     coefficients: tuple[Any, ...]
@@ -41,7 +41,7 @@ class ConstraintTerms:
 def constraint_terms(constraint: Constraint, model: Model) -> ConstraintTerms:
     """Coefficients of one constraint (see the module docstring for the conventions)."""
     psi = constraint.expression
-    if constraint.kind == "holonomic":
+    if constraint.kind == ConstraintKind.HOLONOMIC:
         a = tuple(sympy.diff(psi, q) for q in model.coordinates)
         b = sympy.diff(psi, model.time)
     else:

@@ -59,7 +59,7 @@ def check_point(multipliers: dict[str, Any], unilateral: tuple[str, ...], point:
     velocities
         Velocity symbol → its value at the equilibrium (0, or a cyclic velocity in terms of its momentum).
     substitution
-        An :class:`~lagsolve.mechanics.reduce.Elimination` writing dependent coordinates in independent ones.
+        An :class:`~lagsolve.mechanics.elimination.Elimination` writing dependent coordinates in independent ones.
 
     >>> x, xd, m, g = sympy.symbols("x x_dot m g", positive=True)
     >>> check_point({"floor": -m * g * sympy.cos(x)}, ("floor",), {x: sympy.pi}, {xd: 0})[0].admissible

@@ -42,6 +42,7 @@ from lagsolve.mechanics.conserved import Conservation, MotionSystem
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.signs import relation, sign_core
 from lagsolve.mechanics.simplify import tidy, tidy_sum
+from lagsolve.problem.names import momentum_symbol
 
 #: factors of V_eff' larger than this are not handed to ``sympy.solve``
 SOLVE_LIMIT = 40
@@ -101,11 +102,6 @@ class EffectivePotential:
     note: str = ""
 
 
-def momentum_symbol(q: Any) -> Any:
-    """The symbol ``p_<q>`` (real, as the loader declares it for expected answers)."""
-    return sympy.Symbol(f"p_{q.name}", real=True)
-
-
 def effective_potential(system: MotionSystem, conservation: Conservation,
                         friction: bool) -> tuple[EffectivePotential | None, str]:
     """The reduction of ``system`` to its one non-cyclic coordinate, or None and the reason."""
@@ -132,9 +128,9 @@ def effective_potential(system: MotionSystem, conservation: Conservation,
     if any(sympy.diff(L, v, 3) != 0 for v in model.velocities):
         return None, "T is not quadratic in the velocities"
     # L = 1/2 v^T A v + (b + C qd)^T v + (terms without v), v the cyclic velocities
-    rest = {v: 0 for v in model.velocities}
+    at_zero = {v: 0 for v in model.velocities}
     A = sympy.Matrix(len(velocities), len(velocities), lambda i, j: sympy.diff(L, velocities[i], velocities[j]))
-    b = sympy.Matrix([sympy.diff(L, v).xreplace(rest) for v in velocities])
+    b = sympy.Matrix([sympy.diff(L, v).xreplace(at_zero) for v in velocities])
     C = sympy.Matrix([sympy.diff(L, v, qd) for v in velocities])
     P = sympy.Matrix(momenta)
     try:
@@ -147,8 +143,8 @@ def effective_potential(system: MotionSystem, conservation: Conservation,
     mass = _display(sympy.diff(L, qd, 2) - (C.T * inverse * C)[0, 0]) if velocities else tidy(sympy.diff(L, qd, 2))
     if mass == 0:
         return None, f"{q.name} has no inertia once the cyclic motion is removed"
-    gyroscopic = _display(sympy.diff(L, qd).xreplace({**rest, **at_rest}).xreplace({qd: 0}))
-    raw = -L.xreplace(rest) + ((P - b).T * inverse * (P - b))[0, 0] / 2 if velocities else -L.xreplace(rest)
+    gyroscopic = _display(sympy.diff(L, qd).xreplace({**at_zero, **at_rest}).xreplace({qd: 0}))
+    raw = -L.xreplace(at_zero) + ((P - b).T * inverse * (P - b))[0, 0] / 2 if velocities else -L.xreplace(at_zero)
     potential = _drop_constants(raw, q)
     lhs = mass * qdd + sympy.diff(mass, q) * qd**2 / 2
     rhs = -sympy.diff(potential, q)
@@ -343,8 +339,8 @@ def _at_value(value: Any, condition: Any, curvature: Any, mass: Any, q: Any,
     c0 = tidy(curvature.xreplace({q: value}))
     exists = _exists_if(value)
     stable, stability_condition = _stability(c0, exists)
-    if stable is None and eliminated is not None and sign_core(eliminated[0])[0] is not None:
-        stable, stability_condition = sign_core(eliminated[0])[0] > 0, None  # V'' at any equilibrium
+    if stable is None and eliminated is not None and (core_sign := sign_core(eliminated[0])[0]) is not None:
+        stable, stability_condition = core_sign > 0, None  # V'' at any equilibrium
     at = curvature_at = None
     if eliminated is not None:
         curvature_at, at = eliminated[0], tidy(eliminated[0] / mass)

@@ -27,19 +27,27 @@ from typing import Any
 
 import sympy
 
+from lagsolve.enums import TextEnum
 from lagsolve.mechanics.constraints import ConstraintTerms, constraint_terms
 from lagsolve.mechanics.identities import Zero, proved_zero, zero_status
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.simplify import tidy, tidy_sum
-from lagsolve.problem.schema import Constraint
+from lagsolve.problem.schema import Constraint, ConstraintKind
 
 #: integrands above this many operations are not handed to ``sympy.integrate``
 INTEGRATE_LIMIT = 40
 
-HOLONOMIC = "holonomic"
-INTEGRABLE = "integrable"
-NONHOLONOMIC = "nonholonomic"
-UNRESOLVED = "unresolved"
+class Integrability(TextEnum):
+    """What a constraint turned out to be (:class:`Classification` ``kind``)."""
+
+    HOLONOMIC = "holonomic"
+    INTEGRABLE = "integrable"
+    NONHOLONOMIC = "nonholonomic"
+    UNRESOLVED = "unresolved"
+
+
+HOLONOMIC, INTEGRABLE = Integrability.HOLONOMIC, Integrability.INTEGRABLE
+NONHOLONOMIC, UNRESOLVED = Integrability.NONHOLONOMIC, Integrability.UNRESOLVED
 
 
 @dataclass(frozen=True)
@@ -57,7 +65,7 @@ class Classification:
     """
 
     name: str
-    kind: str
+    kind: Integrability
     form: tuple[Any, ...] = ()
     variables: tuple[Any, ...] = ()
     exact: bool = False
@@ -74,7 +82,7 @@ def classify(terms: ConstraintTerms, model: Model, constraint: Constraint,
              taken_names: set[str]) -> Classification:
     """Classify one constraint (see the module docstring); ``taken_names`` are names in use,
     so that a new constant never shadows one (it is extended with the constant's name)."""
-    if terms.kind == "holonomic":
+    if terms.kind == ConstraintKind.HOLONOMIC:
         return Classification(terms.name, HOLONOMIC)
     variables = (*model.coordinates, model.time)
     form = (*terms.coefficients, terms.offset)
@@ -175,7 +183,8 @@ def _integrated(terms: ConstraintTerms, model: Model, constraint: Constraint, va
     else:
         constant = sympy.Symbol(_fresh(f"C_{terms.name}", taken_names), real=True)
     taken_names.add(constant.name)
-    holonomic = constraint_terms(Constraint(terms.name, "holonomic", psi - constant, terms.on, constraint.line), model)
+    holonomic = constraint_terms(Constraint(terms.name, ConstraintKind.HOLONOMIC, psi - constant, terms.on,
+                                            constraint.line), model)
     solved = None
     if solved_for is not None:
         solved = (solved_for, sympy.expand(solved_for - (psi - constant)))

@@ -17,7 +17,8 @@ import sympy
 
 from lagsolve.mechanics.constraints import ConstraintTerms, constraint_terms
 from lagsolve.mechanics.dimensions import check_dimensions
-from lagsolve.mechanics.forces import ForceTerm, FrictionTerm, force_terms, friction_term
+from lagsolve.mechanics.forces import ForceTerm, force_terms
+from lagsolve.mechanics.friction import FrictionTerm, friction_term
 from lagsolve.mechanics.inertia import check_inertia, check_masses
 from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms
 from lagsolve.mechanics.model import Model, build_model

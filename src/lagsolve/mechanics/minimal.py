@@ -17,7 +17,7 @@ the reduced one (checked here, symbolically when possible).
 Notes
 -----
 * A constraint is solved when it is linear in a coordinate; without an ``independent:``
-  list the choice is :func:`lagsolve.mechanics.reduce.eliminate`'s (constant coefficient,
+  list the choice is :func:`lagsolve.mechanics.elimination.eliminate`'s (constant coefficient,
   last such coordinate in input order).
 * A nonholonomic constraint cannot be substituted into L (that gives wrong equations), so
   no reduced system is formed when one remains.
@@ -33,12 +33,12 @@ import sympy
 
 from lagsolve.errors import DerivationError
 from lagsolve.mechanics.constraints import ConstraintTerms
+from lagsolve.mechanics.elimination import Elimination, eliminate
 from lagsolve.mechanics.identities import Zero, zero_status
 from lagsolve.mechanics.integrability import HOLONOMIC, INTEGRABLE, Classification
 from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms, solve_augmented
 from lagsolve.mechanics.linsolve import SIZE_LIMIT
 from lagsolve.mechanics.model import Model
-from lagsolve.mechanics.reduce import Elimination, eliminate
 from lagsolve.mechanics.simplify import tidy, tidy_sum
 
 

@@ -30,20 +30,20 @@ to depend on the friction, on it it does not). The cases:
 
 from __future__ import annotations
 
-import random
 from dataclasses import dataclass
 from typing import Any
 
 import sympy
 
 from lagsolve.errors import DerivationError
-from lagsolve.mechanics.constraints import ConstraintTerms, velocity_form
-from lagsolve.mechanics.forces import FrictionTerm
+from lagsolve.mechanics.constraints import ConstraintTerms
+from lagsolve.mechanics.elimination import Elimination
+from lagsolve.mechanics.friction import FrictionTerm
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.reactions import Reaction
-from lagsolve.mechanics.reduce import Elimination
 from lagsolve.mechanics.signs import sign_core
 from lagsolve.mechanics.simplify import norm, root_of_sum_of_squares, tidy, unit_signs
+from lagsolve.mechanics.surface import Surface
 
 
 @dataclass(frozen=True)
@@ -56,69 +56,6 @@ class NormalForce:
     case: str
     valid_while: Any
     system: Any
-
-
-class Surface:
-    """Writes expressions on the constraint surface: dependent coordinates and velocities from the
-    elimination, then the velocities that the remaining velocity forms fix (solved linearly)."""
-
-    def __init__(self, constraints: tuple[ConstraintTerms, ...], model: Model, elimination: Elimination) -> None:
-        self.elimination = elimination
-        self.model = model
-        free = [v for v in model.velocities if v not in elimination.velocities]
-        self.velocities: dict[Any, Any] = {}
-        for c in constraints:
-            form = sympy.expand(elimination.apply(velocity_form(c, model)).xreplace(self.velocities))
-            if form == 0:
-                continue
-            for v in reversed(free):
-                coefficient = sympy.diff(form, v)
-                if coefficient != 0 and not coefficient.has(*model.velocities):
-                    solved = sympy.cancel(v - form / coefficient)
-                    self.velocities = {k: e.xreplace({v: solved}) for k, e in self.velocities.items()}
-                    self.velocities[v] = solved
-                    free.remove(v)
-                    break
-
-    def apply(self, expr: Any) -> Any:
-        return self.elimination.apply(expr).xreplace(self.velocities)
-
-    def is_zero(self, expr: Any) -> bool:
-        """True when ``expr`` vanishes on the surface: symbolically, or else at random points (the
-        positions need not satisfy the holonomic constraints the elimination does not solve:
-        a friction force tangent to the surface is orthogonal to it for any velocity on it)."""
-        if expr == 0:
-            return True
-        on = self.apply(expr)
-        if tidy(on) == 0:
-            return True
-        return _numerically_zero(on, self.model)
-
-
-def _numerically_zero(expr: Any, model: Model, points: int = 6) -> bool:
-    rng = random.Random(12)
-    concrete = expr.replace(lambda e: isinstance(e, sympy.core.function.AppliedUndef),
-                            lambda e: sympy.sin(sum(e.args, sympy.Integer(0))) + 2)
-    concrete = concrete.doit()
-    symbols = sorted(concrete.free_symbols, key=sympy.default_sort_key)
-    if not symbols:
-        return bool(abs(complex(concrete)) < 1e-12)
-    compiled = sympy.lambdify(symbols, concrete, modules="mpmath")
-    seen = 0
-    for _ in range(4 * points):
-        values = [rng.uniform(0.5, 2.0) if s.is_positive else rng.uniform(-2.0, 2.0) for s in symbols]
-        try:
-            value = complex(compiled(*values))
-        except (ZeroDivisionError, ValueError, TypeError, OverflowError):
-            continue
-        if value != value:  # nan
-            continue
-        if abs(value) > 1e-10:
-            return False
-        seen += 1
-        if seen >= points:
-            return True
-    return False
 
 
 def normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, ...],

@@ -29,7 +29,7 @@ from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.forces import position_jacobian
 from lagsolve.mechanics.lagrange import solve_linear
 from lagsolve.mechanics.model import Model
-from lagsolve.mechanics.simplify import tidy
+from lagsolve.mechanics.simplify import norm, tidy
 from lagsolve.problem.schema import Problem
 
 
@@ -140,3 +140,11 @@ def _least_norm(J: sympy.Matrix, a: sympy.Matrix) -> sympy.Matrix | None:
         return (J.T.pinv() * a).applyfunc(sympy.cancel)
     except (ValueError, ZeroDivisionError, NotImplementedError):
         return None
+
+
+def force_scale(react: Reaction) -> Any:
+    """|force of the constraint| / |λ|: the length of its direction on its first particle (or named point),
+    NaN where no physical force is known (no particle, no point of a body named): no magnitude is claimed."""
+    if react.particles:
+        return norm(list(react.particles[0].direction))
+    return sympy.nan

@@ -30,7 +30,7 @@ import sympy
 from lagsolve.errors import Issue, SpecError
 from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.model import Model
-from lagsolve.problem.schema import Problem
+from lagsolve.problem.schema import ConstraintKind, Problem
 
 #: states drawn on the constraint surface for the numeric tests
 STATES = 8
@@ -58,7 +58,7 @@ def check_constraints(problem: Problem, model: Model, constraints: tuple[Constra
     issues: list[Issue] = []
     degenerate: set[str] = set()
     for c in constraints:
-        if c.kind != "holonomic":
+        if c.kind != ConstraintKind.HOLONOMIC:
             continue
         fix = _repeated_factor_fix(c.expression, model)
         if fix is not None:
@@ -72,7 +72,7 @@ def check_constraints(problem: Problem, model: Model, constraints: tuple[Constra
     if not states:
         return  # no state on the surface was found: nothing can be said numerically
     for j, c in enumerate(constraints):
-        if c.kind == "holonomic" and all(sampler.vanishes(j, s) for s in states):
+        if c.kind == ConstraintKind.HOLONOMIC and all(sampler.vanishes(j, s) for s in states):
             issues.append(_issue(problem, c, lines, f"the gradient of {c.name} vanishes where {c.name} = 0",
                                  "write the constraint with a simple zero (not a square or a higher power, "
                                  "for instance) so that its gradient is not zero on the surface"))
@@ -130,7 +130,7 @@ class _Sampler:
     def __init__(self, problem: Problem, model: Model, constraints: tuple[ConstraintTerms, ...]) -> None:
         self.problem, self.model, self.constraints = problem, model, constraints
         self.coordinates = list(model.coordinates)
-        self.holonomic = [j for j, c in enumerate(constraints) if c.kind == "holonomic"]
+        self.holonomic = [j for j, c in enumerate(constraints) if c.kind == ConstraintKind.HOLONOMIC]
         self.functions, self.coefficients = self._function_family(problem)
         self.parameters = [p.symbol for p in problem.parameters]
         self.arguments = [model.time, *self.parameters, *self.coefficients, *self.coordinates]
@@ -177,7 +177,7 @@ class _Sampler:
     def states(self, count: int) -> list[tuple[list[float], np.ndarray, np.ndarray]]:
         """Up to ``count`` states (fixed values, coordinates, the coordinates they started from)."""
         rng = random.Random(20)
-        out = []
+        out: list[tuple[list[float], np.ndarray, np.ndarray]] = []
         for _ in range(6 * count):
             if len(out) >= count:
                 break
@@ -225,7 +225,7 @@ class _Sampler:
         there = np.linalg.norm(self._matrix(fixed, off)[j])
         if not (np.isfinite(here) and np.isfinite(there)):
             return False
-        return bool(here <= VANISHING * max(there, 1e-300))
+        return bool(here <= VANISHING * max(float(there), 1e-300))
 
     def dependencies(self, states: list[tuple[list[float], np.ndarray, np.ndarray]]) -> list[tuple[int, list[int]]]:
         """Each constraint that depends linearly on earlier ones at every state, with the constraints involved."""

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from lagsolve.mechanics.dimensions import LENGTH, algebra, dimension, fraction_text
-from lagsolve.problem.schema import Problem
+from lagsolve.problem.schema import ConstraintKind, Problem
 from lagsolve.problem.units import DEFAULT_TIME_UNIT, format_unit, registry
 
 
@@ -114,7 +114,7 @@ def result_units(problem: Problem, kinetic: Any) -> ResultUnits | None:
         if u is None or energy is None:
             multipliers[con.name] = None
             continue
-        lam = energy / u if con.kind == "holonomic" else energy / (u * time)
+        lam = energy / u if con.kind == ConstraintKind.HOLONOMIC else energy / (u * time)
         multipliers[con.name] = unit_text(lam, torque=_dimensionless(u))
     positions = [r for p in problem.particles for r in p.position] + [r for b in problem.bodies for r in b.position]
     length = next((u for u in map(safe, positions) if u is not None and dimension(u) == LENGTH), None)

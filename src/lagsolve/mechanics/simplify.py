@@ -3,7 +3,7 @@
 Derivation keeps expressions in matrix form without ``simplify``; only the
 results shown to people (accelerations, multipliers, forces, equations) pass
 through :func:`tidy`, which tries a few rewritings and keeps the smallest.
-The overall time budget is enforced by :mod:`lagsolve.budget` (a child process),
+The overall time budget is enforced by :mod:`lagsolve.app.budget` (a child process),
 because SymPy's long loops cannot be interrupted from inside.
 """
 

@@ -26,21 +26,39 @@ Samples are taken from the dense output at evenly spaced times.
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import time as clock
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
 from scipy import integrate, optimize
 
+from lagsolve.enums import TextEnum
 from lagsolve.errors import SimulationError
-from lagsolve.numeric.chart import NumericChart
+from lagsolve.numeric.minimal_state import NumericChart
 from lagsolve.numeric.system import NumericSystem
 
 EXPLICIT = ("DOP853", "RK45", "RK23")
 METHODS = (*EXPLICIT, "Radau", "BDF", "LSODA")
 HOLD_TOLERANCE = 1e-12  # relative slack in |needed force| <= mu_s N when deciding to stick
+
+
+class EventKind(TextEnum):
+    """What changed the equations during a run (:class:`Event` ``kind``)."""
+
+    RELEASE = "release"
+    STICK = "stick"
+    SLIP = "slip"
+
+
+class AfterRelease(TextEnum):
+    """What a run does when a unilateral constraint lets go (``--after-release``)."""
+
+    STOP = "stop"
+    CONTINUE = "continue"
 
 
 @dataclass(frozen=True)
@@ -53,7 +71,7 @@ class Event:
     """
 
     time: float
-    kind: str
+    kind: EventKind
     name: str
     state: Mapping[str, float]
     action: str
@@ -61,6 +79,45 @@ class Event:
     @property
     def constraint(self) -> str:
         return self.name
+
+
+@dataclass(frozen=True)
+class RunStats(Mapping[str, Any]):
+    """What one run did: the integrator and its tolerances, its work, the largest constraint residual,
+    whether the energy is conserved (and why not), the coordinates it integrated, and the relative drift
+    of the energy and of each monitored conserved quantity.
+
+    A typed record; it also reads as a mapping (``stats["steps"]``, ``dict(stats)``) by field name.
+    """
+
+    method: str
+    rtol: float
+    atol: float
+    steps: int
+    evaluations: int
+    solver_evaluations: int
+    wall_time: float
+    max_residual: float
+    energy_conserved: bool
+    energy_note: str
+    coordinates: str
+    projected: bool
+    energy_drift: float = math.nan
+    conserved_drift: Mapping[str, float] = field(default_factory=dict)
+
+    def __getitem__(self, key: str) -> Any:
+        if key not in _RUN_STATS:
+            raise KeyError(key)
+        return getattr(self, key)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(_RUN_STATS)
+
+    def __len__(self) -> int:
+        return len(_RUN_STATS)
+
+
+_RUN_STATS = tuple(f.name for f in fields(RunStats))
 
 
 @dataclass(frozen=True)
@@ -92,7 +149,7 @@ class Trajectory:
     positions: np.ndarray
     particles: tuple[tuple[str, int], ...]
     events: tuple[Event, ...]
-    stats: Mapping[str, Any] = field(default_factory=dict)
+    stats: RunStats
     friction: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
 
 
@@ -227,8 +284,8 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
     while not finished:
         pulling = [j for j in system.unilateral if run.active[j] and run.solve(t0, y0)[1][j] < 0]
         if pulling:  # a unilateral constraint that would have to pull: contact is lost at once
-            stop = after_release == "stop"
-            events.append(Event(float(t0), "release", system.constraints[pulling[0]], _state(system, y0),
+            stop = after_release == AfterRelease.STOP
+            events.append(Event(float(t0), EventKind.RELEASE, system.constraints[pulling[0]], _state(system, y0),
                                 "stopped" if stop else "released"))
             if stop:
                 rows.append(_sample(run, t0, y0))
@@ -292,12 +349,12 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         progress(t_end)
     if system.chart is not None and minimal and run.chart is None:
         coordinates += "; all, projected onto the constraints after each step, once a constraint was released"
-    return _trajectory(system, rows, events, {
-        "method": method, "rtol": rtol, "atol": atol, "steps": steps, "evaluations": system.evaluations[0],
-        "solver_evaluations": nfev, "wall_time": clock.perf_counter() - start, "max_residual": max_residual,
-        "energy_conserved": system.energy_conserved, "energy_note": system.energy_note,
-        "coordinates": coordinates, "projected": bool(m) and run.chart is None,
-    })
+    return _trajectory(system, rows, events, RunStats(
+        method=method, rtol=rtol, atol=atol, steps=steps, evaluations=system.evaluations[0],
+        solver_evaluations=nfev, wall_time=clock.perf_counter() - start, max_residual=max_residual,
+        energy_conserved=system.energy_conserved, energy_note=system.energy_note,
+        coordinates=coordinates, projected=bool(m) and run.chart is None,
+    ))
 
 
 def _check_finite(run: _Run, t: float, y: np.ndarray, last: tuple[float, np.ndarray] | None,
@@ -364,7 +421,7 @@ def _start_contacts(run: _Run, t: float, y: np.ndarray, events: list[Event]) -> 
             run.stuck[c] = False
             run.direction[c] = -np.sign(needed)
         else:
-            events.append(Event(float(t), "stick", system.contact_names[c], _state(system, y), "stuck"))
+            events.append(Event(float(t), EventKind.STICK, system.contact_names[c], _state(system, y), "stuck"))
 
 
 def _watch(run: _Run, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
@@ -375,14 +432,14 @@ def _watch(run: _Run, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
         lam = run.solve(t, y)[1]
         for j in system.unilateral:
             if run.active[j]:
-                values[("release", j)] = float(lam[j])
+                values[(EventKind.RELEASE, j)] = float(lam[j])
     for c, slide in enumerate(system.slides):
         if slide is None:
             continue
         if run.stuck[c]:
-            values[("slip", c)] = run.holding_margin(t, y, c)[0]
+            values[(EventKind.SLIP, c)] = run.holding_margin(t, y, c)[0]
         else:
-            values[("stick", c)] = float(run.direction[c] * y[n + slide])
+            values[(EventKind.STICK, c)] = float(run.direction[c] * y[n + slide])
     return values
 
 
@@ -394,7 +451,7 @@ def _first_event(run: _Run, dense: Any, t_old: float, t_new: float, old: dict, n
         if after is None:
             continue
         kind, index = key
-        crossed = before >= 0 > after if kind != "stick" else before > 0 >= after
+        crossed = before >= 0 > after if kind != EventKind.STICK else before > 0 >= after
         if not crossed:
             continue
 
@@ -414,22 +471,22 @@ def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_rele
     system, n = run.system, run.system.n
     t, kind, index = event
     y = dense(t)
-    if kind == "stick":
+    if kind == EventKind.STICK:
         y[n + system.slides[index]] = 0.0
     q, qd = run.projected(t, y[:n], y[n:])
     y = np.concatenate([q, qd])
-    if kind == "release":
-        stop = after_release == "stop"
-        events.append(Event(float(t), "release", system.constraints[index], _state(system, y),
+    if kind == EventKind.RELEASE:
+        stop = after_release == AfterRelease.STOP
+        events.append(Event(float(t), EventKind.RELEASE, system.constraints[index], _state(system, y),
                             "stopped" if stop else "released"))
         if not stop:
             _release(run, index)
         return t, y, stop
-    if kind == "stick":
+    if kind == EventKind.STICK:
         run.stuck[index] = True
         margin, needed = run.holding_margin(t, y, index)
         if margin >= -HOLD_TOLERANCE * max(1.0, abs(needed)):
-            events.append(Event(float(t), "stick", system.contact_names[index], _state(system, y), "stuck"))
+            events.append(Event(float(t), EventKind.STICK, system.contact_names[index], _state(system, y), "stuck"))
         else:  # the rate only passes through zero: it reverses, and so does kinetic friction
             run.stuck[index] = False
             run.direction[index] = -np.sign(needed)
@@ -437,7 +494,7 @@ def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_rele
     _, needed = run.holding_margin(t, y, index)
     run.stuck[index] = False
     run.direction[index] = -np.sign(needed)
-    events.append(Event(float(t), "slip", system.contact_names[index], _state(system, y), "slipped"))
+    events.append(Event(float(t), EventKind.SLIP, system.contact_names[index], _state(system, y), "slipped"))
     return t, y, False
 
 
@@ -456,7 +513,7 @@ def _sample(run: _Run, t: float, y: np.ndarray) -> tuple:
     return (float(t), q, qd, residual, run.active.copy(), run.stuck.copy(), run.direction.copy())
 
 
-def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: dict) -> Trajectory:
+def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: RunStats) -> Trajectory:
     p = system.parameters
     count, k = len(rows), len(system.contacts)
     t = np.array([r[0] for r in rows])
@@ -482,9 +539,9 @@ def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: d
             conserved[i] = system.conserved(ti, qi, qdi, p)
         if positions.shape[1]:
             positions[i] = system.positions(ti, qi, qdi, p)
-    stats = {**stats, "energy_drift": _relative_drift(energy),
-             "conserved_drift": {name: _relative_drift(conserved[:, c])
-                                 for c, name in enumerate(system.conserved_names)}}
+    stats = dataclasses.replace(stats, energy_drift=_relative_drift(energy),
+                                conserved_drift={name: _relative_drift(conserved[:, c])
+                                                 for c, name in enumerate(system.conserved_names)})
     return Trajectory(t, system.coordinates, system.constraints, q, qd, lam, mags, system.contact_names, normals,
                       stuck, energy, {name: conserved[:, c] for c, name in enumerate(system.conserved_names)},
                       residual, positions, system.particles, tuple(events), stats, friction)

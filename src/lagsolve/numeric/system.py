@@ -30,11 +30,14 @@ import sympy
 from scipy.linalg import lapack
 
 from lagsolve.errors import Issue, SimulationError, SpecError
-from lagsolve.mechanics.chart import MinimalChart
+from lagsolve.mechanics.energy import jacobi_integral
+from lagsolve.mechanics.friction import contact_directions, normal_forces_at
 from lagsolve.mechanics.matrix_form import MatrixForm
-from lagsolve.mechanics.simplify import norm
-from lagsolve.numeric.chart import NumericChart, compile_chart
+from lagsolve.mechanics.minimal_chart import MinimalChart
+from lagsolve.mechanics.reactions import force_scale
 from lagsolve.numeric.compile import StateFunction, compile_state_function, substitute_functions
+from lagsolve.numeric.minimal_state import NumericChart, compile_chart
+from lagsolve.problem.schema import ConstraintKind
 
 
 @dataclass(frozen=True)
@@ -172,34 +175,7 @@ class NumericSystem:
         return qdd, lam, normal, sticking
 
     def _normal_forces(self, t: float, q: np.ndarray, qd: np.ndarray, lam: np.ndarray) -> np.ndarray:
-        u = self.directions(t, q, qd, self.parameters)
-        k = len(self.contacts)
-        a_parts, b_parts = [], []
-        for contact in self.contacts:
-            dims = contact[0][2]
-            a = np.zeros(dims)
-            b = np.zeros((dims, k))
-            for j, offset, _ in contact:
-                direction = u[offset: offset + dims]
-                a += lam[j, 0] * direction
-                b += np.outer(direction, lam[j, 1:])
-            a_parts.append(a)
-            b_parts.append(b)
-        if k == 1:
-            a, b = a_parts[0], b_parts[0][:, 0]
-            bb, ab, aa = float(b @ b), float(a @ b), float(a @ a)
-            if bb >= 1.0:
-                raise SimulationError(
-                    f"at t = {t:.6g} the friction feeds back into its own normal force so strongly "
-                    "(|dN/dN| >= 1) that no unique normal force exists (a Painlevé-type inconsistency)")
-            return np.array([(ab + np.sqrt(ab * ab + (1.0 - bb) * aa)) / (1.0 - bb)])
-        normal = np.array([np.linalg.norm(a) for a in a_parts])
-        for _ in range(100):
-            new = np.array([np.linalg.norm(a + b @ normal) for a, b in zip(a_parts, b_parts, strict=True)])
-            if np.max(np.abs(new - normal)) <= 1e-13 * max(1.0, float(np.max(new))):
-                return new
-            normal = new
-        raise SimulationError(f"at t = {t:.6g} the normal forces of the friction contacts did not converge")
+        return normal_forces_at(t, self.contacts, self.directions(t, q, qd, self.parameters), lam)
 
     def friction_forces(self, t: float, q: np.ndarray, qd: np.ndarray, normal: np.ndarray, stuck: np.ndarray,
                         sticking: np.ndarray, direction: np.ndarray) -> np.ndarray:
@@ -304,47 +280,22 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
     normals = [f.normal for f in form.frictions]
     forcing = lagrange.forcing
     zero = {N: 0 for N in normals}
-    slides = [_sliding_coordinate(form, f) for f in form.frictions]
+    slides = [f.slide for f in form.frictions]
     columns = [forcing.xreplace(zero)]
     for f, slide in zip(form.frictions, slides, strict=True):
         column = forcing.diff(f.normal)
         if slide is not None:  # written as sign(q_dot) times a fixed direction: keep the direction only
             column = column.xreplace({sympy.sign(model.velocities[slide]): 1})
         columns.append(column)
-    contact_values = []
-    for f, slide in zip(form.frictions, slides, strict=True):
-        static = next((g.static for g in problem.friction if g.name == f.name), None)
-        position = problem.particle(f.particle).position
-        length = norm([sympy.diff(r, model.coordinates[slide]) for r in position]) if slide is not None else 1
-        contact_values += [static if static is not None else f.coefficient, length]
+    contact_values = [value for f in form.frictions for value in (f.static, f.slide_length)]
     contact_values += [f.coefficient for f in form.frictions]  # then the kinetic coefficients, in contact order
     forcing_columns = [columns[c][i] for i in range(len(model.coordinates)) for c in range(len(columns))]
     matrices = [*lagrange.mass_matrix, *forcing_columns, *lagrange.constraint_jacobian, *lagrange.constraint_rhs]
-    contacts, directions, offset = [], [], 0
-    index = {c.name: j for j, c in enumerate(form.constraints)}
-    for f in form.frictions:
-        rows = []
-        for name in f.constraints:
-            pushes = [p for p in form.reactions[name].particles if p.particle == f.particle]
-            if not pushes:
-                raise SpecError([Issue(source, problem.lines.get(f"friction.{f.name}.normal", 0),
-                                       f"friction.{f.name}.normal",
-                                       f"constraint {name!r} has no known force on {f.particle!r}, so the "
-                                       "normal force cannot be computed", "name constraints that act on it")])
-            rows.append((index[name], offset, len(pushes[0].direction)))
-            directions += list(pushes[0].direction)
-            offset += len(pushes[0].direction)
-        contacts.append(tuple(rows))
-    scales = []
-    for c in form.constraints:
-        react = form.reactions[c.name]
-        if react.particles:
-            scales.append(norm(list(react.particles[0].direction)))
-        else:  # no physical force known (no particle, or no point of a body named): no magnitude
-            scales.append(sympy.nan)
-    holonomic = tuple(j for j, c in enumerate(form.constraints) if c.kind == "holonomic")
+    contacts, directions = contact_directions(problem, form.frictions, form.constraints, form.reactions)
+    scales = [force_scale(form.reactions[c.name]) for c in form.constraints]
+    holonomic = tuple(j for j, c in enumerate(form.constraints) if c.kind == ConstraintKind.HOLONOMIC)
     psi = [form.constraints[j].expression for j in holonomic]
-    energy = sum((v * sympy.diff(model.lagrangian, v) for v in model.velocities), sympy.Integer(0)) - model.lagrangian
+    energy = jacobi_integral(model)
     groups = {
         "matrices": matrices, "directions": directions, "scales": scales, "psi": psi,
         "psi_jacobian": [sympy.diff(e, q) for e in psi for q in model.coordinates],
@@ -419,11 +370,3 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
         raise SimulationError(f"could not compile the equations of {source}: {exc}") from None
 
 
-def _sliding_coordinate(form: MatrixForm, friction: Any) -> int | None:
-    """The one coordinate whose rate is the contact's sliding rate, if there is exactly one."""
-    problem, model = form.problem, form.model
-    position = problem.particle(friction.particle).position
-    index = {c.name: i for i, c in enumerate(problem.coordinates)}
-    moving = [index[name] for name in next(f.sliding for f in problem.friction if f.name == friction.name)
-              if any(sympy.diff(r, model.coordinates[index[name]]) != 0 for r in position)]
-    return moving[0] if len(moving) == 1 else None

@@ -6,9 +6,11 @@ parser produced (SymPy objects), typed ``Any`` at this boundary.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from dataclasses import dataclass, field
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field, fields
 from typing import Any
+
+from lagsolve.enums import TextEnum
 
 Expr = Any  # a SymPy expression, made only by lagsolve.problem.expr
 
@@ -71,12 +73,19 @@ class Body:
         return len(self.inertia) == 1
 
 
+class ConstraintKind(TextEnum):
+    """How a constraint is written: at position level, psi(q, t) = 0, or at velocity level."""
+
+    HOLONOMIC = "holonomic"
+    NONHOLONOMIC = "nonholonomic"
+
+
 @dataclass(frozen=True)
 class Constraint:
     """``holonomic``: psi(q, t) = 0; ``nonholonomic``: sum a_i q_i_dot + b = 0 as written."""
 
     name: str
-    kind: str  # "holonomic" | "nonholonomic"
+    kind: ConstraintKind
     expression: Expr
     on: tuple[str, ...]  # particles it acts on (or the one body, with ``at``); empty when unknown
     line: int
@@ -124,16 +133,61 @@ class Simulation:
     atol: float | None = None
 
 
+class _Record(Mapping[str, Any]):
+    """A typed record that also reads as the mapping of its given fields (those not None), as the file
+    wrote it: ``"vector" in force``, ``force["magnitude"]``, ``force == {"magnitude": 0}``."""
+
+    def _given(self) -> list[str]:
+        return [f.name for f in fields(self) if getattr(self, f.name) is not None]  # type: ignore[arg-type]
+
+    def __getitem__(self, key: str) -> Any:
+        if key not in self._given():
+            raise KeyError(key)
+        return getattr(self, key)
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._given())
+
+    def __len__(self) -> int:
+        return len(self._given())
+
+
+@dataclass(frozen=True, eq=False)
+class ExpectedForce(_Record):
+    """An expected force of constraint: its magnitude, its vector, or both."""
+
+    magnitude: Expr | None = None
+    vector: tuple[Expr, ...] | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class ExpectedEquilibrium(_Record):
+    """An expected equilibrium of the effective potential: where, whether stable, the small-oscillation frequency."""
+
+    value: Expr
+    stable: bool | None = None
+    frequency: Expr | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class ExpectedPotential(_Record):
+    """The expected effective potential: its coordinate, its expression, its equilibria."""
+
+    coordinate: str
+    expression: Expr | None = None
+    equilibria: tuple[ExpectedEquilibrium, ...] = ()
+
+
 @dataclass(frozen=True)
 class Expected:
-    """Answers given in the file; each maps a name to a parsed expression (or a small dict)."""
+    """Answers given in the file; each maps a name to a parsed expression (or a typed record)."""
 
     accelerations: Mapping[str, Expr] = field(default_factory=dict)
     multipliers: Mapping[str, Expr] = field(default_factory=dict)
-    constraint_forces: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
+    constraint_forces: Mapping[str, ExpectedForce] = field(default_factory=dict)
     reduced: Mapping[str, Expr] = field(default_factory=dict)
     conserved: Mapping[str, Expr] = field(default_factory=dict)
-    effective_potential: Mapping[str, Any] | None = None
+    effective_potential: ExpectedPotential | None = None
 
     def is_empty(self) -> bool:
         return not (

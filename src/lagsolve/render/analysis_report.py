@@ -13,13 +13,14 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.derivation import Derivation
+from lagsolve.mechanics.integrability import Integrability
 from lagsolve.render.notation import Notation, to_json
 
 KINDS = {
-    "holonomic": "holonomic (as given)",
-    "integrable": "integrable: holonomic in disguise",
-    "nonholonomic": "nonholonomic",
-    "unresolved": "velocity constraint (integrability not settled)",
+    Integrability.HOLONOMIC: "holonomic (as given)",
+    Integrability.INTEGRABLE: "integrable: holonomic in disguise",
+    Integrability.NONHOLONOMIC: "nonholonomic",
+    Integrability.UNRESOLVED: "velocity constraint (integrability not settled)",
 }
 
 
@@ -76,13 +77,13 @@ def analysis_context(derivation: Derivation, note: Notation, math: str = "latex"
     constraints = []
     for k in analysis.classification:
         entry: dict[str, Any] = {"name": k.name, "kind": k.kind, "kind_text": KINDS[k.kind], "note": k.note}
-        if k.kind != "holonomic":
+        if k.kind != Integrability.HOLONOMIC:
             entry["form"] = (_pfaffian(k.form, k.variables, tex) if math == "latex" else
                              tex(sum((w * sympy.Symbol(f"d{x.name}") for w, x in zip(k.form, k.variables,
                                                                                     strict=True)), sympy.Integer(0))))
             entry["exact"] = k.exact
             entry["factor"] = tex(k.factor) if k.factor is not None and k.factor != 1 else ""
-        if k.kind == "integrable":
+        if k.kind == Integrability.INTEGRABLE:
             entry["integral"] = tex(k.integral)
             entry["constant"] = tex(k.constant)
             entry["solved"] = ({"symbol": tex(k.solved[0]), "value": tex(k.solved[1])}
@@ -163,10 +164,10 @@ def analysis_context(derivation: Derivation, note: Notation, math: str = "latex"
             "equilibria": equilibria,
         }
 
-    modes = None
+    modes: dict[str, Any] | None = None
     lin = analysis.linearization
     if lin is not None:
-        modes: dict[str, Any] = {"coordinates": [tex(q) for q in lin.coordinates], "equilibria": []}
+        modes = {"coordinates": [tex(q) for q in lin.coordinates], "equilibria": []}
         checks = analysis.modes_contact or ((),) * len(lin.modes)
         for m, check in zip(lin.modes, checks, strict=True):
             has_g, has_d = any(x != 0 for x in m.gyroscopic), any(x != 0 for x in m.damping)
@@ -181,7 +182,7 @@ def analysis_context(derivation: Derivation, note: Notation, math: str = "latex"
             })
     return {
         "constraints": constraints,
-        "velocity_constraints": any(k.kind != "holonomic" for k in analysis.classification),
+        "velocity_constraints": any(k.kind != Integrability.HOLONOMIC for k in analysis.classification),
         "reduced": reduced,
         "reduced_note": analysis.reduced_note,
         "system": analysis.system.kind,
@@ -224,7 +225,7 @@ def analysis_json(derivation: Derivation) -> dict[str, Any] | None:
     constraints = {}
     for k in analysis.classification:
         entry: dict[str, Any] = {"class": k.kind}
-        if k.kind == "integrable":
+        if k.kind == Integrability.INTEGRABLE:
             entry.update({"factor": to_json(k.factor), "integral": to_json(k.integral),
                           "constant": to_json(k.constant)})
             if k.solved:
@@ -297,9 +298,9 @@ def analysis_summary(derivation: Derivation, note: Notation) -> list[str]:
     text = note.text
     lines = []
     for k in analysis.classification:
-        if k.kind == "integrable" and k.solved:
+        if k.kind == Integrability.INTEGRABLE and k.solved:
             lines.append(f"  constraint {k.name}: integrable, {text(k.solved[0])} = {text(k.solved[1])}")
-        elif k.kind in ("nonholonomic", "unresolved"):
+        elif k.kind in (Integrability.NONHOLONOMIC, Integrability.UNRESOLVED):
             lines.append(f"  constraint {k.name}: {k.kind}")
     r = analysis.reduced
     if r is not None and r.substitution.positions:

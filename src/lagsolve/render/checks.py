@@ -11,12 +11,13 @@ from typing import TYPE_CHECKING, Any
 
 import sympy
 
+from lagsolve.check.status import Status
 from lagsolve.render.notation import Notation
 
 if TYPE_CHECKING:
-    from lagsolve.check import CheckReport, Verdict, Witness
+    from lagsolve.check.compare import CheckReport, Verdict, Witness
 
-MARKS = {"ok": "✓", "warning": "!", "mismatch": "✗", "unchecked": "–"}
+MARKS = {Status.OK: "✓", Status.WARNING: "!", Status.MISMATCH: "✗", Status.UNCHECKED: "–"}
 
 
 def check_table(report: CheckReport) -> str:
@@ -31,16 +32,16 @@ def check_table(report: CheckReport) -> str:
     for verdict, text in zip(report.verdicts, labels, strict=True):
         pad = " " * (width - _width(text))
         lines.append(f"  {MARKS[verdict.status]} {text}{pad}  {describe(verdict, note)}")
-        if verdict.status in ("warning", "mismatch") and verdict.derived is not None:
+        if verdict.status in (Status.WARNING, Status.MISMATCH) and verdict.derived is not None:
             lines.append(f"      expected: {_components(verdict.expected, note)}")
             lines.append(f"      derived:  {_components(verdict.derived, note)}")
             if verdict.witness is not None:
                 lines.append(f"      differ at {_state(verdict.witness, note)}")
-        elif verdict.status == "mismatch" and verdict.witness is not None:  # a claimed constant that changes
+        elif verdict.status == Status.MISMATCH and verdict.witness is not None:  # a claimed constant that changes
             lines.append(f"      claimed: {_components(verdict.expected, note)}")
             lines.append(f"      dC/dt ≠ 0 at {_state(verdict.witness, note, rate=True)}")
-    counts = [(report.count("ok"), "ok"), (report.count("warning"), "warning"),
-              (report.count("mismatch"), "mismatch"), (report.count("unchecked"), "not checked")]
+    counts = [(report.count(Status.OK), "ok"), (report.count(Status.WARNING), "warning"),
+              (report.count(Status.MISMATCH), "mismatch"), (report.count(Status.UNCHECKED), "not checked")]
     parts = [f"{n} {_plural(word, n)}" for n, word in counts if n]
     lines.append("  " + ", ".join(parts))
     return "\n".join(lines) + "\n"
@@ -72,9 +73,7 @@ def label(verdict: Verdict, note: Notation, coordinates: tuple[str, ...] = ()) -
 
 def describe(verdict: Verdict, note: Notation) -> str:
     """The verdict in words."""
-    import importlib
-
-    c = importlib.import_module("lagsolve.check")  # the module; the attribute ``lagsolve.check`` is the function
+    from lagsolve.check import compare as c
 
     reason = verdict.reason
     if reason == c.SYMBOLIC:
@@ -115,7 +114,7 @@ def describe(verdict: Verdict, note: Notation) -> str:
         if verdict.states:
             return f"mismatch: differs at {verdict.states - verdict.agreeing} of {verdict.states} states"
         return "mismatch: differs"
-    prefix = "mismatch: " if verdict.status == "mismatch" else ""
+    prefix = "mismatch: " if verdict.status == Status.MISMATCH else ""
     return prefix + verdict.note
 
 

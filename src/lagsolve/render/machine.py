@@ -1,7 +1,7 @@
 """Output for machines: check verdicts as JSON and JUnit XML, several JSON results as one array or as lines.
 
 A check result is given as plain rows (:func:`verdict_rows`, made where the check ran) so that it
-crosses the process boundary of :mod:`lagsolve.budget`; a file that could not be checked is an
+crosses the process boundary of :mod:`lagsolve.app.budget`; a file that could not be checked is an
 :class:`Unchecked` (its error message and exit code).
 
 JUnit: one ``<testsuite>`` per problem file, one ``<testcase>`` per expected answer (``classname``
@@ -18,8 +18,10 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from lagsolve.check.status import Status
+
 if TYPE_CHECKING:
-    from lagsolve.check import CheckReport
+    from lagsolve.check.compare import CheckReport
 
 
 @dataclass(frozen=True)
@@ -41,7 +43,7 @@ def verdict_rows(report: CheckReport) -> tuple[dict[str, str], ...]:
     for v in report.verdicts:
         row = {"quantity": v.quantity, "name": v.name, "status": v.status, "reason": v.reason,
                "label": label(v, note, report.coordinates), "description": describe(v, note)}
-        if v.status in ("warning", "mismatch"):
+        if v.status in (Status.WARNING, Status.MISMATCH):
             row["expected"] = ", ".join(note.text(e) for e in v.expected)
             row["derived"] = ", ".join(note.text(d) for d in v.derived) if v.derived is not None else ""
         rows.append(row)
@@ -49,7 +51,7 @@ def verdict_rows(report: CheckReport) -> tuple[dict[str, str], ...]:
 
 
 def checks_json(results: list[Any]) -> str:
-    """Check results (:class:`lagsolve.pipeline.Checked` or :class:`Unchecked`) as one JSON array."""
+    """Check results (:class:`lagsolve.app.pipeline.Checked` or :class:`Unchecked`) as one JSON array."""
     out: list[dict[str, Any]] = []
     for r in results:
         if isinstance(r, Unchecked):
@@ -62,7 +64,7 @@ def checks_json(results: list[Any]) -> str:
 
 def checks_junit(results: list[Any]) -> str:
     """Check results as JUnit XML: ``testsuites`` / ``testsuite`` per file / ``testcase`` per answer."""
-    from lagsolve.pipeline import safe_slug
+    from lagsolve.app.pipeline import safe_slug
 
     root = ET.Element("testsuites", name="lagsolve check")
     totals = {"tests": 0, "failures": 0, "errors": 0, "skipped": 0}
@@ -80,14 +82,14 @@ def checks_junit(results: list[Any]) -> str:
                                  file=r.source)
             counts["tests"] += 1
             detail = "\n".join(f"{k}: {row[k]}" for k in ("label", "description", "expected", "derived") if k in row)
-            if row["status"] == "mismatch":
+            if row["status"] == Status.MISMATCH:
                 ET.SubElement(case, "failure", message=f"{row['label']}: {row['description']}",
                               type=row["reason"]).text = detail
                 counts["failures"] += 1
-            elif row["status"] == "unchecked":
+            elif row["status"] == Status.UNCHECKED:
                 ET.SubElement(case, "skipped", message=f"{row['label']}: {row['description']}")
                 counts["skipped"] += 1
-            elif row["status"] == "warning":
+            elif row["status"] == Status.WARNING:
                 ET.SubElement(case, "system-out").text = detail
         for key, n in counts.items():
             suite.set(key, str(n))

@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from lagsolve.numeric.integrate import Trajectory
+from lagsolve.numeric.integrate import EventKind, Trajectory
 from lagsolve.numeric.scene import Scene
 
 Units = Mapping[str, str] | None
@@ -79,7 +79,7 @@ def _time_label(units: Units) -> str:
 def _events(ax: Any, trajectory: Trajectory) -> None:
     """Release events as dotted lines; sticking phases of friction contacts shaded."""
     for event in trajectory.events:
-        if event.kind == "release":
+        if event.kind == EventKind.RELEASE:
             ax.axvline(event.time, color="0.4", linestyle=":", linewidth=1)
     if trajectory.stuck.size and trajectory.stuck.any():
         stuck = trajectory.stuck.any(axis=1)

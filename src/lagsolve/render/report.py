@@ -125,8 +125,7 @@ def context(derivation: Derivation, math: str = "latex") -> dict[str, Any]:
          "normal_force": both(f.system.rhs if f.normal_force == f.term.normal and f.system is not None
                               else f.normal_force),
          "case": f.case, "condition": tex(f.valid_while) if f.valid_while is not None else "",
-         "static": next((tex(g.static if g.static is not None else g.coefficient)
-                         for g in problem.friction if g.name == f.term.name), "")}
+         "static": tex(f.term.static)}
         for f in derivation.friction
     ]
     return {

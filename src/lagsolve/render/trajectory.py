@@ -59,7 +59,8 @@ def to_csv(trajectory: Trajectory, units: Mapping[str, str] | None = None) -> st
 def to_npz(trajectory: Trajectory) -> bytes:
     """The same columns as a NumPy ``.npz`` archive."""
     buffer = io.BytesIO()
-    np.savez(buffer, **columns(trajectory))
+    arrays: dict[str, Any] = columns(trajectory)
+    np.savez(buffer, **arrays)
     return buffer.getvalue()
 
 

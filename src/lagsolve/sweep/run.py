@@ -318,7 +318,7 @@ def _crossings(step: Any, section: Section, crossings: list[list[np.ndarray]]) -
 
 def _per_run(problem: Compiled, settings: Settings, parameters: np.ndarray, starts: np.ndarray,
              failures: list[str], why: str) -> list[dict[str, Any]]:
-    from lagsolve.numeric.integrate import integrate_motion
+    from lagsolve.numeric.integrate import AfterRelease, EventKind, integrate_motion
 
     system = problem.system
     n = system.n
@@ -337,11 +337,11 @@ def _per_run(problem: Compiled, settings: Settings, parameters: np.ndarray, star
             with np.errstate(all="ignore"):
                 motion = integrate_motion(own, starts[r, :n], starts[r, n:], settings.t_end,
                                           samples=FALLBACK_SAMPLES, method=settings.method, rtol=settings.rtol,
-                                          atol=settings.atol, after_release="stop")
+                                          atol=settings.atol, after_release=AfterRelease.STOP)
         except LagsolveError as error:
             row["reason"] = str(error)
             continue
-        release = next((e for e in motion.events if e.kind == "release"), None)
+        release = next((e for e in motion.events if e.kind == EventKind.RELEASE), None)
         row["status"] = "released" if release is not None else "ok"
         row["t_final"] = float(motion.t[-1])
         for j, name in enumerate(names):
@@ -353,8 +353,8 @@ def _per_run(problem: Compiled, settings: Settings, parameters: np.ndarray, star
         over = np.flatnonzero(np.any(np.abs(motion.q[:, angular]) > np.pi, axis=1))
         row["flipped"] = bool(len(over))
         row["flip_time"] = float(motion.t[over[0]]) if len(over) else np.nan  # the first sample past π
-        row["stick_times"] = [float(e.time) for e in motion.events if e.kind == "stick"]
-        row["slip_times"] = [float(e.time) for e in motion.events if e.kind == "slip"]
+        row["stick_times"] = [float(e.time) for e in motion.events if e.kind == EventKind.STICK]
+        row["slip_times"] = [float(e.time) for e in motion.events if e.kind == EventKind.SLIP]
         row["stick_count"], row["slip_count"] = len(row["stick_times"]), len(row["slip_times"])
         row["stuck_at_end"] = bool(motion.stuck[-1].any()) if motion.stuck.size else False
         if release is not None:

@@ -1,7 +1,7 @@
 r"""What is wrong with an answer that disagrees: the diagnoses of ``lagsolve check``.
 
 Each function looks at *rows*: for every random state on the constraint surface
-(:mod:`lagsolve.states`), the expected values E and the derived values D, one per component.
+(:mod:`lagsolve.check.states`), the expected values E and the derived values D, one per component.
 
 * :func:`constant_relation` — :math:`E/D` (or :math:`E - D`) the same at every state that
   shares the parameters: a missing factor 2 or m, a shifted zero level;
@@ -21,9 +21,9 @@ from typing import Any
 import mpmath
 import sympy
 
+from lagsolve.check.states import DIGITS, Compiled, State, StateSpace
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.simplify import tidy
-from lagsolve.states import DIGITS, Compiled, State, StateSpace
 
 #: relative tolerance of a numeric agreement (values carry 30 digits)
 TOLERANCE = mpmath.mpf(10) ** -12
@@ -151,7 +151,7 @@ def sign_condition(rows: Sequence[Row], agree: list[bool], expected: tuple[Any, 
         candidates.append(expected[0])
     for u in candidates:
         compiled = Compiled(u, space)
-        values = [compiled(state) for state, _, _ in rows]
+        values: list[Any] = [compiled(state) for state, _, _ in rows]
         if any(v is None or not isinstance(v, mpmath.mpf) or v == 0 for v in values):
             continue
         positive = [v > 0 for v in values]

@@ -4,7 +4,7 @@ A state assigns a number to the time, every parameter, coordinate and velocity, 
 replaces every declared function by a random smooth function, such that every
 constraint holds:
 
-* holonomic constraints that :mod:`lagsolve.mechanics.reduce` solves explicitly give their
+* holonomic constraints that :mod:`lagsolve.mechanics.elimination` solves explicitly give their
   coordinate (``y = f(x)``) and velocity directly;
 * the other holonomic constraints :math:`\psi_j(q, t) = 0` are solved for one coordinate each
   by Newton's method, :math:`q_d \leftarrow q_d - (\partial\psi/\partial q_d)^{-1}\psi`;
@@ -33,6 +33,7 @@ import sympy
 
 from lagsolve.mechanics.constraints import velocity_form
 from lagsolve.mechanics.derivation import Derivation
+from lagsolve.problem.schema import ConstraintKind
 
 DIGITS = 30
 #: states share their parameter values in groups of this size, so that a ratio that depends only on
@@ -120,7 +121,7 @@ class StateSpace:
         explicit = {name for q, name in elimination.sources.items() if q in elimination.positions}
         residuals, dependents = [], []
         for c in derivation.constraints:
-            if c.kind != "holonomic" or c.name in explicit:
+            if c.kind != ConstraintKind.HOLONOMIC or c.name in explicit:
                 continue
             psi = elimination.apply(c.expression)
             free = [q for q in reversed(self.coordinates) if q not in dependents and psi.has(q)]
@@ -244,8 +245,8 @@ class StateSpace:
     def _newton(self, state: State) -> bool:
         with mpmath.workdps(DIGITS + 10):
             for _ in range(60):
-                residual = [r(state) for r in self._residuals]
-                jac = [[d(state) for d in row] for row in self._jacobian]
+                residual: list[Any] = [r(state) for r in self._residuals]
+                jac: list[list[Any]] = [[d(state) for d in row] for row in self._jacobian]
                 if any(not isinstance(v, mpmath.mpf) for v in [*residual, *(x for row in jac for x in row)]):
                     return False
                 if max(abs(v) for v in residual) < mpmath.mpf(10) ** (-DIGITS + 2):
@@ -266,8 +267,8 @@ class StateSpace:
             return self._gauss_jordan(state)
 
     def _gauss_jordan(self, state: State) -> bool:
-        rows = [[a(state) for a in row] for row in self._velocity_rows]
-        offsets = [b(state) for b in self._velocity_offsets]
+        rows: list[list[Any]] = [[a(state) for a in row] for row in self._velocity_rows]
+        offsets: list[Any] = [b(state) for b in self._velocity_offsets]
         if any(not isinstance(v, mpmath.mpf) for v in [*offsets, *(x for row in rows for x in row)]):
             return False
         tiny = mpmath.mpf(10) ** (-DIGITS + 5)

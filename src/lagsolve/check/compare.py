@@ -9,7 +9,7 @@ derived D:
    and velocities eliminated), and :math:`E - D` is reduced by cheap steps first (structural
    equality, ``cancel``), then :func:`lagsolve.mechanics.simplify.tidy`. Zero → *ok (symbolic)*.
 2. **Numeric.** Otherwise both are evaluated at random states on the constraint surface
-   (:mod:`lagsolve.states`; declared functions become random smooth functions). Agreement at
+   (:mod:`lagsolve.check.states`; declared functions become random smooth functions). Agreement at
    every state → *ok (numeric)*.
 3. **Diagnosis** of a disagreement, from the values at those states:
 
@@ -51,7 +51,7 @@ from typing import Any
 import mpmath
 import sympy
 
-from lagsolve.diagnose import (
+from lagsolve.check.diagnose import (
     SYMBOLIC_LIMIT,
     ReleasedConstraints,
     Row,
@@ -59,11 +59,13 @@ from lagsolve.diagnose import (
     constant_relation,
     sign_condition,
 )
+from lagsolve.check.states import Compiled, State, StateSpace
+from lagsolve.check.status import Status
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.simplify import tidy
-from lagsolve.states import Compiled, State, StateSpace
+from lagsolve.problem.names import momentum_name, momentum_symbol
 
-OK, WARNING, MISMATCH, UNCHECKED = "ok", "warning", "mismatch", "unchecked"
+OK, WARNING, MISMATCH, UNCHECKED = Status.OK, Status.WARNING, Status.MISMATCH, Status.UNCHECKED
 
 #: reasons (``Verdict.reason``)
 SYMBOLIC, NUMERIC = "symbolic", "numeric"
@@ -108,7 +110,7 @@ class Verdict:
 
     quantity: str
     name: str
-    status: str
+    status: Status
     reason: str
     expected: tuple[Any, ...]
     derived: tuple[Any, ...] | None = None
@@ -135,7 +137,7 @@ class CheckReport:
     coordinates: tuple[str, ...]
     verdicts: tuple[Verdict, ...]
 
-    def count(self, status: str) -> int:
+    def count(self, status: Status) -> int:
         return sum(1 for v in self.verdicts if v.status == status)
 
     @property
@@ -155,7 +157,7 @@ class _Item:
     note: str = ""
     shifts: bool = False  # an additive constant is harmless (conserved quantities, potentials)
     real: bool = True  # values must be real (not so for equilibria, which may not exist everywhere)
-    missing: str = UNCHECKED  # status when there is nothing derived to compare with
+    missing: Status = UNCHECKED  # status when there is nothing derived to compare with
     rate: bool = False  # a claimed constant of the motion, checked by its rate dC/dt along the equations
     extra: dict[str, Any] = field(default_factory=dict)
 
@@ -281,7 +283,7 @@ def _names(derivation: Derivation) -> Any:
     problem = derivation.problem
     symbols = dict(problem.symbols)
     for c in problem.coordinates:
-        symbols.setdefault(f"p_{c.name}", sympy.Symbol(f"p_{c.name}", real=True))
+        symbols.setdefault(momentum_name(c.name), momentum_symbol(c.name))
     functions = {f.name: f.function for f in problem.functions}
     return gateway.Namespace(symbols, functions)
 

@@ -7,7 +7,21 @@ prints, exits or writes files.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+from lagsolve.enums import TextEnum
+
+if TYPE_CHECKING:
+    from lagsolve.mechanics.matrix_form import MatrixForm
+    from lagsolve.mechanics.results import Derivation
+    from lagsolve.numeric.integrate import Trajectory
+
+
+class Coordinates(TextEnum):
+    """Which state a run integrates (``--coordinates``)."""
+
+    MINIMAL = "minimal"  # the independent coordinates, where the constraints are solved in closed form
+    FULL = "full"  # every coordinate, the constraints held by their multipliers and projection
 
 
 @dataclass(frozen=True)
@@ -22,8 +36,8 @@ class SimulationOptions:
     rtol: float | None = None
     atol: float | None = None
     max_step: float | None = None
-    after_release: str = "stop"
-    coordinates: str = "minimal"  # "minimal" where the constraints are solved in closed form, else "full"
+    after_release: str = "stop"  # an AfterRelease
+    coordinates: str = Coordinates.MINIMAL  # MINIMAL where the constraints are solved in closed form, else FULL
     tables: tuple[str, ...] = ()  # "csv", "npz"
     plots: bool = False
     animate: bool = False
@@ -42,7 +56,7 @@ class SimulationResult:
     summary: str
     tables: dict[str, str | bytes]
     figures: dict[str, bytes]
-    trajectory: object
+    trajectory: Trajectory
     warnings: tuple[str, ...] = ()  # about the file (units missing), for the command line to show
     scene: object = None  # the numeric.scene.Scene of the run's rods, surfaces and wires (None without particles)
 
@@ -62,7 +76,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     and build the requested tables and figures. ``conserved`` maps names to expressions whose
     drift is reported (the energy is conserved exactly when it has an ``energy``; ``energy_note`` says
     why not); ``note`` is appended to the summary. ``chart`` (a
-    :class:`~lagsolve.mechanics.chart.MinimalChart`) lets the run integrate in minimal
+    :class:`~lagsolve.mechanics.minimal_chart.MinimalChart`) lets the run integrate in minimal
     coordinates; ``chart_note`` says why there is none.
 
     Raises
@@ -83,9 +97,9 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     problem = form.problem
     spec = problem.simulation
     source = problem.source
-    if options.coordinates not in ("minimal", "full"):
+    if options.coordinates not in tuple(Coordinates):
         raise ValueError(f"unknown coordinates option {options.coordinates!r}")
-    minimal = options.coordinates == "minimal"
+    minimal = options.coordinates == Coordinates.MINIMAL
     system = bind(form, options.values, conserved, chart if minimal else None, energy_note)
     if minimal and chart is None and chart_note and form.constraints:
         note = f"  not in minimal coordinates: {chart_note}\n" + note
@@ -143,9 +157,39 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
                 figures[key] = plots.png_bytes(figure)
         if options.animate and trajectory.particles:
             figures["animation"] = plots.animation_gif(trajectory, name, scene=scene, units=axis_units)
-    from lagsolve.pipeline import safe_slug
+    from lagsolve.files import safe_slug
 
     return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name) + note, tables,
                             figures, trajectory, scene)
 
 
+def simulate_form(form: MatrixForm, options: SimulationOptions, progress: Any = None) -> SimulationResult:
+    """A run from the matrix form alone: the conserved quantities to monitor and the minimal coordinates come
+    from cheap criteria on the matrix form (:func:`lagsolve.mechanics.analysis.monitored`, the functions
+    derive uses), never from the symbolic solve or the analysis of equilibria."""
+    from lagsolve.mechanics.analysis import monitored
+
+    conserved, chart, chart_note, energy_note = monitored(form, options.analysis_timeout)
+    return run_simulation(form, conserved, options, progress, "", chart, chart_note, energy_note)
+
+
+def simulate_derivation(derivation: Derivation, options: SimulationOptions, progress: Any = None) -> SimulationResult:
+    """A run from a finished derivation: it monitors what the derivation's analysis found (without an analysis,
+    as :func:`simulate_form`).
+
+    Raises
+    ------
+    SpecError
+        The derivation has no matrix form (and the errors of :func:`run_simulation`).
+    """
+    from lagsolve.errors import Issue, SpecError
+    from lagsolve.mechanics.analysis import energy_reason
+    from lagsolve.mechanics.minimal_chart import minimal_chart
+
+    if derivation.form is None:
+        raise SpecError([Issue(derivation.problem.source, 0, "", "this derivation has no matrix form to simulate")])
+    if derivation.analysis is None:
+        return simulate_form(derivation.form, options, progress)
+    chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
+    return run_simulation(derivation.form, derivation.conserved or {}, options, progress, chart=chart,
+                          chart_note=chart_note, energy_note=energy_reason(derivation.analysis.conservation))

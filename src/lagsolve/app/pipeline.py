@@ -5,13 +5,18 @@ Nothing here prints, exits or writes files; results come back as data.
 
 from __future__ import annotations
 
-import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from lagsolve.simulation import SimulationOptions, SimulationResult, run_simulation
+from lagsolve.app.simulation import SimulationOptions, SimulationResult, simulate_derivation, simulate_form
+from lagsolve.check.status import Status
+from lagsolve.files import safe_slug
+
+if TYPE_CHECKING:
+    from lagsolve.mechanics.derivation import Derivation
+    from lagsolve.problem.schema import Problem
 
 DEFAULT_TIMEOUT = 120.0
 
@@ -30,14 +35,6 @@ class Reports:
     warnings: tuple[str, ...] = ()  # each a sentence: missing units, "not completed: <stage note>"
 
 
-def safe_slug(path: str | Path) -> str:
-    """A file-name-safe stem for output names: ``problems/My bead.yaml`` → ``My_bead``."""
-    stem = Path(path).name
-    stem = stem.rsplit(".", 1)[0] if "." in stem else stem
-    slug = re.sub(r"[^A-Za-z0-9_-]+", "_", stem).strip("_")
-    return slug or "problem"
-
-
 FIGURE_CAPTIONS = {
     "sketch": "The system at the start: particles, rods, pivots, surfaces and wires",
     "path": "Paths in space, with the constraint curve where there is one",
@@ -52,13 +49,13 @@ FIGURE_CAPTIONS = {
 STAGE_SHARE = 0.8
 
 
-def _derive_and_render(problem: object, formats: tuple[str, ...], templates: Path | None,
+def _derive_and_render(problem: Problem, formats: tuple[str, ...], templates: Path | None,
                        simulate: SimulationOptions | None = None,
                        budget: float = DEFAULT_TIMEOUT) -> tuple[str, dict[str, str], dict[str, bytes]]:
-    from lagsolve.budget import report_partial
+    from lagsolve.app.budget import report_partial
     from lagsolve.mechanics.derivation import derive
 
-    derivation = derive(problem, budget=budget * STAGE_SHARE, on_core=report_partial)  # type: ignore[arg-type]
+    derivation = derive(problem, budget=budget * STAGE_SHARE, on_core=report_partial)
     return _render(derivation, formats, templates, simulate)
 
 
@@ -88,16 +85,9 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
         files[potential["file"]] = potential.pop("png")
     text = summary(derivation)
     if simulate is not None:
-        from lagsolve.mechanics.chart import minimal_chart
-
-        chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
         from dataclasses import replace
 
-        from lagsolve.mechanics.analysis import energy_reason
-
-        simulate = replace(simulate, scene=True)  # the page's slider and the reports' sketch draw it
-        run = run_simulation(derivation.form, derivation.conserved, simulate, chart=chart, chart_note=chart_note,
-                             energy_note=energy_reason(derivation.analysis.conservation))
+        run = simulate_derivation(derivation, replace(simulate, scene=True))  # the slider and the sketch draw it
         slug = safe_slug(derivation.problem.source)
         figures = []
         for key, data in run.figures.items():
@@ -125,24 +115,25 @@ def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
                  if line.startswith("    "))
 
 
-def _unit_warnings(problem: object) -> tuple[str, ...]:
+def _unit_warnings(problem: Problem) -> tuple[str, ...]:
     """A file that declares some units but not all: the names without one (their dimensions go unchecked)."""
     from lagsolve.mechanics.result_units import missing_units
 
-    missing = missing_units(problem)  # type: ignore[arg-type]
+    missing = missing_units(problem)
     if not missing:
         return ()
     return (f"units: no unit declared for {', '.join(missing)}, so dimensions involving "
             f"{'it' if len(missing) == 1 else 'them'} are not checked; add 'unit:' to each (1 for a pure number)",)
 
 
-def _potential_figure(derivation: object) -> dict | None:
+def _potential_figure(derivation: Derivation) -> dict | None:
     """The V_eff plot with its equilibria, for a problem that has an effective potential and numbers
     (simulation values and initial state) to draw it with; None otherwise."""
+    from lagsolve.numeric.potential import potential_curve
     from lagsolve.render.plots import png_bytes
-    from lagsolve.render.potential_plot import potential_curve, potential_figure
+    from lagsolve.render.potential_plot import potential_figure
 
-    problem = derivation.problem  # type: ignore[attr-defined]
+    problem = derivation.problem
     spec = problem.simulation
     analysis = getattr(derivation, "analysis", None)
     if spec is None or analysis is None or getattr(analysis, "effective_potential", None) is None:
@@ -150,12 +141,12 @@ def _potential_figure(derivation: object) -> dict | None:
     if problem.functions:  # drawing V_eff with declared functions would need their concrete forms
         return None
     try:
-        curve = potential_curve(derivation, dict(spec.values), initial=dict(spec.initial))  # type: ignore[arg-type]
+        curve = potential_curve(derivation, dict(spec.values), initial=dict(spec.initial))
     except (ValueError, KeyError, TypeError, ZeroDivisionError, StopIteration, NameError, OverflowError):
         return None
     from lagsolve.mechanics.result_units import result_units
 
-    units = result_units(problem, derivation.kinetic)  # type: ignore[attr-defined]
+    units = result_units(problem, derivation.kinetic)
     coordinate = str(getattr(analysis.effective_potential, "coordinate", ""))
     axis_units = (None, None) if units is None else (units.coordinates.get(coordinate), units.energy)
     figure = potential_figure(curve.q, curve.v, curve.equilibria, coordinate=curve.coordinate,
@@ -170,7 +161,7 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json
     """Load, derive and render one problem file.
 
     Loading (validation) runs here; derivation and rendering run in a child
-    process under ``timeout`` seconds (see :mod:`lagsolve.budget`).
+    process under ``timeout`` seconds (see :mod:`lagsolve.app.budget`).
 
     Raises
     ------
@@ -179,7 +170,7 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json
     DerivationError
         The derivation failed or ran out of time.
     """
-    from lagsolve.budget import run_with_budget
+    from lagsolve.app.budget import run_with_budget
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
@@ -205,23 +196,23 @@ class Checked:
     @property
     def passed(self) -> bool:
         """True when no expected answer is a mismatch (warnings and unchecked answers pass)."""
-        return self.counts.get("mismatch", 0) == 0
+        return self.counts.get(Status.MISMATCH, 0) == 0
 
 
-def _derive_and_check(problem: object, budget: float = DEFAULT_TIMEOUT
+def _derive_and_check(problem: Problem, budget: float = DEFAULT_TIMEOUT
                       ) -> tuple[str, dict[str, int], tuple[dict[str, str], ...]]:
-    from lagsolve.check import MISMATCH, OK, UNCHECKED, WARNING, check
+    from lagsolve.check.compare import MISMATCH, OK, UNCHECKED, WARNING, check
     from lagsolve.mechanics.derivation import derive
     from lagsolve.render.checks import check_table
     from lagsolve.render.machine import verdict_rows
 
-    report = check(derive(problem, budget=budget * STAGE_SHARE))  # type: ignore[arg-type]
+    report = check(derive(problem, budget=budget * STAGE_SHARE))
     return (check_table(report), {s: report.count(s) for s in (OK, WARNING, MISMATCH, UNCHECKED)},
             verdict_rows(report))
 
 
 def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked:
-    """Load and derive one problem file and compare its ``expected:`` answers (:func:`lagsolve.check.check`).
+    """Load and derive one problem file and compare its ``expected:`` answers (:func:`lagsolve.check.compare.check`).
 
     Loading runs here; derivation and check run in a child process under ``timeout`` seconds.
 
@@ -232,7 +223,7 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
     DerivationError
         The derivation failed or ran out of time.
     """
-    from lagsolve.budget import run_with_budget
+    from lagsolve.app.budget import run_with_budget
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)
@@ -244,10 +235,7 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
 def _preload() -> None:
     """Import the heavy modules here, before the budgeted child is forked, so that the child inherits them and
     its CPU budget goes to the problem, not to importing SymPy (and several files share one import)."""
-    import lagsolve.mechanics.analysis
-    import lagsolve.mechanics.derivation
-    import lagsolve.render.report
-    import lagsolve.simulation  # noqa: F401
+    import lagsolve.app.simulation  # noqa: F401
 
 
 def golden_differences(reports: Reports, folder: Path) -> list[str]:
@@ -278,15 +266,10 @@ def golden_differences(reports: Reports, folder: Path) -> list[str]:
     return diffs
 
 
-def _simulate(problem: object, options: SimulationOptions, progress: object) -> SimulationResult:
-    from lagsolve.mechanics.analysis import monitored
+def _simulate(problem: Problem, options: SimulationOptions, progress: object) -> SimulationResult:
     from lagsolve.mechanics.matrix_form import matrix_form
 
-    form = matrix_form(problem, display=False)  # type: ignore[arg-type]
-    # the conserved quantities to monitor and the minimal coordinates come from cheap criteria on the matrix
-    # form (the same functions derive uses), never from the symbolic solve or the analysis of equilibria
-    conserved, chart, chart_note, energy_note = monitored(form, options.analysis_timeout)
-    return run_simulation(form, conserved, options, progress, "", chart, chart_note, energy_note)
+    return simulate_form(matrix_form(problem, display=False), options, progress)
 
 
 def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: float = 600.0,
@@ -303,7 +286,7 @@ def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: floa
     DerivationError, SimulationError
         The derivation or the integration failed, or ran out of time.
     """
-    from lagsolve.budget import run_with_budget
+    from lagsolve.app.budget import run_with_budget
     from lagsolve.problem.load import load_problem
 
     problem = load_problem(path)

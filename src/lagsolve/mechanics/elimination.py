@@ -16,6 +16,7 @@ import sympy
 
 from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.model import Model
+from lagsolve.problem.schema import ConstraintKind
 
 
 @dataclass(frozen=True)
@@ -51,7 +52,7 @@ def eliminate(constraints: tuple[ConstraintTerms, ...], model: Model) -> Elimina
     sources: dict[Any, str] = {}
     taken: set[Any] = set()
     for c in constraints:
-        if c.kind == "holonomic":
+        if c.kind == ConstraintKind.HOLONOMIC:
             for i in reversed(range(len(model.coordinates))):
                 q, a = model.coordinates[i], c.coefficients[i]
                 if q in taken or not _constant(a, model) or sympy.diff(c.expression, q, 2) != 0:

@@ -21,8 +21,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from lagsolve.mechanics.analysis import Analysis
     from lagsolve.mechanics.model import Model
+    from lagsolve.mechanics.results import Analysis
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,1 @@
+"""Section readers of the problem file, combined by :mod:`lagsolve.problem.load`."""

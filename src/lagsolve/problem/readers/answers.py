@@ -1,0 +1,149 @@
+"""The problem file's expected answers (``expected``) and the chosen independent coordinates."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import sympy
+
+from lagsolve.problem import expr as gateway
+from lagsolve.problem.names import momentum_name, momentum_symbol
+from lagsolve.problem.readers.base import Reader, kind_of, known_names, shown
+from lagsolve.problem.schema import (
+    Constraint,
+    Coordinate,
+    Expected,
+    ExpectedEquilibrium,
+    ExpectedForce,
+    ExpectedPotential,
+)
+
+_EXPECTED_KEYS = ("accelerations", "multipliers", "constraint_forces", "reduced", "conserved",
+                  "effective_potential")
+
+
+class AnswersReader(Reader):
+    """Reads ``expected`` and ``independent``."""
+
+    def answer_names(self, constraints: list[Constraint]) -> gateway.Namespace:
+        extra = {f"lambda_{c.name}": sympy.Symbol(f"lambda_{c.name}", real=True) for c in constraints}
+        extra.update({momentum_name(n): momentum_symbol(n)
+                      for n, k in self.kinds.items() if k == "a coordinate" and momentum_name(n) not in self.kinds})
+        return gateway.Namespace({**self.symbols, **extra}, self.functions, self.acceleration_names)
+
+    def expected(self, value: Any, constraints: list[Constraint]) -> Expected:
+        spec = self.mapping(("expected",), value)
+        if not spec:
+            return Expected()
+        self.keys(("expected",), spec, _EXPECTED_KEYS)
+        names = self.answer_names(constraints)
+        coordinate_names = [n for n, k in self.kinds.items() if k == "a coordinate"]
+        constraint_names = [c.name for c in constraints]
+
+        def table(key: str, known: list[str], what: str, parse: Callable[[tuple, Any], Any]) -> dict[str, Any]:
+            path = ("expected", key)
+            raw = self.mapping(path, spec.get(key, {}))
+            out = {}
+            for k, v in (raw or {}).items():
+                if known and k not in known:
+                    self.issue((*path, k), f"unknown {what} {k!r}", known_names(what + "s", known))
+                    continue
+                parsed = parse((*path, k), v)
+                if parsed is not None:
+                    out[k] = parsed
+            return out
+
+        def plain(path: tuple, v: Any) -> Any:
+            return self.expression(path, v, names)
+
+        def force(path: tuple, v: Any) -> ExpectedForce | None:
+            if isinstance(v, dict):
+                if not self.keys(path, v, ("vector", "magnitude")):
+                    return None
+                magnitude = vector = None
+                if "magnitude" in v:
+                    magnitude = self.expression((*path, "magnitude"), v["magnitude"], names)
+                    if magnitude is None:
+                        return None
+                if "vector" in v:
+                    vector = self.vector((*path, "vector"), v["vector"], names)
+                    if vector is None:
+                        return None
+                return ExpectedForce(magnitude, vector)
+            magnitude = self.expression(path, v, names)
+            return None if magnitude is None else ExpectedForce(magnitude)
+
+        reduced_raw = spec.get("reduced", {})
+        reduced: dict[str, Any] = {}
+        if reduced_raw:
+            rmap = self.mapping(("expected", "reduced"), reduced_raw)
+            if rmap is not None:
+                self.keys(("expected", "reduced"), rmap, ("independent", "accelerations"))
+                for k, v in (self.mapping(("expected", "reduced", "accelerations"),
+                                          rmap.get("accelerations", {})) or {}).items():
+                    if k not in coordinate_names:
+                        self.issue(("expected", "reduced", "accelerations", k), f"unknown coordinate {k!r}")
+                        continue
+                    parsed = self.expression(("expected", "reduced", "accelerations", k), v, names)
+                    if parsed is not None:
+                        reduced[k] = parsed
+        effective = None
+        if "effective_potential" in spec:
+            effective = self.effective_potential(spec["effective_potential"], names, coordinate_names)
+        return Expected(
+            accelerations=table("accelerations", coordinate_names, "coordinate", plain),
+            multipliers=table("multipliers", constraint_names, "constraint", plain),
+            constraint_forces=table("constraint_forces", constraint_names, "constraint", force),
+            reduced=reduced,
+            conserved=table("conserved", [], "quantity", plain),
+            effective_potential=effective,
+        )
+
+    def effective_potential(self, value: Any, names: gateway.Namespace,
+                            coordinates: list[str]) -> ExpectedPotential | None:
+        path = ("expected", "effective_potential")
+        spec = self.mapping(path, value)
+        if spec is None or not self.keys(path, spec, ("coordinate", "expression", "equilibria"), ("coordinate",)):
+            return None
+        if spec["coordinate"] not in coordinates:
+            self.issue((*path, "coordinate"), f"unknown coordinate {shown(spec['coordinate'])}",
+                       known_names("coordinates", coordinates))
+            return None
+        expression = None
+        if "expression" in spec:
+            expression = self.expression((*path, "expression"), spec["expression"], names)
+        equilibria: list[ExpectedEquilibrium] = []
+        raw = spec.get("equilibria") or []
+        if not isinstance(raw, list):
+            self.issue((*path, "equilibria"), f"expected a list, found {kind_of(raw)}",
+                       "write '- {value: ..., stable: true}' items")
+            raw = []
+        for i, item in enumerate(raw):
+            ipath = (*path, "equilibria", i)
+            item = self.mapping(ipath, item)
+            if item is None or not self.keys(ipath, item, ("value", "stable", "frequency"), ("value",)):
+                continue
+            stable = self.flag((*ipath, "stable"), item["stable"]) if "stable" in item else None
+            frequency = (self.expression((*ipath, "frequency"), item["frequency"], names) if "frequency" in item
+                         else None)
+            equilibria.append(ExpectedEquilibrium(self.expression((*ipath, "value"), item["value"], names), stable,
+                                                  frequency))
+        return ExpectedPotential(spec["coordinate"], expression, tuple(equilibria))
+
+    def independent(self, value: Any, coordinates: list[Coordinate]) -> tuple[str, ...]:
+        """``independent: [x]``: the coordinates to keep as minimal coordinates (each once)."""
+        known = [c.name for c in coordinates]
+        if not isinstance(value, list) or not value:
+            self.issue(("independent",), f"expected a list of coordinate names, found {kind_of(value)}",
+                       "write e.g. 'independent: [x]'")
+            return ()
+        out: list[str] = []
+        for i, item in enumerate(value):
+            if not isinstance(item, str) or item not in known:
+                self.issue(("independent", i), f"unknown coordinate {shown(item)}", known_names("coordinates", known))
+            elif item in out:
+                self.issue(("independent", i), f"coordinate {item!r} is listed twice", "give each name once")
+            else:
+                out.append(item)
+        return tuple(out)
