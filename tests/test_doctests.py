@@ -12,7 +12,7 @@ SRC = Path(__file__).resolve().parents[1] / "src"
 MODULES = sorted(".".join(p.relative_to(SRC).with_suffix("").parts).removesuffix(".__init__")
                  for p in (SRC / "lagsolve").rglob("*.py") if p.name != "__main__.py")
 #: docstring examples known to disagree with the code, each with why (the test reports them as xfail)
-KNOWN = {"lagsolve.mechanics.simplify.signs": "returns the same candidate twice for (a v - b |v|)/|v|"}
+KNOWN: dict[str, str] = {}
 
 
 def _examples() -> list[tuple[str, str]]:

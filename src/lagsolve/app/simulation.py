@@ -160,7 +160,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     from lagsolve.files import safe_slug
 
     return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name) + note, tables,
-                            figures, trajectory, scene)
+                            figures, trajectory, scene=scene)
 
 
 def simulate_form(form: MatrixForm, options: SimulationOptions, progress: Any = None) -> SimulationResult:

@@ -270,7 +270,7 @@ def signs(expr: Any) -> list[Any]:
             if denominator.has(mark):
                 return []
             form = (numerator / denominator).xreplace({mark: sympy.sign(a.args[0])})
-        return [sympy.factor(form), sympy.factor_terms(form)]
+        return list(dict.fromkeys([sympy.factor(form), sympy.factor_terms(form)]))
     except _ERRORS:
         return []
 
