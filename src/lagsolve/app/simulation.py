@@ -132,12 +132,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
         units = column_units(problem, form.model.kinetic)
         force = next((u for k, u in units.items() if k.startswith(("F_", "N_"))), None)
         units.update({f"friction_{f.name}": force for f in problem.friction if force})
-    # the figures' keys: coordinates, "t", "length", "force", "energy" (the file's units win over options.units)
-    axis_units = {**(options.units or {}), **units}
-    if "position" in units:
-        axis_units["length"] = units["position"]
-    if force := next((u for k, u in units.items() if k.startswith(("F_", "N_", "friction_"))), None):
-        axis_units["force"] = force
+    axis_units = {**(options.units or {}), **units}  # the file's units win over options.units
     if "csv" in options.tables:
         tables["csv"] = table.to_csv(trajectory, units)
     if "npz" in options.tables:

@@ -208,6 +208,7 @@ def animation_gif(trajectory: Trajectory, title: str, frames: int = 120, scene: 
                   units: Units = None) -> bytes:
     """An animated GIF of the motion (pillow writer): the sketch, moving, with the paths so far and a
     time stamp; the first frame is the sketch at t = 0."""
+    units = axis_units(units)
     import tempfile
     from pathlib import Path
 
@@ -430,10 +431,26 @@ def conservation_figure(trajectory: Trajectory, title: str, units: Units = None)
     return fig
 
 
+def axis_units(units: Units) -> Units:
+    """The figures' unit keys from a table's column units: ``length`` from ``position``, ``force`` from the
+    first force column (``F_c``, ``N_c`` or ``friction_c``); keys already given win."""
+    if not units:
+        return units
+    out = dict(units)
+    if "position" in units:
+        out.setdefault("length", units["position"])
+    force = next((u for k, u in units.items() if k.startswith(("F_", "N_", "friction_"))), None)
+    if force is not None:
+        out.setdefault("force", force)
+    return out
+
+
 def figures(trajectory: Trajectory, title: str, labels: Mapping[str, str],
             curve: tuple[int, Callable[[np.ndarray], np.ndarray]] | None = None,
             scene: Scene | None = None, units: Units = None) -> dict[str, Any]:
-    """All figures of a trajectory, by stable name."""
+    """All figures of a trajectory, by stable name. ``units`` maps a coordinate, ``t``, ``length``, ``force``
+    and ``energy`` (or the trajectory table's columns: ``position``, ``F_c``, ``lambda_c``) to a unit."""
+    units = axis_units(units)
     out: dict[str, Any] = {}
     if trajectory.particles:
         out["sketch"] = sketch_figure(trajectory, scene, title, units)
