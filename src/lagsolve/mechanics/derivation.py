@@ -20,6 +20,7 @@ from lagsolve.errors import DerivationError
 from lagsolve.mechanics.analysis import with_analysis
 from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.forces import ForceTerm, FrictionTerm
+from lagsolve.mechanics.hamiltonian import with_hamiltonian
 from lagsolve.mechanics.lagrange import LagrangeTerms, solve_augmented
 from lagsolve.mechanics.linsolve import SIZE_LIMIT
 from lagsolve.mechanics.matrix_form import MatrixForm, matrix_form
@@ -112,6 +113,8 @@ class Derivation:
     mass_matrix: Any = None  # display form of M
     forcing: Any = None  # display form of F
     notes: tuple[StageNote, ...] = ()
+    hamiltonian: Any = None  # lagsolve.mechanics.hamiltonian.Hamiltonian: momenta, H, Hamilton's equations, Routhian
+    hamiltonian_note: str = ""  # why there is no Hamiltonian (not applicable, or its stage did not finish)
 
     @property
     def multiplier_symbols(self) -> tuple[Any, ...]:
@@ -225,7 +228,7 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     )
     _check_free_symbols(derivation)
     if analysis:
-        derivation = with_analysis(derivation, stages)
+        derivation = with_hamiltonian(with_analysis(derivation, stages), stages)
     return dataclasses.replace(derivation, notes=stages.shown())
 
 
