@@ -355,6 +355,17 @@ def _bracket(h: Hamiltonian, name: str, expression: Any) -> Bracket:
                    tidy(bracket), tidy(partial_t), tidy(forces), zero, status)
 
 
+def claimed_rate(h: Hamiltonian, expression: Any, substitution: Any = None) -> tuple[Any, str]:
+    r"""The rate :math:`\{C, H\} + \partial C/\partial t + \sum_i \partial C/\partial p_i\,Q_i` of a claimed
+    constant of the motion C (in the problem's coordinates and velocities), and whether it is 0:
+    ``"symbolic"``, ``"numeric"`` or ``"differ"``. ``substitution`` (an
+    :class:`~lagsolve.mechanics.reduce.Elimination`) first writes C in the minimal coordinates."""
+    in_minimal = substitution.apply(expression) if substitution is not None else expression
+    rate = h.rate(h.to_momenta(in_minimal))
+    status = _status(rate)
+    return (sympy.Integer(0) if status != "differ" else tidy(rate)), status
+
+
 #: an identity larger than this (operations) is checked numerically only (exact rewriting costs too much)
 PROOF_LIMIT = 400
 
