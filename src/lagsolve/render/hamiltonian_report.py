@@ -86,7 +86,7 @@ def hamiltonian_context(derivation: Derivation, note: Notation, math: str = "lat
 
 
 def _dotted(momentum: str, math: str) -> str:
-    """:math:`\dot p_q` from the printed :math:`p_q` (LaTeX ``p_{q}`` or MathML ``<msub><mi>p</mi>...``)."""
+    r""":math:`\dot p_q` from the printed :math:`p_q` (LaTeX ``p_{q}`` or MathML ``<msub><mi>p</mi>...``)."""
     if math == "mathml":
         return momentum.replace("<mi>p</mi>", '<mover accent="true"><mi>p</mi><mo>&#729;</mo></mover>', 1)
     return "\\dot{p}" + momentum[1:]
