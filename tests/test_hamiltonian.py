@@ -72,11 +72,11 @@ def test_heavy_top_two_cyclic_momenta_and_routhian():
     """Goldstein 5.7: H = p_θ²/(2I₁') + (p_φ − p_ψ cos θ)²/(2I₁' sin²θ) + p_ψ²/(2I₃) + m g l cos θ; φ, ψ cyclic."""
     d = _derived("heavy_top")
     h = d.hamiltonian
-    phi, theta, psi, m, l, I1, I3, g = (_sym(d, n) for n in ("phi", "theta", "psi", "m", "l", "I1", "I3", "g"))
+    phi, theta, psi, m, arm, I1, I3, g = (_sym(d, n) for n in ("phi", "theta", "psi", "m", "l", "I1", "I3", "g"))
     pphi, ptheta, ppsi = (momentum_symbol(c) for c in (phi, theta, psi))
-    J = I1 + m * l**2
+    J = I1 + m * arm**2
     textbook = (ptheta**2 / (2 * J) + (pphi - ppsi * sympy.cos(theta)) ** 2 / (2 * J * sympy.sin(theta) ** 2)
-                + ppsi**2 / (2 * I3) + m * g * l * sympy.cos(theta))
+                + ppsi**2 / (2 * I3) + m * g * arm * sympy.cos(theta))
     assert sympy.simplify(h.expression - textbook) == 0
     assert h.momentum_rates[0] == 0 and h.momentum_rates[2] == 0
     r = h.routhian
@@ -106,9 +106,10 @@ def test_spherical_pendulum():
     """Thornton–Marion ch. 7: H = p_θ²/(2ml²) + p_φ²/(2ml² sin²θ) − m g l cos θ; R's V_eff as the analysis's."""
     d = _derived("spherical_pendulum")
     h = d.hamiltonian
-    theta, phi, m, l, g = (_sym(d, n) for n in ("theta", "phi", "m", "l", "g"))
+    theta, phi, m, rod, g = (_sym(d, n) for n in ("theta", "phi", "m", "l", "g"))
     pt, pp = momentum_symbol(theta), momentum_symbol(phi)
-    textbook = pt**2 / (2 * m * l**2) + pp**2 / (2 * m * l**2 * sympy.sin(theta) ** 2) - m * g * l * sympy.cos(theta)
+    textbook = (pt**2 / (2 * m * rod**2) + pp**2 / (2 * m * rod**2 * sympy.sin(theta) ** 2)
+                - m * g * rod * sympy.cos(theta))
     assert sympy.simplify(h.expression - textbook) == 0
     thetad = d.model.velocities[0]
     veff = d.analysis.effective_potential.expression
@@ -179,7 +180,8 @@ def test_json_shape_of_the_hole_table():
 def test_check_verifies_a_claim_by_its_poisson_bracket():
     """A true claim passes {C, H} + ∂C/∂t = 0; p_r, which is not conserved, fails it."""
     text = (PROBLEMS / "hole_table.yaml").read_text()
-    text = text.replace('    p_theta: "m1*r**2*theta_dot"', '    p_theta: "m1*r**2*theta_dot"\n    p_r: "(m1 + m2)*r_dot"')
+    claim = '    p_theta: "m1*r**2*theta_dot"'
+    text = text.replace(claim, claim + '\n    p_r: "(m1 + m2)*r_dot"')
     report = check(derive(load_text(text)))
     by_name = {v.name: v for v in report.verdicts}
     assert by_name["p_theta.poisson_bracket"].status == "ok"

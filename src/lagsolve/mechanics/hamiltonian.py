@@ -54,7 +54,7 @@ from lagsolve.mechanics.linsolve import SIZE_LIMIT
 from lagsolve.mechanics.model import Model, time_derivative
 from lagsolve.mechanics.names import momentum_symbol
 from lagsolve.mechanics.simplify import measure, tidy, tidy_sum
-from lagsolve.mechanics.stages import StageSkipped, Stages
+from lagsolve.mechanics.stages import Stages, StageSkipped
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.analysis import Analysis
@@ -136,6 +136,7 @@ class Hamiltonian:
     routhian_note: str
     brackets: tuple[Bracket, ...]
     time_dependent: bool
+    remainder: Any = sympy.Integer(0)  # -L(q, 0, t), the part of H free of the momenta
 
     def to_momenta(self, expr: Any) -> Any:
         """``expr`` (in q, q̇, t) written in (q, p, t): each velocity replaced by :math:`\\dot q(q, p)`."""
@@ -200,7 +201,8 @@ def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonia
         return None, ("the matrix A of p = A q_dot + b is singular (a coordinate without inertia): the momenta "
                       "cannot be solved for the velocities")
     velocities = squares.solution
-    H = sympy.Add(*squares.terms, _shortest(-L0))
+    remainder = _shortest(-L0)
+    H = sympy.Add(*squares.terms, remainder)
     momenta = tuple(tidy_sum(sympy.diff(L, v)) for v in qd)
     form, parts = _statement(model, qd)
     to_p = dict(zip(qd, velocities, strict=True))
@@ -215,7 +217,7 @@ def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonia
         offset=sympy.ImmutableMatrix(b), inverse=velocities, lagrangian=reduced.lagrangian, expression=H,
         form=form, kinetic_parts=parts, forces=forces, dissipation=damping, rates=rates,
         momentum_rates=momentum_rates, routhian=None, routhian_note="", brackets=(),
-        time_dependent=not proved_zero(sympy.diff(H, t)))
+        time_dependent=not proved_zero(sympy.diff(H, t)), remainder=remainder)
     routhian, note = routh(model, reduced.generalized_forces, analysis)
     brackets = tuple(_bracket(result, c.name, c.expression) for c in analysis.conservation.quantities)
     return dataclasses.replace(result, routhian=routhian, routhian_note=note, brackets=brackets), ""

@@ -62,8 +62,12 @@ def hamiltonian_context(derivation: Derivation, note: Notation, math: str = "lat
                  "same": "H" if b.quantity == h.expression else ("momentum" if b.quantity in h.momentum_symbols
                                                                  and b.name == b.quantity.name else "")}
                 for b in h.brackets]
+    sizes = [sympy.count_ops(e) for e in (h.expression, *h.inverse, *h.rates)]
+    compact = max(sizes) > COMPACT_LIMIT or max(sympy.count_ops(e) for e in h.momentum_rates) > 2 * COMPACT_LIMIT
     return {
         "applies": True,
+        "compact": compact,
+        "remainder": tex(h.remainder),
         "coordinates": coordinates,
         "lagrangian": tex(h.lagrangian),
         "mass": tex(h.mass),
@@ -83,6 +87,10 @@ def hamiltonian_context(derivation: Derivation, note: Notation, math: str = "lat
         "routhian_note": h.routhian_note,
         "brackets": brackets,
     }
+
+
+#: past this many operations H, q̇(q, p) and Hamilton's equations are shown in matrix form (in full in the JSON)
+COMPACT_LIMIT = 45
 
 
 def _dotted(momentum: str, math: str) -> str:
