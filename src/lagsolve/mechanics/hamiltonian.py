@@ -299,15 +299,19 @@ def _termwise(expr: Any, x: Any, sign: int) -> Any:
     return sympy.Add(*(_shortest(sign * sympy.diff(t, x)) for t in sympy.Add.make_args(expr)))
 
 
-#: above this many operations an expression gets the light display simplification only
+#: above this many operations an expression is left as derived; above TIDY_SHOW only common factors are pulled out
 SHOW_LIMIT = 150
+TIDY_SHOW = 40
 
 
 def _shortest(expr: Any) -> Any:
     """The shorter of :func:`tidy_sum` (a sum of terms) and :func:`tidy` (factored); a large expression is left
     as derived (expanding it would only make it longer)."""
-    if sympy.count_ops(expr) > SHOW_LIMIT:
+    size = sympy.count_ops(expr)
+    if size > SHOW_LIMIT:
         return expr
+    if size > TIDY_SHOW:
+        return sympy.factor_terms(expr)
     return min((tidy_sum(expr), tidy(expr)), key=measure)
 
 
