@@ -187,3 +187,18 @@ def test_check_verifies_a_claim_by_its_poisson_bracket():
     assert by_name["p_theta.poisson_bracket"].status == "ok"
     assert by_name["energy.poisson_bracket"].status == "ok"
     assert by_name["p_r.poisson_bracket"].status == "mismatch"
+
+
+def test_a_hamiltonian_out_of_budget_is_named_and_the_rest_comes_out(monkeypatch):
+    """When the Hamiltonian stage runs out of its CPU share, a note names it, the key is null, the rest is there."""
+    import lagsolve.mechanics.hamiltonian as module
+
+    def spin(*args, **kwargs):
+        while True:
+            pass
+
+    monkeypatch.setattr(module, "hamiltonian", spin)
+    d = derive(load_problem(PROBLEMS / "hole_table.yaml"), budget=6)
+    assert d.hamiltonian is None and d.accelerations is not None and d.conserved
+    assert [(n.stage, n.kind) for n in d.notes if n.stage == "hamiltonian"] == [("hamiltonian", "budget")]
+    assert result_dict(d)["hamiltonian"] is None
