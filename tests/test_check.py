@@ -250,7 +250,7 @@ def test_analysis_not_derived_yet_is_unchecked() -> None:
     """Without analysis results the expected reduced and V_eff answers are 'not derived', not failures; a claimed
     conserved quantity is still checked by its rate along the equations of motion."""
     bare = dataclasses.replace(variant("hole_table", HOLE_ANALYSIS), reduced=None, conserved=None,
-                               effective_potential=None)
+                               effective_potential=None, hamiltonian=None)
     report = check(bare)
     conserved = [v for v in report.verdicts if v.quantity == "conserved"]
     rest = [v for v in report.verdicts if v.quantity != "conserved"]

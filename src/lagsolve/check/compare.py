@@ -75,6 +75,7 @@ UNDEFINED, DIFFERS, ABSENT, SHAPE = "undefined", "differs", "absent", "shape"
 RELEASED = "constraints released"
 CONSERVED, NOT_CONSERVED = "conserved", "not conserved"
 NOT_DERIVED, TOO_FEW_STATES, SAME = "not derived", "too few states", "same"
+BRACKET, NOT_BRACKET = "Poisson bracket", "Poisson bracket not 0"
 
 STATES = 24
 MINIMUM_STATES = 8
@@ -262,6 +263,7 @@ def _analysis_items(derivation: Derivation) -> list[_Item]:
                                f"(it finds: {found})", shifts=True, rate=derivation.accelerations is not None))
             continue
         items.append(_Item("conserved", name, (e,), (value,), shifts=True))
+    items += _bracket_items(derivation)
     spec = expected.effective_potential
     if spec and "expression" in spec:
         derived = derivation.effective_potential
@@ -273,6 +275,22 @@ def _analysis_items(derivation: Derivation) -> list[_Item]:
             value, missing = None, MISMATCH
         items.append(_Item("effective_potential", "expression", (spec["expression"],),
                            None if value is None else (value,), note, shifts=True, missing=missing))
+    return items
+
+
+def _bracket_items(derivation: Derivation) -> list[_Item]:
+    """Each claimed constant C checked again in Hamiltonian form, {C, H} + ∂C/∂t = 0, where H applies."""
+    h = derivation.hamiltonian
+    if h is None or derivation.analysis is None or derivation.analysis.reduced is None:
+        return []
+    from lagsolve.mechanics.hamiltonian import claimed_rate
+
+    items = []
+    substitution = derivation.analysis.reduced.substitution
+    for name, e in derivation.problem.expected.conserved.items():
+        rate, status = claimed_rate(h, e, substitution)
+        items.append(_Item("conserved", f"{name}.poisson_bracket", (e,), None, shifts=True,
+                           extra={"bracket": (rate, status)}))
     return items
 
 
@@ -375,6 +393,8 @@ class _Checker:
     def verdict(self, item: _Item) -> Verdict:
         if item.rate:
             return self.conservation(item)
+        if "bracket" in item.extra:
+            return _bracket_verdict(item)
         expected = tuple(self.prepare(e) for e in item.expected)
         base: dict[str, Any] = {"quantity": item.quantity, "name": item.name, "expected": item.expected}
         if item.derived is None:
@@ -546,6 +566,17 @@ class _Checker:
                                               None if frequency is None else (frequency,),
                                               "lagsolve gives no frequency for this equilibrium", real=False)))
         return out
+
+
+def _bracket_verdict(item: _Item) -> Verdict:
+    """The verdict of a claimed constant's Poisson bracket with H (see :func:`_bracket_items`)."""
+    rate, status = item.extra["bracket"]
+    base: dict[str, Any] = {"quantity": item.quantity, "name": item.name, "expected": item.expected}
+    what = "{C, H} + dC/dt (explicit) + sum of dC/dp_i Q_i, with C written in the momenta,"
+    if status == "differ":
+        return Verdict(**base, derived=(rate,), status=MISMATCH, reason=NOT_BRACKET, note=f"{what} is not 0")
+    how = "simplifies to 0" if status == "symbolic" else "is 0 at random states"
+    return Verdict(**base, status=OK, reason=BRACKET, note=f"{what} {how}", states=0 if status == "symbolic" else 6)
 
 
 # -- small numeric helpers -------------------------------------------------------------------------

@@ -21,6 +21,7 @@ from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.elimination import Elimination, eliminate
 from lagsolve.mechanics.forces import ForceTerm
 from lagsolve.mechanics.friction import FrictionTerm
+from lagsolve.mechanics.hamiltonian import with_hamiltonian
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.lagrange import LagrangeTerms, solve_augmented
 from lagsolve.mechanics.linsolve import SIZE_LIMIT
@@ -118,7 +119,7 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     )
     _check_free_symbols(derivation)
     if analysis:
-        derivation = with_analysis(derivation, stages)
+        derivation = with_hamiltonian(with_analysis(derivation, stages), stages)
     return dataclasses.replace(derivation, notes=stages.shown())
 
 

@@ -109,6 +109,8 @@ class Derivation:
     mass_matrix: Any = None  # display form of M
     forcing: Any = None  # display form of F
     notes: tuple[StageNote, ...] = ()
+    hamiltonian: Any = None  # lagsolve.mechanics.hamiltonian.Hamiltonian: momenta, H, Hamilton's equations, Routhian
+    hamiltonian_note: str = ""  # why there is no Hamiltonian (not applicable, or its stage did not finish)
 
     @property
     def multiplier_symbols(self) -> tuple[Any, ...]:

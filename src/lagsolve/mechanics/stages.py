@@ -45,6 +45,7 @@ STAGES: dict[str, float] = {
     "effective potential": 2.0,
     "equilibria and normal modes": 2.0,
     "numeric equilibria": 1.0,
+    "hamiltonian": 2.0,
 }
 
 #: the largest part of the whole budget one optional stage may take, however much is left

@@ -60,6 +60,11 @@ def label(verdict: Verdict, note: Notation, coordinates: tuple[str, ...] = ()) -
         if name.endswith(".vector"):
             return f"F_{name[:-len('.vector')]}"
         return f"|F_{name}|"
+    if verdict.quantity == "conserved" and name.endswith(".poisson_bracket"):
+        import dataclasses
+
+        inner = dataclasses.replace(verdict, name=name.removesuffix(".poisson_bracket"))
+        return "{" + label(inner, note, coordinates) + ", H}"
     if verdict.quantity == "conserved":
         if name.startswith("p_") and name[2:] in coordinates:
             return "p_" + note.text(sympy.Symbol(name[2:]))
@@ -98,6 +103,12 @@ def describe(verdict: Verdict, note: Notation) -> str:
         return f"mismatch: differs by a constant (expected = derived + {shown})"
     if reason == c.SAME:
         return "ok"
+    if reason == c.BRACKET:
+        where = "symbolically" if not verdict.states else f"numerically, at {verdict.states} random points"
+        return f"ok (conserved: {{C, H}} + ∂C/∂t = 0, {where})"
+    if reason == c.NOT_BRACKET:
+        rate = note.text(verdict.derived[0]) if verdict.derived else "?"
+        return f"mismatch: not conserved, {{C, H}} + ∂C/∂t = {rate} ≠ 0"
     if reason == c.CONSERVED:
         where = f"at {verdict.states} states on the constraint surface" if verdict.states else "symbolically"
         return f"ok (conserved: dC/dt = 0 along the equations of motion, {where})"

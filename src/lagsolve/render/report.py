@@ -21,6 +21,7 @@ import sympy
 from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.render.analysis_report import analysis_context, analysis_json, analysis_summary, contract_json
+from lagsolve.render.hamiltonian_report import hamiltonian_context, hamiltonian_json, hamiltonian_summary
 from lagsolve.render.notation import FILTERS, Notation, symbol_table, to_json
 from lagsolve.render.units import units_context, units_json
 
@@ -175,6 +176,7 @@ def context(derivation: Derivation, math: str = "latex") -> dict[str, Any]:
         "forces": forces,
         "friction": friction,
         "analysis": analysis_context(derivation, note, math),
+        "hamiltonian": hamiltonian_context(derivation, note, math),
         "notes": [n.sentence() for n in derivation.notes],
         "symbols": symbol_table(dict(problem.symbols), note),
         "math": math,
@@ -323,6 +325,7 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
         },
         **contract_json(derivation),
         "analysis": analysis_json(derivation),
+        "hamiltonian": hamiltonian_json(derivation),
         "notes": [{"stage": n.stage, "kind": n.kind, "reason": n.reason} for n in derivation.notes],
         **({"units": units} if (units := units_json(derivation)) is not None else {}),
     }
@@ -367,6 +370,7 @@ def summary(derivation: Derivation) -> str:
     for f in ctx["friction"]:
         lines.append(f"  friction {f['name']}: normal force {f['normal_text']} = {f['normal_force']['text']}")
     lines += analysis_summary(derivation, Notation([c.name for c in derivation.problem.coordinates]))
+    lines += hamiltonian_summary(derivation, Notation([c.name for c in derivation.problem.coordinates]))
     if ctx["notes"]:
         lines.append("  not completed:")
         lines += [f"    {n}" for n in ctx["notes"]]
