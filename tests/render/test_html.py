@@ -14,7 +14,7 @@ from lagsolve.mechanics.derivation import Derivation, derive
 from lagsolve.problem.load import load_text
 from lagsolve.render.report import render
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 HOSTILE = r"""
 name: '<script>alert(1)</script>'

@@ -36,7 +36,7 @@ from lagsolve.mechanics.derivation import Derivation, derive
 from lagsolve.problem.load import load_text
 from mechanics_support import derived_file, shipped
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 PROBLEMS = [ROOT / "problems" / f"{name}.yaml" for name in shipped()]
 
 

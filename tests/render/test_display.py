@@ -8,7 +8,7 @@ from pathlib import Path
 import lagsolve
 from lagsolve.api import FALLING
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 BEAD = ROOT / "problems" / "bead.yaml"
 
 

@@ -12,7 +12,7 @@ from typing import Any
 
 import pytest
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 SCRIPT = ROOT / "bench" / "scale.py"
 CELLS = ("cli_derive", "lib_derive", "core", "build", "sim_run", "lm_total", "kane_core", "kane_total")
 

@@ -14,7 +14,7 @@ from lagsolve.numeric.integrate import integrate_motion
 from lagsolve.numeric.system import bind
 from lagsolve.problem.load import load_problem, load_text
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 M, K, G, MU, MU_S = 1.0, 10.0, 9.81, 0.1, 0.15
 
 BELT = """

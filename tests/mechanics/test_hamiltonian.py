@@ -16,7 +16,7 @@ from lagsolve.problem.load import load_problem, load_text
 from lagsolve.problem.names import momentum_symbol
 from lagsolve.render.report import result_dict
 
-PROBLEMS = Path(__file__).resolve().parents[1] / "problems"
+PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
 
 MAGNETIC = """
 name: Charged particle in a uniform magnetic field

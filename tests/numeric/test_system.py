@@ -87,7 +87,7 @@ def test_friction_normal_force_matches_the_closed_form() -> None:
 
     from lagsolve.problem.load import load_problem
 
-    problem = load_problem(Path(__file__).resolve().parents[1] / "problems" / "rotating_tube.yaml")
+    problem = load_problem(Path(__file__).resolve().parents[2] / "problems" / "rotating_tube.yaml")
     system = bind(matrix_form(problem), {"mu": 0.3})
     rng = np.random.default_rng(3)
     g, omega, mu, m = 9.81, 2.0, 0.3, 1.0

@@ -15,7 +15,7 @@ import lagsolve  # noqa: E402
 from lagsolve.sweep.api import sweep  # noqa: E402
 from simulation_support import CARTESIAN_PENDULUM as CARTESIAN  # noqa: E402
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 DOUBLE = ROOT / "problems" / "double_pendulum.yaml"
 SPRING = ROOT / "problems" / "spring_on_rough_floor.yaml"
 INCLINE = ROOT / "problems" / "rough_incline.yaml"

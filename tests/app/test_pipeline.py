@@ -10,7 +10,7 @@ from lagsolve.app.pipeline import Reports, check_file, derive_file, golden_diffe
 from lagsolve.errors import SpecError
 from lagsolve.files import safe_slug
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.mark.parametrize(("path", "slug"), [

@@ -400,7 +400,7 @@ def test_names_paragraph_of_the_format_doc_matches_the_rule() -> None:
     import re
     from pathlib import Path
 
-    doc = (Path(__file__).resolve().parents[1] / "docs" / "format.md").read_text(encoding="utf-8")
+    doc = (Path(__file__).resolve().parents[2] / "docs" / "format.md").read_text(encoding="utf-8")
     paragraph = " ".join(doc.split("\nNames: ", 1)[1].split("\n\n", 1)[0].split())
     refused = re.search(r"not the name of a built-in function or constant of expressions \(([^)]*)\)", paragraph)
     accepted = re.search(r"Single letters that mean something to SymPy — (.*?) — are accepted", paragraph)

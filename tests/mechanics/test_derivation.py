@@ -364,7 +364,7 @@ def test_coupled_friction_normal_force_closed_form_matches_the_numeric_solve():
     from lagsolve.numeric.system import bind
     from lagsolve.problem.load import load_problem
 
-    problem = load_problem(Path(__file__).resolve().parents[1] / "problems" / "ladder_rough_floor.yaml")
+    problem = load_problem(Path(__file__).resolve().parents[2] / "problems" / "ladder_rough_floor.yaml")
     derivation = derive(problem)
     friction = derivation.friction[0]
     assert friction.case.startswith("coupled") and friction.valid_while is not None

@@ -145,7 +145,7 @@ def test_a_signal_to_the_command_alone_leaves_no_worker(signum: str, tmp_path) -
     import sys
     from pathlib import Path
 
-    bead = Path(__file__).resolve().parents[1] / "problems" / "bead.yaml"
+    bead = Path(__file__).resolve().parents[2] / "problems" / "bead.yaml"
     command = [sys.executable, "-m", "lagsolve", "simulate", str(bead), "--t-end", "1e7", "--timeout", "600"]
     process = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=tmp_path)
     workers: set[int] = set()

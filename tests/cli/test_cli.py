@@ -14,7 +14,7 @@ from click.testing import CliRunner
 from lagsolve.cli import main
 from mechanics_support import shipped
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 BEAD = str(ROOT / "problems" / "bead.yaml")
 HOLE = str(ROOT / "problems" / "hole_table.yaml")
 

@@ -12,7 +12,7 @@ psutil = pytest.importorskip("psutil")
 
 from lagsolve.sweep.api import sweep  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 DOUBLE = ROOT / "problems" / "double_pendulum.yaml"
 SPRING = ROOT / "problems" / "spring_on_rough_floor.yaml"
 

@@ -20,7 +20,7 @@ from lagsolve.problem.load import load_text
 from lagsolve.render.report import context, render, result_dict, summary, template_dirs
 from mechanics_support import shipped
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 HOSTILE = r"""
 name: '<script>alert(1)</script> \input{/etc/passwd} 100%'

@@ -14,7 +14,7 @@ from lagsolve.cli import main
 pandas = pytest.importorskip("pandas")
 pytest.importorskip("pyarrow")
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 DOUBLE = str(ROOT / "problems" / "double_pendulum.yaml")
 SPRING = str(ROOT / "problems" / "spring_on_rough_floor.yaml")
 COLUMNS = {"run", "theta1", "theta2", "status", "reason", "outcome", "path", "t_final", "final_theta1",

@@ -19,7 +19,7 @@ from lagsolve.render.report import render, result_dict
 from lagsolve.render.trajectory import to_csv
 from lagsolve.render.units import unit_tex
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 PROBLEMS = ROOT / "problems"
 
 

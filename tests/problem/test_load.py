@@ -13,7 +13,7 @@ from lagsolve.errors import Issue, SpecError
 from lagsolve.problem.load import load_problem, load_text
 from lagsolve.problem.schema import Problem
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 SOURCE = "p.yaml"
 
 FULL = """\
