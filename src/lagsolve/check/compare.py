@@ -62,7 +62,7 @@ from lagsolve.check.diagnose import (
 from lagsolve.check.states import Compiled, State, StateSpace
 from lagsolve.check.status import Status
 from lagsolve.mechanics.derivation import Derivation
-from lagsolve.mechanics.simplify import tidy
+from lagsolve.mechanics.simplify import reproducible, tidy
 from lagsolve.problem.names import momentum_name, momentum_symbol
 
 OK, WARNING, MISMATCH, UNCHECKED = Status.OK, Status.WARNING, Status.MISMATCH, Status.UNCHECKED
@@ -196,6 +196,7 @@ def check(derivation: Derivation, *, states: int = STATES, seed: int = 0) -> Che
     >>> [(v.status, v.reason) for v in report.verdicts]
     [('mismatch', 'opposite sign')]
     """
+    reproducible()  # the comparisons simplify too: SymPy's factorisation draws random numbers
     problem = derivation.problem
     items = _items(derivation)
     checker = _Checker(derivation, items, states, seed)

@@ -30,7 +30,7 @@ from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.normal import NormalForce, normal_forces
 from lagsolve.mechanics.reactions import Reaction
 from lagsolve.mechanics.results import ConstraintForce, Derivation, FrictionResult
-from lagsolve.mechanics.simplify import compound_angles, measure, norm, tidy, tidy_sum, tidy_sum_light
+from lagsolve.mechanics.simplify import compound_angles, measure, norm, reproducible, tidy, tidy_sum, tidy_sum_light
 from lagsolve.mechanics.stages import DEFAULT_BUDGET, StageNote, Stages, StageTimeout, cpu_limit
 from lagsolve.problem.schema import Problem
 
@@ -54,6 +54,7 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     DerivationError
         When the accelerations and multipliers are not determined (singular system).
     """
+    reproducible()  # SymPy's factorisation draws random numbers: the same problem, the same work
     stages = Stages(DEFAULT_BUDGET if budget is None else budget)
     form = matrix_form(problem, display=False)
     model, constraints, frictions = form.model, form.constraints, form.frictions

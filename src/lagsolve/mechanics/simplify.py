@@ -16,6 +16,17 @@ from typing import Any
 import sympy
 
 
+def reproducible() -> None:
+    """Seed SymPy's own random generator (``sympy.core.random``), which its multivariate factorisation
+    (Wang's algorithm) draws evaluation points from. Unseeded, the same ``factor`` takes 0.1 s in one
+    process and over 10 s in another (the charged ring's force of constraint, one run in six), so a stage
+    could run out of its budget at random; seeded at the start of each derivation, the work, and so the
+    time and every result, depend on the problem alone."""
+    import sympy.core.random
+
+    sympy.core.random.seed(0)
+
+
 def _number(value: Any) -> Any:
     """A plain Python number (from an empty sum, say) as a SymPy number."""
     if isinstance(value, int):
