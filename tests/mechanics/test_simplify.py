@@ -131,15 +131,16 @@ def test_each_derivation_seeds_sympys_random_generator():
     """SymPy's multivariate factorisation draws random evaluation points; a derivation seeds the generator
     first, so the same problem does the same work (and takes the same time) in every process. Without the
     seed the charged ring's force of constraint took 0.1 s in most runs and over 10 s (its whole CPU share)
-    in about one in six."""
-    import sympy.core.random
+    in about one in six. Two fresh processes end with the generator in the same state."""
+    import os
+    import subprocess
+    import sys
 
-    from lagsolve.mechanics.derivation import derive
-    from mechanics_support import problem_file
+    from mechanics_support import PROBLEMS
 
-    problem = problem_file("charged_ring")
-    derive(problem)
-    after_first = sympy.core.random.randint(0, 10**9)
-    sympy.core.random.seed(12345)  # disturb the state between the runs
-    derive(problem)
-    assert sympy.core.random.randint(0, 10**9) == after_first
+    code = ("import sympy.core.random, lagsolve; lagsolve.derive(%r); print(sympy.core.random.randint(0, 10**9))"
+            % str(PROBLEMS / "charged_ring.yaml"))
+    env = {**os.environ, "PYTHONHASHSEED": "0"}
+    runs = {subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True).stdout
+            for _ in range(2)}
+    assert len(runs) == 1
