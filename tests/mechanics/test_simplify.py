@@ -138,8 +138,8 @@ def test_each_derivation_seeds_sympys_random_generator():
 
     from mechanics_support import PROBLEMS
 
-    code = ("import sympy.core.random, lagsolve; lagsolve.derive(%r); print(sympy.core.random.randint(0, 10**9))"
-            % str(PROBLEMS / "charged_ring.yaml"))
+    path = str(PROBLEMS / "charged_ring.yaml")
+    code = f"import sympy.core.random, lagsolve; lagsolve.derive({path!r}); print(sympy.core.random.randint(0, 10**9))"
     env = {**os.environ, "PYTHONHASHSEED": "0"}
     runs = {subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True).stdout
             for _ in range(2)}
