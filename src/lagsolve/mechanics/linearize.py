@@ -23,6 +23,7 @@ Notes
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 from typing import Any
 
@@ -114,7 +115,9 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
         solutions: list[dict[Any, Any]] = [{}]  # no force at rest anywhere: every configuration
     else:
         try:
-            solutions = sympy.solve(static, coordinates, dict=True)
+            solutions = _decoupled(static, coordinates)
+            if solutions is None:
+                solutions = sympy.solve(static, coordinates, dict=True)
         except (NotImplementedError, ValueError, TypeError):
             return None, "the equilibrium equations could not be solved symbolically"
     points = set()
@@ -126,7 +129,7 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
     # where M is singular the coordinates themselves are (r = 0 in polar coordinates): F(q, 0) = 0 there only
     # because the equations were multiplied through by M, so such a point is no equilibrium of the motion
     mass = sympy.Matrix(terms.mass_matrix)
-    points = {p for p in points if not proved_zero(mass.xreplace(dict(p[0])).det())}
+    points = {p for p in points if not proved_zero(mass.xreplace(dict(p[0])).det(method="berkowitz"))}
     if not points:
         return None, "no isolated equilibrium was found in closed form"
     ordered = sorted(points, key=lambda p: (len(p[1]), sympy.default_sort_key(sympy.Tuple(*[v for _, v in p[0]]))))
@@ -136,6 +139,44 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
     modes = tuple(_mode(point, terms.mass_matrix, K_all, C_all, rest, values, free)
                   for point, free in ordered[:MAX_EQUILIBRIA])
     return Linearization(model.coordinates, modes), ""
+
+
+def _decoupled(static: list[Any], coordinates: list[Any]) -> list[dict[Any, Any]] | None:
+    """The solutions ``sympy.solve(static, coordinates, dict=True)`` gives, found equation by equation when
+    the equations are decoupled: each involves one coordinate, a different one for each (a chain of
+    pendulums at rest, say). Every combination of the roots of each equation is then a solution. A factor
+    that is a power of ``sin(q)`` or ``cos(q)`` has the roots ``sympy.solve`` gives (0, π; π/2, 3π/2),
+    without its search; any other equation is solved in its coordinate alone. None when the equations are
+    not decoupled (the system is then solved as a whole)."""
+    if len(static) != len(coordinates) or any(f == 0 for f in static):
+        return None
+    chosen = set(coordinates)
+    owner: dict[Any, Any] = {}
+    for f in static:
+        involved = f.free_symbols & chosen
+        if len(involved) != 1:
+            return None
+        (q,) = involved
+        if q in owner:
+            return None
+        owner[q] = f
+    roots = []
+    for q in coordinates:
+        f = owner[q]
+        varying = [a for a in sympy.Mul.make_args(f) if a.has(q)]
+        base = varying[0].as_base_exp() if len(varying) == 1 else (None, None)
+        if base[0] is not None and base[1].is_Integer and base[1] > 0 and base[0] in (sympy.sin(q), sympy.cos(q)):
+            roots.append(_TRIG_ROOTS[base[0].func])
+        else:
+            roots.append(sympy.solve(f, q))
+    return [dict(zip(coordinates, combination, strict=True)) for combination in itertools.product(*roots)]
+
+
+#: the roots ``sympy.solve`` gives for sin(q) = 0 and cos(q) = 0
+_TRIG_ROOTS: dict[Any, list[Any]] = {
+    sympy.sin: [sympy.Integer(0), sympy.pi],
+    sympy.cos: [sympy.pi / 2, 3 * sympy.pi / 2],
+}
 
 
 def _continuum_note(free: tuple[Any, ...], n: int) -> str:
@@ -170,8 +211,9 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
         s = sympy.Dummy("s")
         # the Poly is canonical, however the determinant is written: Berkowitz's is the quickest to write
         polynomial = sympy.Poly((K - s * M0).det(method="berkowitz"), s)
-        _, factors = sympy.factor_list(polynomial)
-        roots = sympy.roots(polynomial) if all(f.degree() <= 2 for f, _ in factors) else {}
+        # a polynomial of degree 2 or less needs no factoring to know that its factors are that small
+        splits = polynomial.degree() <= 2 or all(f.degree() <= 2 for f, _ in sympy.factor_list(polynomial)[1])
+        roots = sympy.roots(polynomial) if splits else {}
         if sum(roots.values()) != polynomial.degree() or any(r.has(sympy.I) for r in roots):
             # Cardano's radicals of a real frequency carry complex numbers: a numeric ω² says more
             note = "the characteristic polynomial does not split into real factors of degree 2 or less"
