@@ -28,6 +28,7 @@ from typing import Any
 
 import sympy
 
+from lagsolve.mechanics.simplify import known_cancelled
 from lagsolve.mechanics.stages import StageSkipped
 
 #: an explicit result (or an intermediate of the elimination) with more operations than this is not produced
@@ -184,7 +185,7 @@ def cancelled(numer: Any, denom: Any) -> Any:
         P, Q = P.quo_ground(content), Q.quo_ground(content)
     if Q.LC < 0:
         P, Q = -P, -Q
-    return P.as_expr() / Q.as_expr()
+    return known_cancelled(P.as_expr() / Q.as_expr())
 
 
 def _nonzero(value: Any) -> bool:
