@@ -125,3 +125,34 @@ def test_norm_takes_a_shared_factor_out_before_the_squares():
     assert not got.has(sympy.sqrt(2)) and not any(isinstance(e, sympy.Pow) and e.exp == sympy.S.Half
                                                   for e in sympy.preorder_traversal(got))
     assert common_factor([x, 0]) == 1 and common_factor([x * v, x * v**2]) == x * v
+
+
+_a, _b, _c, _l = sympy.symbols("a b c l", positive=True)
+_p, _q = sympy.symbols("p q", real=True)
+FACTOR_TERMS_SAMPLES = [
+    3 * _l**2 * _c * _p**2 / 2 + 2 * _l**2 * _c * _p * _q * sympy.cos(_a - _b) - 3 * _b * _l * _c * sympy.cos(_a),
+    -2 * _b * _l * _c * sympy.sin(_a) - _b * _l * _c * sympy.sin(_a) ** 2 * sympy.cos(_b),
+    6 * _p * sympy.sin(_a) - 4 * _q * sympy.cos(_a - _b) + 2 * _p * _q,
+    _p / 3 + _q / 6 - sympy.Rational(5, 9) * _p * _q,
+    (_p**2 * _l + _p * _q * _l) / (_l**2 * sympy.cos(_a) ** 2 - _l**2 * sympy.sin(_a) * _b),
+    -_p - _q,
+    _p * _q + _c,
+]
+
+
+@pytest.mark.parametrize("expr", FACTOR_TERMS_SAMPLES)
+def test_factor_terms_is_sympys_on_sums_of_monomials(expr):
+    """The direct route for sums of monomials gives exactly SymPy's factor_terms (same tree, not just equal)."""
+    from lagsolve.mechanics.simplify import _plain_factor_terms
+
+    ours = _plain_factor_terms(expr)
+    assert ours is not None
+    assert sympy.srepr(ours) == sympy.srepr(sympy.factor_terms(expr))
+
+
+def test_factor_terms_leaves_other_shapes_to_sympy():
+    from lagsolve.mechanics.simplify import _plain_factor_terms, factor_terms
+
+    odd = sympy.exp(-(_p + 2)) * _q + sympy.sqrt(_p) * _q + sympy.sin(_p / 2 + _q / 2)
+    assert _plain_factor_terms(odd) is None
+    assert factor_terms(odd) == sympy.factor_terms(odd)
