@@ -11,8 +11,9 @@ The equations :math:`M\ddot q = F + A^T\lambda`, :math:`A\ddot q = \beta` are so
   .. math:: (A X)\,\lambda = \beta - A y, \qquad \ddot q = y + X\lambda,
 
   an :math:`m\times m` system however many coordinates there are;
-* in each small dense block by elimination over the field of fractions of a polynomial ring
-  (each entry then cancelled, as SymPy writes a rational function), or, where the entries are not
+* in each small dense block by fraction-free elimination in a polynomial ring (one gcd per entry
+  at the end; over the field of fractions when the coefficients are rational), each entry then
+  written as ``sympy.cancel`` writes a rational function (:func:`cancelled`), or, where the entries are not
   polynomials in their functions, by elimination that cancels as it goes; and by the whole
   augmented matrix only when :math:`M` itself is singular (a coordinate without inertia).
 
@@ -176,7 +177,9 @@ def cancelled(numer: Any, denom: Any) -> Any:
         ring, (P, Q) = sring((numer, denom))
     except (sympy.polys.polyerrors.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):
         return sympy.cancel(numer / denom)
-    if not ring.ngens or not ring.domain.is_ZZ or not Q:
+    atoms = {a for e in (numer, denom) for a in e.atoms(sympy.Function, sympy.Derivative)}
+    if not ring.ngens or not ring.domain.is_ZZ or not Q or not atoms <= set(ring.symbols):
+        # (an atom the ring writes through another, exp(2 x) as exp(x)², may share a factor with it)
         return sympy.cancel(numer / denom)
     if not P:
         return sympy.Integer(0)
