@@ -310,3 +310,16 @@ def test_symengine_engine_on_the_pendulum_is_exact():
     shown, fast = matrix_form(problem), matrix_form(problem, display=False)
     assert exactly_equal(shown.lagrange.mass_matrix, fast.lagrange.mass_matrix)
     assert exactly_equal(shown.lagrange.forcing, fast.lagrange.forcing)
+
+
+def test_cancelled_is_sympys_cancel_of_a_reduced_fraction():
+    """linsolve.cancelled writes a coprime P/Q exactly as sympy.cancel would (same tree)."""
+    from lagsolve.mechanics.linsolve import cancelled
+
+    a, b, m, ell = sympy.symbols("a b m ell", positive=True)
+    s, c = sympy.sin(a), sympy.cos(a - b)
+    pairs = [(-m * s + 2 * ell * c, 3 - c**2), (6 * m * s, -4 * ell + 2 * m * c), (-s, -ell),
+             (sympy.Integer(0), ell * c),
+             (2 * m, sympy.Integer(4))]
+    for numer, denom in pairs:
+        assert sympy.srepr(cancelled(numer, denom)) == sympy.srepr(sympy.cancel(numer / denom))

@@ -132,3 +132,33 @@ potential: k*(r - l0)**2/2
     assert down.stable is True
     expected = [s["k"] / s["m"], s["g"] / r0]
     assert all(any(exactly_equal(got, want) for want in expected) for got in down.squared_frequencies)
+
+
+def test_decoupled_equilibria_are_sympys_solutions():
+    """Equations that each hold one coordinate are solved one by one, with sympy.solve's solutions."""
+    import itertools
+
+    from lagsolve.mechanics.linearize import _decoupled
+
+    x, y = sympy.symbols("x y", real=True)
+    g, a = sympy.symbols("g a", positive=True)
+    systems = [[-2 * g * sympy.sin(x), -g * sympy.sin(y) ** 3], [g * sympy.cos(x), sympy.sin(y)],
+               [g * sympy.sin(x) - a, sympy.cos(y) * g * a]]
+    key = lambda d: sympy.default_sort_key(sympy.Tuple(d[x], d[y]))  # noqa: E731
+    for static in systems:
+        ours = _decoupled(static, [x, y])
+        assert ours is not None
+        assert sorted(ours, key=key) == sorted(sympy.solve(static, [x, y], dict=True), key=key)
+    assert _decoupled([sympy.sin(x) * sympy.cos(y), sympy.sin(y)], [x, y]) is None
+    assert list(itertools.chain(_decoupled([sympy.sin(x), sympy.sin(y)], [x, y]) or [])) != []
+
+
+def test_splits_agrees_with_factor_list():
+    from lagsolve.mechanics.linearize import _splits
+
+    s, g, ell, m = sympy.symbols("s g ell m", positive=True)
+    for expr in [(s - g / ell) * (s**2 - 3 * g * s / ell + g**2 / ell**2),
+                 s**3 - 6 * g * s**2 + 9 * g**2 * s - 2 * g**3 * m, s**3 - 2 * g, (s - g) ** 3, s**2 - 2 * g * ell]:
+        polynomial = sympy.Poly(expr, s)
+        expected = all(f.degree() <= 2 for f, _ in sympy.factor_list(polynomial)[1])
+        assert _splits(polynomial, s) is expected

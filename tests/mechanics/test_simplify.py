@@ -144,3 +144,34 @@ def test_each_derivation_seeds_sympys_random_generator():
     runs = {subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, check=True).stdout
             for _ in range(2)}
     assert len(runs) == 1
+
+
+_a, _b, _c, _l = sympy.symbols("a b c l", positive=True)
+_p, _q = sympy.symbols("p q", real=True)
+FACTOR_TERMS_SAMPLES = [
+    3 * _l**2 * _c * _p**2 / 2 + 2 * _l**2 * _c * _p * _q * sympy.cos(_a - _b) - 3 * _b * _l * _c * sympy.cos(_a),
+    -2 * _b * _l * _c * sympy.sin(_a) - _b * _l * _c * sympy.sin(_a) ** 2 * sympy.cos(_b),
+    6 * _p * sympy.sin(_a) - 4 * _q * sympy.cos(_a - _b) + 2 * _p * _q,
+    _p / 3 + _q / 6 - sympy.Rational(5, 9) * _p * _q,
+    (_p**2 * _l + _p * _q * _l) / (_l**2 * sympy.cos(_a) ** 2 - _l**2 * sympy.sin(_a) * _b),
+    -_p - _q,
+    _p * _q + _c,
+]
+
+
+@pytest.mark.parametrize("expr", FACTOR_TERMS_SAMPLES)
+def test_factor_terms_is_sympys_on_sums_of_monomials(expr):
+    """The direct route for sums of monomials gives exactly SymPy's factor_terms (same tree, not just equal)."""
+    from lagsolve.mechanics.simplify import _plain_factor_terms
+
+    ours = _plain_factor_terms(expr)
+    assert ours is not None
+    assert sympy.srepr(ours) == sympy.srepr(sympy.factor_terms(expr))
+
+
+def test_factor_terms_leaves_other_shapes_to_sympy():
+    from lagsolve.mechanics.simplify import _plain_factor_terms, factor_terms
+
+    odd = sympy.exp(-(_p + 2)) * _q + sympy.sqrt(_p) * _q + sympy.sin(_p / 2 + _q / 2)
+    assert _plain_factor_terms(odd) is None
+    assert factor_terms(odd) == sympy.factor_terms(odd)

@@ -23,6 +23,7 @@ Notes
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 from typing import Any
 
@@ -104,7 +105,7 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
         return None, reason
     if n > MAX_COORDINATES:
         return None, f"{n} coordinates (equilibria are solved symbolically for 2 to {MAX_COORDINATES})"
-    terms = lagrange_terms(model, (), system.generalized_forces)
+    terms = lagrange_terms(model, (), system.generalized_forces, engine="symengine")
     rest = {v: 0 for v in model.velocities}
     static = [tidy(f.xreplace(rest)) for f in terms.forcing]
     if any(sympy.count_ops(f) > SOLVE_LIMIT for f in static):
@@ -114,7 +115,8 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
         solutions: list[dict[Any, Any]] = [{}]  # no force at rest anywhere: every configuration
     else:
         try:
-            solutions = sympy.solve(static, coordinates, dict=True)
+            decoupled = _decoupled(static, coordinates)
+            solutions = sympy.solve(static, coordinates, dict=True) if decoupled is None else decoupled
         except (NotImplementedError, ValueError, TypeError):
             return None, "the equilibrium equations could not be solved symbolically"
     points = set()
@@ -126,7 +128,7 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
     # where M is singular the coordinates themselves are (r = 0 in polar coordinates): F(q, 0) = 0 there only
     # because the equations were multiplied through by M, so such a point is no equilibrium of the motion
     mass = sympy.Matrix(terms.mass_matrix)
-    points = {p for p in points if not proved_zero(mass.xreplace(dict(p[0])).det())}
+    points = {p for p in points if not _singular(mass.xreplace(dict(p[0])))}
     if not points:
         return None, "no isolated equilibrium was found in closed form"
     ordered = sorted(points, key=lambda p: (len(p[1]), sympy.default_sort_key(sympy.Tuple(*[v for _, v in p[0]]))))
@@ -136,6 +138,44 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
     modes = tuple(_mode(point, terms.mass_matrix, K_all, C_all, rest, values, free)
                   for point, free in ordered[:MAX_EQUILIBRIA])
     return Linearization(model.coordinates, modes), ""
+
+
+def _decoupled(static: list[Any], coordinates: list[Any]) -> list[dict[Any, Any]] | None:
+    """The solutions ``sympy.solve(static, coordinates, dict=True)`` gives, found equation by equation when
+    the equations are decoupled: each involves one coordinate, a different one for each (a chain of
+    pendulums at rest, say). Every combination of the roots of each equation is then a solution. A factor
+    that is a power of ``sin(q)`` or ``cos(q)`` has the roots ``sympy.solve`` gives (0, π; π/2, 3π/2),
+    without its search; any other equation is solved in its coordinate alone. None when the equations are
+    not decoupled (the system is then solved as a whole)."""
+    if len(static) != len(coordinates) or any(f == 0 for f in static):
+        return None
+    chosen = set(coordinates)
+    owner: dict[Any, Any] = {}
+    for f in static:
+        involved = f.free_symbols & chosen
+        if len(involved) != 1:
+            return None
+        (q,) = involved
+        if q in owner:
+            return None
+        owner[q] = f
+    roots = []
+    for q in coordinates:
+        f = owner[q]
+        varying = [a for a in sympy.Mul.make_args(f) if a.has(q)]
+        base, exp = varying[0].as_base_exp() if len(varying) == 1 else (sympy.S.Zero, sympy.S.Zero)
+        if exp.is_Integer and exp > 0 and base in (sympy.sin(q), sympy.cos(q)):
+            roots.append(_TRIG_ROOTS[base.func])
+        else:
+            roots.append(sympy.solve(f, q))
+    return [dict(zip(coordinates, combination, strict=True)) for combination in itertools.product(*roots)]
+
+
+#: the roots ``sympy.solve`` gives for sin(q) = 0 and cos(q) = 0
+_TRIG_ROOTS: dict[Any, list[Any]] = {
+    sympy.sin: [sympy.Integer(0), sympy.pi],
+    sympy.cos: [sympy.pi / 2, 3 * sympy.pi / 2],
+}
 
 
 def _continuum_note(free: tuple[Any, ...], n: int) -> str:
@@ -169,9 +209,8 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
     else:
         s = sympy.Dummy("s")
         # the Poly is canonical, however the determinant is written: Berkowitz's is the quickest to write
-        polynomial = sympy.Poly((K - s * M0).det(method="berkowitz"), s)
-        _, factors = sympy.factor_list(polynomial)
-        roots = sympy.roots(polynomial) if all(f.degree() <= 2 for f, _ in factors) else {}
+        polynomial = sympy.Poly(_determinant(K - s * M0), s)
+        roots = sympy.roots(polynomial) if _splits(polynomial, s) else {}
         if sum(roots.values()) != polynomial.degree() or any(r.has(sympy.I) for r in roots):
             # Cardano's radicals of a real frequency carry complex numbers: a numeric ω² says more
             note = "the characteristic polynomial does not split into real factors of degree 2 or less"
@@ -191,6 +230,60 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
         note = _continuum_note(free, K.rows) + (f"; {note}" if note else "")
     return Mode(point, sympy.ImmutableMatrix(M0), sympy.ImmutableMatrix(G), sympy.ImmutableMatrix(D),
                 sympy.ImmutableMatrix(K), squares, frequencies, stable, note, free)
+
+
+def _exact(matrix: Any) -> Any:
+    """``matrix`` as a DomainMatrix over the integers, the rationals or polynomials over them, else None."""
+    from sympy.polys.matrices import DomainMatrix
+
+    try:
+        dm = DomainMatrix.from_Matrix(sympy.Matrix(matrix))
+    except (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError, NotImplementedError):
+        return None
+    ring = dm.domain
+    if ring.is_ZZ or ring.is_QQ or (ring.is_PolynomialRing and (ring.domain.is_ZZ or ring.domain.is_QQ)):
+        return dm
+    return None
+
+
+def _determinant(matrix: Any) -> Any:
+    """det(``matrix``) (the same polynomial whatever way it is written: only its Poly is used), in a polynomial
+    ring where the entries allow it (many times faster than SymPy expressions), else by Berkowitz's method."""
+    dm = _exact(matrix)
+    if dm is None:
+        return sympy.Matrix(matrix).det(method="berkowitz")
+    return dm.domain.to_sympy(dm.det())
+
+
+def _singular(matrix: Any) -> bool:
+    """det(``matrix``) is identically zero (exactly, in a polynomial ring, where the entries allow it)."""
+    dm = _exact(matrix)
+    if dm is None:
+        return proved_zero(sympy.Matrix(matrix).det(method="berkowitz"))
+    return bool(dm.det() == dm.domain.zero)
+
+
+def _splits(polynomial: sympy.Poly, s: Any) -> bool:
+    """Every factor of ``polynomial`` (in ``s``) has degree 2 or less, as ``sympy.factor_list`` finds.
+
+    A polynomial of degree 2 or less needs no factoring. Otherwise it is first looked at with its parameters
+    set to distinct primes: a factorization in ``s`` keeps the degree of each factor wherever the leading
+    coefficient does not vanish, so when that integer polynomial (of the same degree) is irreducible the
+    parameters' one is too, and factoring it in all its parameters would only say so more slowly."""
+    degree = polynomial.degree()
+    if degree <= 2:
+        return True
+    parameters = sorted(polynomial.free_symbols - {s}, key=sympy.default_sort_key)
+    primes = {p: sympy.Integer(sympy.prime(30 + k)) for k, p in enumerate(parameters)}
+    try:
+        special = sympy.Poly(polynomial.as_expr().xreplace(primes), s)
+        if special.degree() == degree and (special.domain.is_ZZ or special.domain.is_QQ):
+            _, factors = special.factor_list()
+            if len(factors) == 1 and factors[0][0].degree() == degree:
+                return False
+    except (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):
+        pass
+    return all(f.degree() <= 2 for f, _ in sympy.factor_list(polynomial)[1])
 
 
 def _numeric_squares(M0: Any, K: Any, values: dict[str, float] | None) -> tuple[Any, bool | None, Any] | None:

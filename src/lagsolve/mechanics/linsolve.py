@@ -11,8 +11,9 @@ The equations :math:`M\ddot q = F + A^T\lambda`, :math:`A\ddot q = \beta` are so
   .. math:: (A X)\,\lambda = \beta - A y, \qquad \ddot q = y + X\lambda,
 
   an :math:`m\times m` system however many coordinates there are;
-* in each small dense block by elimination over the field of fractions of a polynomial ring
-  (each entry then cancelled, as SymPy writes a rational function), or, where the entries are not
+* in each small dense block by fraction-free elimination in a polynomial ring (one gcd per entry
+  at the end; over the field of fractions when the coefficients are rational), each entry then
+  written as ``sympy.cancel`` writes a rational function (:func:`cancelled`), or, where the entries are not
   polynomials in their functions, by elimination that cancels as it goes; and by the whole
   augmented matrix only when :math:`M` itself is singular (a coordinate without inertia).
 
@@ -28,6 +29,7 @@ from typing import Any
 
 import sympy
 
+from lagsolve.mechanics.simplify import known_cancelled
 from lagsolve.mechanics.stages import StageSkipped
 
 #: an explicit result (or an intermediate of the elimination) with more operations than this is not produced
@@ -132,17 +134,61 @@ def _solve_in_ring(system: sympy.Matrix, rhs: sympy.Matrix) -> sympy.Matrix | No
         ring = matrix.domain
         if not (ring.is_ZZ or ring.is_QQ or (ring.is_PolynomialRing and (ring.domain.is_ZZ or ring.domain.is_QQ))):
             return None
-        field = matrix.to_field()
-        reduced, pivots = field.rref()
+        if ring.is_PolynomialRing and ring.domain.is_ZZ:
+            # fraction-free (Bareiss) elimination, one gcd per entry at the end instead of one per step
+            free, denominator, pivots = matrix.rref_den()
+        else:
+            field = matrix.to_field()
+            reduced, pivots = field.rref()
     except (sympy.polys.polyerrors.PolynomialError, sympy.CoercionFailed, ValueError, TypeError,
             NotImplementedError):
         return None
     if tuple(pivots[:size]) != tuple(range(size)):
         return None
     back = {v: f for f, v in variables.items()}
+    if ring.is_PolynomialRing and ring.domain.is_ZZ:
+
+        def fraction(i: int, j: int) -> Any:
+            numer, denom = free[i, size + j].element.cancel(denominator)
+            return cancelled(numer.as_expr().xreplace(back), denom.as_expr().xreplace(back))
+
+        return sympy.Matrix(size, rhs.cols, fraction)
     to_sympy = reduced.domain.to_sympy
-    return sympy.Matrix(size, rhs.cols, lambda i, j: sympy.cancel(
-        to_sympy(reduced[i, size + j].element).xreplace(back)))
+    integral = reduced.domain.is_FractionField and reduced.domain.domain.is_ZZ
+
+    def entry(i: int, j: int) -> Any:
+        element = reduced[i, size + j].element
+        if integral:
+            return cancelled(element.numer.as_expr().xreplace(back), element.denom.as_expr().xreplace(back))
+        return sympy.cancel(to_sympy(element).xreplace(back))
+
+    return sympy.Matrix(size, rhs.cols, entry)
+
+
+def cancelled(numer: Any, denom: Any) -> Any:
+    """``sympy.cancel(numer / denom)`` for polynomials ``numer`` and ``denom`` (in symbols and function
+    atoms, integer coefficients) already without a common factor, as elimination over a fraction field
+    leaves them: ``cancel`` writes P/Q with P and Q coprime over the integers and the leading coefficient
+    of Q (in the order of its generators) positive, and that is all that is left to do here; the gcd that
+    ``cancel`` would look for again is 1. Falls back on ``sympy.cancel`` outside that case."""
+    from sympy.polys.rings import sring
+
+    try:
+        ring, (P, Q) = sring((numer, denom))
+    except (sympy.polys.polyerrors.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):
+        return sympy.cancel(numer / denom)
+    atoms = {a for e in (numer, denom) for a in e.atoms(sympy.Function, sympy.Derivative)}
+    if not ring.ngens or not ring.domain.is_ZZ or not Q or not atoms <= set(ring.symbols):
+        # (an atom the ring writes through another, exp(2 x) as exp(x)², may share a factor with it)
+        return sympy.cancel(numer / denom)
+    if not P:
+        return sympy.Integer(0)
+    content = ring.domain.gcd(P.content(), Q.content())
+    if content != 1:
+        P, Q = P.quo_ground(content), Q.quo_ground(content)
+    if Q.LC < 0:
+        P, Q = -P, -Q
+    return known_cancelled(P.as_expr() / Q.as_expr())
 
 
 def _nonzero(value: Any) -> bool:

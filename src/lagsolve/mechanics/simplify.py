@@ -74,14 +74,131 @@ def _weight(expr: Any) -> int:
 
 @functools.lru_cache(maxsize=8192, typed=True)
 def factor_terms(expr: Any) -> Any:
-    """``sympy.factor_terms(expr)``, remembered (the same forms come back from several rewritings)."""
-    return sympy.factor_terms(expr)
+    """``sympy.factor_terms(expr)``, remembered (the same forms come back from several rewritings), and
+    built directly for a sum of monomials (:func:`_monomial_factor_terms`)."""
+    found = _plain_factor_terms(expr)
+    return sympy.factor_terms(expr) if found is None else found
+
+
+def _plain_factor_terms(expr: Any) -> Any:
+    """``sympy.factor_terms(expr)`` as its recursion goes (into powers and the factors of a product), with
+    each sum of monomials done by :func:`_monomial_factor_terms`; None where anything else is met."""
+    from sympy.core.mul import _keep_coeff
+
+    if not isinstance(expr, sympy.Basic):
+        return None
+    if expr.is_Atom:
+        return expr
+    if expr.is_Add:
+        return _monomial_factor_terms(expr)
+    if expr.is_Pow:
+        base = _plain_factor_terms(expr.base)
+        if base is None or not expr.exp.is_Integer:
+            return None
+        return expr if base == expr.base else expr.func(base, expr.exp)
+    if isinstance(expr, sympy.Function):
+        return expr if _plain_base(expr) else None
+    if not expr.is_Mul:
+        return None
+    content, primitive = expr.as_content_primitive(radical=False, clear=False)
+    if not primitive.is_Mul:
+        return None
+    factors = [_plain_factor_terms(a) for a in primitive.args]
+    if any(f is None for f in factors):
+        return None
+    return _keep_coeff(content, primitive.func(*factors), clear=False, sign=True)
+
+
+def _monomial_factor_terms(expr: Any) -> Any:
+    """``sympy.factor_terms(expr)`` for a sum whose terms are monomials in symbols and in functions of
+    arguments ``factor_terms`` leaves alone (an expanded energy, say), or None for any other ``expr``.
+
+    For such a sum ``factor_terms`` takes out the rational content, then a common -1 when every term is
+    negative, then the greatest common monomial (the least power of each base every term has), and writes
+    ``content * monomial * (sum of the quotients)``; the same steps are taken here, in the same order and
+    with the same SymPy constructors, without its general machinery (``Factors`` and ``Term`` objects, which
+    cost far more on these sums than the arithmetic)."""
+    from sympy.core.mul import _keep_coeff
+
+    if not isinstance(expr, sympy.Add):
+        return None
+    content, primitive = expr.as_content_primitive(radical=False, clear=False)
+    if not primitive.is_Add:
+        return None
+    terms = []
+    for term in primitive.args:
+        coefficient, factors = term.as_coeff_mul()
+        if not coefficient.is_Rational:
+            return None
+        powers: dict[Any, int] = {}
+        for f in factors:
+            base, exp = f.as_base_exp()
+            if not (exp.is_Integer and exp > 0) or not _plain_base(base) or base in powers:
+                return None
+            powers[base] = int(exp)
+        terms.append((coefficient, powers))
+    if all(c.is_negative for c, _ in terms):
+        content = -content
+        terms = [(-c, powers) for c, powers in terms]
+    common = dict(terms[0][1])
+    for _, powers in terms[1:]:
+        common = {b: min(e, powers[b]) for b, e in common.items() if b in powers}
+    gcd = terms[0][0]
+    for c, _ in terms[1:]:
+        gcd = gcd.gcd(c)
+    numers = []
+    for c, powers in terms:
+        left = [b if powers[b] - common.get(b, 0) == 1 else b ** (powers[b] - common.get(b, 0))
+                for b in powers if powers[b] > common.get(b, 0)]
+        numers.append((c / gcd) * (sympy.Mul(*left) / sympy.S.One))
+    monomial = sympy.Mul(*[b if e == 1 else b ** e for b, e in common.items()])
+    cont = gcd * (monomial / sympy.S.One)
+    coeff, rest = cont.as_coeff_Mul()
+    numer = sympy.Add(*numers)
+    c, unit = coeff.as_coeff_Mul()
+    if not c.is_Integer and numer.is_Add:  # gcd_terms with clear=False: a fraction goes back into the terms
+        n, d = c.as_numer_denom()
+        spread = numer / d
+        if any(a.as_coeff_Mul()[0].is_Integer for a in spread.args):
+            numer, coeff = spread, n * unit
+    grouped = _keep_coeff(coeff, rest * numer / sympy.S.One, clear=False)
+    return _keep_coeff(content, grouped, clear=False, sign=True)
+
+
+def _plain_base(base: Any) -> bool:
+    """A symbol, or a function whose arguments ``sympy.factor_terms`` leaves as they are."""
+    if base.is_Symbol:
+        return True
+    if isinstance(base, sympy.Function) and not isinstance(base, sympy.Piecewise):
+        return all(a.is_Symbol or a.is_Number or (a.is_Add and all(t.is_Symbol or (t.is_Mul and len(t.args) == 2
+                   and t.args[0] == -1 and t.args[1].is_Symbol) for t in a.args)) for a in base.args)
+    return False
+
+
+def cancel(expr: Any) -> Any:
+    """``sympy.cancel(expr)``, remembered (:func:`tidy` and :func:`pythagoras` start from the same one), and
+    known without a search for an expression :func:`known_cancelled` was told of."""
+    if expr in _CANCELLED:
+        return expr
+    return _cancel(expr)
 
 
 @functools.lru_cache(maxsize=8192, typed=True)
-def cancel(expr: Any) -> Any:
-    """``sympy.cancel(expr)``, remembered (:func:`tidy` and :func:`pythagoras` start from the same one)."""
+def _cancel(expr: Any) -> Any:
     return sympy.cancel(expr)
+
+
+#: expressions already in ``sympy.cancel``'s form P/Q (see :func:`known_cancelled`)
+_CANCELLED: set[Any] = set()
+
+
+def known_cancelled(expr: Any) -> Any:
+    """Record that ``expr`` is its own ``sympy.cancel`` (its numerator and denominator coprime, written as
+    ``cancel`` writes them: :func:`lagsolve.mechanics.linsolve.cancelled` makes such forms), so that
+    :func:`cancel` does not search it for a common factor again; ``expr`` is returned."""
+    if len(_CANCELLED) < 8192:
+        _CANCELLED.add(expr)
+    return expr
 
 
 @functools.lru_cache(maxsize=8192, typed=True)
