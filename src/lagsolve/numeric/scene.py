@@ -56,7 +56,7 @@ def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, t: np.nda
                  "parameters": [p.symbol for p in problem.parameters]}
 
     def along(exprs: tuple[Any, ...]) -> np.ndarray | None:
-        prepared = [substitute_functions(sympy.sympify(e) if isinstance(e, int) else e, concrete) for e in exprs]
+        prepared = [substitute_functions(sympy.Integer(e) if isinstance(e, int) else e, concrete) for e in exprs]
         fn = compile_state_function(prepared, **arguments, backend="python")
         values = np.array([fn(ti, qi, qdi, parameters) for ti, qi, qdi in zip(t, q, qd, strict=True)])
         return values if values.size and np.all(np.isfinite(values)) else None
