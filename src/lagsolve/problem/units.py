@@ -24,6 +24,7 @@ from functools import cache
 from typing import Any
 
 from lagsolve.errors import ExpressionError
+from lagsolve.problem.yamlread import kind_of
 
 #: the longest unit text accepted
 MAX_UNIT_LENGTH = 60
@@ -54,7 +55,7 @@ def canonical(text: Any) -> str:
         huge exponent; the hint says how to write it.
     """
     if isinstance(text, bool) or not isinstance(text, str | int) or (isinstance(text, int) and text != 1):
-        raise ExpressionError(f"a unit is text, found {_describe(text)}", _EXAMPLES)
+        raise ExpressionError(f"a unit is text, found {kind_of(text)}", _EXAMPLES)
     text = str(text).strip()
     if not text:
         raise ExpressionError("the unit is empty", "write 1 for a pure number, or " + _EXAMPLES)
@@ -196,13 +197,3 @@ def format_unit(unit: Any) -> str:
 
 def _first_line(exc: Exception) -> str:
     return str(exc).splitlines()[0][:80] if str(exc) else type(exc).__name__
-
-
-def _describe(value: Any) -> str:
-    if isinstance(value, bool):
-        return f"true/false ({value})"
-    if isinstance(value, dict):
-        return "a mapping"
-    if isinstance(value, list):
-        return "a list"
-    return f"a number ({value})"

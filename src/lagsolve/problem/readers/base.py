@@ -15,7 +15,7 @@ from typing import Any
 from lagsolve.errors import ExpressionError, Issue
 from lagsolve.problem import expr as gateway
 from lagsolve.problem import units
-from lagsolve.problem.yamlread import Document, dotted
+from lagsolve.problem.yamlread import Document, dotted, kind_of
 
 #: longest free text, in characters: the name (a title, drawn on every figure), the problem's
 #: description, and a parameter's, coordinate's or function's description
@@ -198,20 +198,6 @@ class Reader:
 
     # -- the problem -------------------------------------------------------------------------
 
-
-def kind_of(value: Any) -> str:
-    """What a YAML value is, for a message."""
-    if value is None:
-        return "nothing"
-    if isinstance(value, bool):
-        return f"true/false ({value})"
-    if isinstance(value, dict):
-        return "a mapping"
-    if isinstance(value, list):
-        return "a list"
-    if isinstance(value, str):
-        return f"text {value[:40]!r}"
-    return f"a number ({value})"
 
 
 def shown(value: Any) -> str:
