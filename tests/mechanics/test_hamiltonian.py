@@ -79,6 +79,9 @@ def test_heavy_top_two_cyclic_momenta_and_routhian():
                 + ppsi**2 / (2 * I3) + m * g * arm * sympy.cos(theta))
     assert sympy.simplify(h.expression - textbook) == 0
     assert h.momentum_rates[0] == 0 and h.momentum_rates[2] == 0
+    # Goldstein (5.67): the quotient rule on the square, in the textbook's form (printed as it is here)
+    rate = (pphi - ppsi * sympy.cos(theta)) * (pphi * sympy.cos(theta) - ppsi) / (J * sympy.sin(theta) ** 3)
+    assert h.momentum_rates[1] == rate + m * g * arm * sympy.sin(theta)
     r = h.routhian
     assert r is not None and r.cyclic == (phi, psi) and r.coordinates == (theta,)
     # consistent with the effective potential: -R at rest in θ is V_eff up to a constant
@@ -117,7 +120,7 @@ def test_spherical_pendulum():
 
 
 CASES = ["hole_table", "heavy_top", "bead_on_rotating_hoop", "spherical_pendulum", "double_pendulum",
-         "spring_damper", "driven_oscillator", "moving_support", "wedge", "cone", "atwood"]
+         "spring_damper", "driven_oscillator", "moving_support", "wedge", "cone", "atwood", "bowl"]
 
 
 def _values(symbols, rng):
@@ -155,6 +158,37 @@ def test_hamilton_equations_agree_with_lagrange_at_random_states(name):
     energy = next((c for c in d.analysis.conservation.quantities if c.name == "energy"), None)
     if energy is not None:
         assert sympy.simplify(h.to_momenta(energy.expression) - h.expression) == 0
+
+
+def _concrete(expr):
+    """``expr`` with each function of the file (f(x), F(t)) replaced by one known function."""
+    u = sympy.Symbol("u")
+    for applied in sorted(expr.atoms(sympy.core.function.AppliedUndef), key=sympy.default_sort_key):
+        expr = expr.replace(applied.func, sympy.Lambda(u, u**2 / 3 + sympy.sin(u) + 2))
+    return expr.doit()
+
+
+@pytest.mark.parametrize("name", ["double_pendulum", "triple_pendulum", "bowl", "heavy_top", "block_two_pendulums",
+                                  "bead", "moving_support"])
+def test_hamilton_equations_are_the_numerical_derivatives_of_h(name):
+    """Another route than Lagrange's: at random points, q̇ and ṗ equal ∂H/∂p and −∂H/∂q taken by numerical
+    differentiation (mpmath, 30 digits) of H itself."""
+    import mpmath
+
+    h = _derived(name).hamiltonian
+    H = _concrete(h.expression)
+    rates, velocities = [_concrete(e) for e in h.momentum_rates], [_concrete(e) for e in h.rates]
+    symbols = sorted(H.free_symbols.union(*(e.free_symbols for e in rates + velocities)), key=sympy.default_sort_key)
+    rng = random.Random(11)
+    for _ in range(6):
+        point = {s: sympy.Rational(rng.randint(5, 20), 10) for s in symbols}
+        for i, q in enumerate(h.coordinates):
+            for shown, x, sign in ((rates[i], q, -1), (velocities[i], h.momentum_symbols[i], 1)):
+                along = sympy.lambdify([x], H.xreplace({k: v for k, v in point.items() if k != x}), "mpmath")
+                with mpmath.workdps(30):
+                    numeric = sign * mpmath.diff(along, mpmath.mpf(point.get(x, 1)))  # a cyclic q is not in H
+                    value = sympy.N(shown.xreplace(point), 30)
+                    assert abs(complex(value) - complex(numeric)) < 1e-12 * max(1, abs(complex(numeric)))
 
 
 def test_nonholonomic_constraint_makes_it_not_applicable():

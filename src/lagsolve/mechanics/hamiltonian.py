@@ -52,7 +52,7 @@ import sympy
 from lagsolve.mechanics.identities import Zero, numerically_zero, proved_zero, zero_status
 from lagsolve.mechanics.linsolve import SIZE_LIMIT
 from lagsolve.mechanics.model import Model, time_derivative
-from lagsolve.mechanics.simplify import measure, tidy, tidy_sum
+from lagsolve.mechanics.simplify import factor_terms, measure, smallest, tidy, tidy_sum
 from lagsolve.mechanics.stages import Stages, StageSkipped
 from lagsolve.problem.names import momentum_symbol
 
@@ -209,8 +209,10 @@ def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonia
     forces = tuple(tidy(sympy.expand(Q - d).xreplace(to_p))
                    for Q, d in zip(reduced.generalized_forces, raw_dissipation, strict=True))
     damping = tuple(tidy(d.xreplace(to_p)) for d in raw_dissipation)
-    rates = tuple(_termwise(H, p, 1) for p in P)
-    momentum_rates = tuple(_termwise(H, c, -1) for c in q)
+    # dq/dt = dH/dp = A^-1 (p - b): the velocities just solved for, in the same form
+    rates = tuple(velocities)
+    momentum_rates = tuple(sympy.Add(*(_square_rate(top, bottom, c, P) for top, bottom in squares.pairs),
+                                     _termwise(remainder, c, -1)) for c in q)
     result = Hamiltonian(
         time=t, coordinates=q, velocities=qd, momentum_symbols=P, momenta=momenta, mass=sympy.ImmutableMatrix(A),
         offset=sympy.ImmutableMatrix(b), inverse=velocities, lagrangian=reduced.lagrangian, expression=H,
@@ -232,6 +234,8 @@ class Squares:
 
     terms: tuple[Any, ...]
     solution: tuple[Any, ...]
+    #: (y_k, D_k) of each term, so that term k is y_k**2 / (2 D_k) (in the form shown)
+    pairs: tuple[tuple[Any, Any], ...] = ()
 
 
 def complete_squares(A: sympy.Matrix, w: sympy.Matrix, limit: int = SIZE_LIMIT) -> Squares:
@@ -262,23 +266,25 @@ def complete_squares(A: sympy.Matrix, w: sympy.Matrix, limit: int = SIZE_LIMIT) 
             for j in remaining:
                 M[i][j] = sympy.cancel(M[i][j] - f * M[k][j])
             _guard((y[i], *M[i]), limit)
-    terms = tuple(_square(y[k], pivots[k]) for k in order if y[k] != 0)
+    pairs = tuple(_square(y[k], pivots[k]) for k in order if y[k] != 0)
+    terms = tuple(sympy.Rational(1, 2) * top**2 / bottom for top, bottom in pairs)
     solution: dict[int, Any] = {}
     for at, k in reversed(list(enumerate(order))):
         later = order[at + 1:]
         solution[k] = sympy.Add(tidy(y[k] / pivots[k]), *(-factors[(i, k)] * solution[i] for i in later))
         _guard((solution[k],), limit)
-    return Squares(terms, tuple(solution[i] for i in range(n)))
+    return Squares(terms, tuple(solution[i] for i in range(n)), pairs)
 
 
-def _square(y: Any, d: Any) -> Any:
-    """:math:`y^2/(2d)`, with the denominators of y cleared into d when that is shorter."""
-    plain = sympy.Rational(1, 2) * tidy_sum(y) ** 2 / d
+def _square(y: Any, d: Any) -> tuple[Any, Any]:
+    """:math:`y^2/(2d)` as (top, bottom), the term ``top**2 / (2 bottom)``: the denominators of y cleared
+    into d when that is shorter."""
+    plain = (tidy_sum(y), d)
     numerator, denominator = sympy.fraction(sympy.together(y))
     if denominator == 1:
         return plain
-    cleared = sympy.Rational(1, 2) * tidy_sum(numerator) ** 2 / tidy(d * denominator**2)
-    return min((plain, cleared), key=measure)
+    cleared = (tidy_sum(numerator), tidy(d * denominator**2))
+    return min((plain, cleared), key=lambda pair: measure(sympy.Rational(1, 2) * pair[0] ** 2 / pair[1]))
 
 
 def _guard(exprs: tuple[Any, ...], limit: int) -> None:
@@ -290,6 +296,42 @@ def _guard(exprs: tuple[Any, ...], limit: int) -> None:
 def _joined(terms: tuple[Any, ...], rest: Any) -> Any:
     """The sum of ``terms`` and ``rest`` (simplified), each term kept as it is."""
     return sympy.Add(*terms, _shortest(rest))
+
+
+def _square_rate(top: Any, bottom: Any, x: Any, momenta: tuple[Any, ...]) -> Any:
+    r""":math:`-\partial(y^2/2D)/\partial x = y\,(y D_x - 2 D y_x)/(2D^2)` of one square of H (``top`` y,
+    ``bottom`` D), the quotient rule with y kept as a factor, as a textbook writes the derivative of
+    :math:`(p_1 - p_2\cos\theta)^2/(2 m l^2 (2 - \cos^2\theta))`. The bracket is linear in the
+    ``momenta``: each coefficient (a short function of q) is simplified apart, which costs far less than
+    simplifying the whole derivative. When y has fractions inside, the square with them cleared
+    (y = N/d, D → D d²) is tried too, and the shorter result kept."""
+    forms = [_quotient_rule(top, bottom, x, momenta)]
+    numerator, denominator = sympy.fraction(sympy.together(top))
+    if denominator != 1:
+        forms.append(_quotient_rule(numerator, bottom * denominator**2, x, momenta))
+    return smallest(forms)
+
+
+def _quotient_rule(top: Any, bottom: Any, x: Any, momenta: tuple[Any, ...]) -> Any:
+    dy, dD = sympy.diff(top, x), sympy.diff(bottom, x)
+    if dy == 0 and dD == 0:
+        return sympy.Integer(0)
+    below = factor_terms(sympy.together(bottom))  # m + m x^2/a^2 -> m (a^2 + x^2)/a^2: m cancels, no 1/a^2 inside
+    if dD == 0:
+        return top * _by_momenta(-dy, momenta) / below
+    if dy == 0:
+        return top**2 * _shortest(dD) / (2 * below**2)
+    return top * _by_momenta(top * dD - 2 * bottom * dy, momenta) / (2 * below**2)
+
+
+def _by_momenta(expr: Any, momenta: tuple[Any, ...]) -> Any:
+    """``expr``, linear in the ``momenta``, as a sum of momenta times simplified coefficients, with any
+    common factor taken out."""
+    expanded = sympy.expand(expr)
+    if sympy.count_ops(expanded) > SHOW_LIMIT:
+        return factor_terms(expr)  # expanding only made it longer: left as derived
+    parts = sympy.collect(expanded, momenta, evaluate=False)
+    return factor_terms(sympy.Add(*(_shortest(c) * p for p, c in parts.items())))
 
 
 def _termwise(expr: Any, x: Any, sign: int) -> Any:
