@@ -390,8 +390,11 @@ def _bracket(h: Hamiltonian, name: str, expression: Any) -> Bracket:
     """The rate of one conserved quantity (in q, q̇), computed from it written in (q, p); shown as ``H``
     or ``p_<q>`` when it is that."""
     quantity = h.to_momenta(expression)
-    shown, same = next(((s, st) for s in (h.expression, *h.momentum_symbols)
-                        if (st := _status(quantity - s)) != "differ"), (None, ""))
+    if _is_jacobi_integral(h, expression):
+        shown, same = h.expression, "symbolic"  # H is h with p put in, by the Legendre transform that built it
+    else:
+        shown, same = next(((s, st) for s in (h.expression, *h.momentum_symbols)
+                            if (st := _status(quantity - s)) != "differ"), (None, ""))
     # C = H (the energy): {H, H} = 0 exactly, so the rate is ∂H/∂t + Σ ∂H/∂p Q, taken from H itself rather
     # than proved 0 from C's longer written form (the triple pendulum's bracket cost more than the rest)
     bracket, partial_t, forces = h._pieces(h.expression if shown is h.expression else quantity)
@@ -405,6 +408,15 @@ def _bracket(h: Hamiltonian, name: str, expression: Any) -> Bracket:
     zero = sympy.Integer(0)
     return Bracket(name, shown if shown is not None else _shortest(quantity), zero if shown is not None else
                    tidy(bracket), tidy(partial_t), tidy(forces), zero, status)
+
+
+def _is_jacobi_integral(h: Hamiltonian, expression: Any) -> bool:
+    r"""``expression`` (in q, q̇) is the Jacobi integral :math:`\sum_i \dot q_i\,\partial L/\partial\dot q_i - L`
+    of the L that H was built from, term for term once expanded (a cheap exact test, no simplification):
+    then it is H written with the velocities, exactly."""
+    L = h.lagrangian
+    jacobi = sum((v * sympy.diff(L, v) for v in h.velocities), sympy.Integer(0)) - L
+    return sympy.expand(expression - jacobi) == 0
 
 
 def claimed_rate(h: Hamiltonian, expression: Any, substitution: Any = None) -> tuple[Any, str]:
