@@ -33,6 +33,7 @@ import sympy
 
 from lagsolve.mechanics.constraints import velocity_form
 from lagsolve.mechanics.derivation import Derivation
+from lagsolve.mechanics.surface import newton
 from lagsolve.problem.schema import ConstraintKind
 
 DIGITS = 30
@@ -243,23 +244,26 @@ class StateSpace:
         return state
 
     def _newton(self, state: State) -> bool:
+        """The dependent coordinates solved from their constraints (:func:`~lagsolve.mechanics.surface.newton`,
+        LU steps in mpmath), positive where they must be."""
+
+        def at(x: list[Any]) -> State:
+            state.values.update(zip(self.dependents, x, strict=True))
+            return state
+
+        def jacobian(x: list[Any]) -> Any:
+            rows = [[d(at(x)) for d in row] for row in self._jacobian]
+            if any(not isinstance(v, mpmath.mpf) for row in rows for v in row):
+                raise TypeError("not a real number")
+            return mpmath.matrix(rows)
+
         with mpmath.workdps(DIGITS + 10):
-            for _ in range(60):
-                residual: list[Any] = [r(state) for r in self._residuals]
-                jac: list[list[Any]] = [[d(state) for d in row] for row in self._jacobian]
-                if any(not isinstance(v, mpmath.mpf) for v in [*residual, *(x for row in jac for x in row)]):
-                    return False
-                if max(abs(v) for v in residual) < mpmath.mpf(10) ** (-DIGITS + 2):
-                    return all(q not in self.positive or state.values[q] > 0 for q in self.dependents)
-                try:
-                    step = mpmath.lu_solve(mpmath.matrix(jac), mpmath.matrix(residual))
-                except ZeroDivisionError:
-                    return False
-                for k, q in enumerate(self.dependents):
-                    state.values[q] -= step[k]
-                    if abs(state.values[q]) > 1e6:
-                        return False
-        return False
+            x, converged = newton(lambda x: [r(at(x)) for r in self._residuals], jacobian,
+                                  [state.values[q] for q in self.dependents],
+                                  step=lambda J, r: list(mpmath.lu_solve(J, mpmath.matrix(r))),
+                                  tolerance=mpmath.mpf(10) ** (-DIGITS + 2), bound=1e6)
+            at(x)
+        return converged and all(q not in self.positive or state.values[q] > 0 for q in self.dependents)
 
     def _solve_velocities(self, state: State) -> bool:
         """Solve the velocity forms for the velocities with the largest pivots (Gauss–Jordan)."""

@@ -30,6 +30,7 @@ import sympy
 from lagsolve.errors import Issue, SpecError
 from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.model import Model
+from lagsolve.mechanics.surface import least_squares, newton
 from lagsolve.problem.schema import ConstraintKind, Problem
 
 #: states drawn on the constraint surface for the numeric tests
@@ -194,22 +195,12 @@ class _Sampler:
     def _project(self, fixed: list[float], q: np.ndarray) -> np.ndarray | None:
         if not self.holonomic:
             return q
+        shape = (len(self.holonomic), len(q))
         with np.errstate(all="ignore"):
-            for _ in range(200):
-                try:
-                    psi = self._psi(*fixed, *q)
-                    if not np.all(np.isfinite(psi)):
-                        return None
-                    if np.max(np.abs(psi)) < ON_SURFACE:
-                        return q if np.all(np.isfinite(q)) else None
-                    jac = self._psi(*fixed, *q, derivative=True).reshape(len(self.holonomic), len(q))
-                    step = np.linalg.lstsq(jac, psi, rcond=None)[0]
-                except (ValueError, TypeError, ZeroDivisionError, OverflowError, np.linalg.LinAlgError):
-                    return None
-                q = q - step
-                if not np.all(np.isfinite(q)) or np.max(np.abs(q)) > 1e6:
-                    return None
-        return None
+            x, converged = newton(lambda x: self._psi(*fixed, *x),
+                                  lambda x: self._psi(*fixed, *x, derivative=True).reshape(shape), q,
+                                  step=least_squares, tolerance=ON_SURFACE, iterations=200, bound=1e6)
+        return np.array(x, dtype=float) if converged else None
 
     def _matrix(self, fixed: list[float], q: np.ndarray) -> np.ndarray:
         with np.errstate(all="ignore"):

@@ -8,14 +8,18 @@ r"""States on the constraint surface, written symbolically: one owner for both v
   forms fix; with a test for "zero on the surface", symbolic then at random points. The normal
   forces of friction are decided with it (:mod:`lagsolve.mechanics.normal`).
 
-Numeric states on the surface are found where they are used: :mod:`lagsolve.check.states` (random
-states for comparing answers), :mod:`lagsolve.mechanics.regularity` (random states for the
-regularity test) and :mod:`lagsolve.numeric.initial` (completing a simulation's initial state).
+* :func:`newton` — numerically: the one Newton iteration that puts a state on
+  :math:`\psi(q, t) = 0`, :math:`q \leftarrow q - J^{+}\psi`. Its callers supply the arithmetic: floats
+  and a least-squares step (:mod:`lagsolve.mechanics.regularity`'s random states,
+  :mod:`lagsolve.numeric.initial`'s initial state), or 30-digit mpmath numbers and an LU step
+  (:mod:`lagsolve.check.states`' random states for comparing answers).
 """
 
 from __future__ import annotations
 
+import math
 import random
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 import sympy
@@ -112,3 +116,54 @@ def _numerically_zero(expr: Any, model: Model, points: int = 6) -> bool:
         if seen >= points:
             return True
     return False
+
+
+#: what a linear solve may raise at a singular or non-finite Jacobian (NumPy's LinAlgError is a ValueError)
+SOLVE_ERRORS = (ArithmeticError, ValueError, TypeError)
+
+
+def newton(residual: Callable[[list[Any]], Iterable[Any]], jacobian: Callable[[list[Any]], Any],
+           start: Iterable[Any], *, step: Callable[[Any, Sequence[Any]], Iterable[Any]], tolerance: Any,
+           iterations: int = 60, bound: float = math.inf) -> tuple[list[Any], bool]:
+    r"""Newton's iteration :math:`x \leftarrow x - \mathrm{step}(J(x), \psi(x))` from ``start`` until
+    :math:`\max_j|\psi_j| <` ``tolerance``: the state reached and whether it converged. It stops, not
+    converged, at a residual that is not a finite real number, a ``step`` that fails, or a component
+    beyond ``bound``. ``step`` is the linear solve (least squares for a least-norm step, LU for a square
+    one), so the same iteration serves floats and mpmath numbers.
+
+    >>> import numpy as np
+    >>> x, ok = newton(lambda x: [x[0] ** 2 - 2], lambda x: np.array([[2 * x[0]]]), [1.0],
+    ...                step=lambda J, r: np.linalg.lstsq(J, np.array(r), rcond=None)[0], tolerance=1e-12)
+    >>> print(ok, f"{x[0]:.12f}")
+    True 1.414213562373
+    """
+    x = list(start)
+    for _ in range(iterations):
+        try:
+            psi = [float(v) if isinstance(v, float) else v for v in residual(x)]
+            if not all(_finite(v) for v in psi):
+                return x, False
+            if max((abs(v) for v in psi), default=0.0) < tolerance:
+                return x, True
+            delta = step(jacobian(x), psi)
+        except SOLVE_ERRORS:
+            return x, False
+        x = [a - d for a, d in zip(x, delta, strict=True)]
+        if not all(_finite(v) and abs(v) <= bound for v in x):
+            return x, False
+    return x, False
+
+
+def least_squares(jacobian: Any, residual: Sequence[Any]) -> Any:
+    """The least-norm step of :func:`newton` in floating point (NumPy's ``lstsq``)."""
+    import numpy as np
+
+    return np.linalg.lstsq(np.asarray(jacobian, dtype=float), np.asarray(residual, dtype=float), rcond=None)[0]
+
+
+def _finite(value: Any) -> bool:
+    """``value`` is a finite real number (a float, a NumPy float or an mpmath mpf)."""
+    try:
+        return math.isfinite(value) if not hasattr(value, "imag") or value.imag == 0 else False
+    except TypeError:
+        return False

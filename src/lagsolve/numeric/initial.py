@@ -13,6 +13,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from lagsolve.errors import Issue, SpecError
+from lagsolve.mechanics.surface import least_squares, newton
 from lagsolve.numeric.system import NumericSystem
 
 TOLERANCE = 1e-9
@@ -77,23 +78,29 @@ GUESSES = (0.0, -1.0, 1.0, -0.5, 0.5, -2.0, 2.0)
 
 def _solve_positions(system: NumericSystem, q: np.ndarray, qd: np.ndarray, free: np.ndarray,
                      t0: float) -> np.ndarray:
-    """Least-norm Newton iteration on the free coordinates; tries several starting values,
-    since a start such as y = 0 for x² + y² = l² has a singular Jacobian."""
+    """Least-norm Newton iteration (:func:`~lagsolve.mechanics.surface.newton`) on the free coordinates;
+    tries several starting values, since a start such as y = 0 for x² + y² = l² has a singular Jacobian."""
     p, n = system.parameters, system.n
+
+    def full(x: list[float]) -> np.ndarray:
+        state = q.copy()
+        state[free] = x
+        return state
+
+    def residual(x: list[float]) -> np.ndarray:
+        return system.position_residual(t0, full(x), qd, p)
+
+    def jacobian(x: list[float]) -> np.ndarray:
+        return system.position_jacobian(t0, full(x), qd, p).reshape(len(system.holonomic), n)[:, free]
+
     best, best_residual = q, np.inf
     for guess in GUESSES:
-        trial = q.copy()
-        trial[free] = guess
         with np.errstate(all="ignore"):
-            for _ in range(60):
-                psi = system.position_residual(t0, trial, qd, p)
-                if not np.all(np.isfinite(psi)) or np.max(np.abs(psi)) < 1e-14:
-                    break
-                jac = system.position_jacobian(t0, trial, qd, p).reshape(len(psi), n)[:, free]
-                trial[free] += np.linalg.lstsq(jac, -psi, rcond=None)[0]
-            residual = np.max(np.abs(system.position_residual(t0, trial, qd, p)))
-        if np.isfinite(residual) and residual < best_residual:
-            best, best_residual = trial, residual
+            x, _ = newton(residual, jacobian, [guess] * int(free.sum()), step=least_squares, tolerance=1e-14)
+            trial = full(x)
+            left = np.max(np.abs(system.position_residual(t0, trial, qd, p)))
+        if np.isfinite(left) and left < best_residual:
+            best, best_residual = trial, left
         if best_residual < 1e-13:
             break
     return best
