@@ -246,7 +246,7 @@ def _assignments(pairs: tuple[str, ...], option: str) -> dict[str, float]:
     return out
 
 
-def _progress_bar(t_end: float) -> object:
+def _progress_bar(t_end: float) -> Callable[[float], None]:
     """A progress bar on stderr for runs longer than about a second; silent when stderr is not a terminal."""
     from tqdm import tqdm
 

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from lagsolve.app.simulation import SimulationOptions, SimulationResult, simulate_derivation, simulate_form
+from lagsolve.app.simulation import Progress, SimulationOptions, SimulationResult, simulate_derivation, simulate_form
 from lagsolve.check.status import Status
 from lagsolve.files import safe_slug
 
@@ -266,14 +266,14 @@ def golden_differences(reports: Reports, folder: Path) -> list[str]:
     return diffs
 
 
-def _simulate(problem: Problem, options: SimulationOptions, progress: object) -> SimulationResult:
+def _simulate(problem: Problem, options: SimulationOptions, progress: Progress | None) -> SimulationResult:
     from lagsolve.mechanics.matrix_form import matrix_form
 
     return simulate_form(matrix_form(problem, display=False), options, progress)
 
 
 def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: float = 600.0,
-                  progress: object = None) -> SimulationResult:
+                  progress: Progress | None = None) -> SimulationResult:
     """Load, derive and simulate one problem file (derivation and run in a budgeted child process).
 
     ``progress``, when given, is called with ``t_end`` in the child and returns a callable

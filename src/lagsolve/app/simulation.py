@@ -6,6 +6,7 @@ prints, exits or writes files.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -15,6 +16,11 @@ if TYPE_CHECKING:
     from lagsolve.mechanics.matrix_form import MatrixForm
     from lagsolve.mechanics.results import Derivation
     from lagsolve.numeric.integrate import Trajectory
+    from lagsolve.numeric.scene import Scene
+
+#: a progress report: called with t_end in the process that integrates, it gives the callable that takes
+#: each time reached (the command line's progress bar)
+Progress = Callable[[float], Callable[[float], None]]
 
 
 class Coordinates(TextEnum):
@@ -58,7 +64,7 @@ class SimulationResult:
     figures: dict[str, bytes]
     trajectory: Trajectory
     warnings: tuple[str, ...] = ()  # about the file (units missing), for the command line to show
-    scene: object = None  # the numeric.scene.Scene of the run's rods, surfaces and wires (None without particles)
+    scene: Scene | None = None  # the numeric.scene.Scene of the run's rods, surfaces and wires (None without particles)
 
 
 def _scene(problem: Any, parameters: Any, trajectory: Any) -> Any:
@@ -70,7 +76,7 @@ def _scene(problem: Any, parameters: Any, trajectory: Any) -> Any:
                     trajectory.positions)
 
 
-def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progress: Any = None,
+def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progress: Progress | None = None,
                    note: str = "", chart: Any = None, chart_note: str = "", energy_note: str = "") -> SimulationResult:
     """Bind ``form`` (a :class:`~lagsolve.mechanics.matrix_form.MatrixForm`) to numbers, integrate,
     and build the requested tables and figures. ``conserved`` maps names to expressions whose
@@ -121,7 +127,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
         max_step=options.max_step or np.inf,
         after_release=options.after_release,
         minimal=minimal,
-        progress=progress(t_end) if callable(progress) else None,
+        progress=progress(t_end) if progress is not None else None,
     )
     name = problem.name
     tables: dict[str, str | bytes] = {}
@@ -158,7 +164,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
                             figures, trajectory, scene=scene)
 
 
-def simulate_form(form: MatrixForm, options: SimulationOptions, progress: Any = None) -> SimulationResult:
+def simulate_form(form: MatrixForm, options: SimulationOptions, progress: Progress | None = None) -> SimulationResult:
     """A run from the matrix form alone: the conserved quantities to monitor and the minimal coordinates come
     from cheap criteria on the matrix form (:func:`lagsolve.mechanics.analysis.monitored`, the functions
     derive uses), never from the symbolic solve or the analysis of equilibria."""
@@ -168,7 +174,8 @@ def simulate_form(form: MatrixForm, options: SimulationOptions, progress: Any = 
     return run_simulation(form, conserved, options, progress, "", chart, chart_note, energy_note)
 
 
-def simulate_derivation(derivation: Derivation, options: SimulationOptions, progress: Any = None) -> SimulationResult:
+def simulate_derivation(derivation: Derivation, options: SimulationOptions,
+                        progress: Progress | None = None) -> SimulationResult:
     """A run from a finished derivation: it monitors what the derivation's analysis found (without an analysis,
     as :func:`simulate_form`).
 
