@@ -331,7 +331,17 @@ def _by_momenta(expr: Any, momenta: tuple[Any, ...]) -> Any:
     if sympy.count_ops(expanded) > SHOW_LIMIT:
         return factor_terms(expr)  # expanding only made it longer: left as derived
     parts = sympy.collect(expanded, momenta, evaluate=False)
-    return factor_terms(sympy.Add(*(_shortest(c) * p for p, c in parts.items())))
+    return factor_terms(sympy.Add(*(_coefficient(c) * p for p, c in parts.items())))
+
+
+#: a coefficient of a momentum in Hamilton's equations up to this many operations is simplified fully
+COEFFICIENT_LIMIT = 100
+
+
+def _coefficient(expr: Any) -> Any:
+    """One coefficient of a momentum (a function of q): :func:`tidy` (trigonometric identities, cancelled
+    fractions) when it is short enough, else its common factors taken out."""
+    return tidy(expr) if sympy.count_ops(expr) <= COEFFICIENT_LIMIT else factor_terms(expr)
 
 
 def _termwise(expr: Any, x: Any, sign: int) -> Any:
