@@ -206,29 +206,31 @@ def sketch_figure(trajectory: Trajectory, scene: Scene | None, title: str, units
 
 def animation_gif(trajectory: Trajectory, title: str, frames: int = 120, scene: Scene | None = None,
                   units: Units = None) -> bytes:
-    """An animated GIF of the motion (pillow writer): the sketch, moving, with the paths so far and a
-    time stamp; the first frame is the sketch at t = 0."""
+    """An animated GIF of the motion (Pillow): the sketch, moving, with the paths so far and a time stamp;
+    the first frame is the sketch at t = 0. The layout is worked out on the first frame and then kept
+    (the axes do not move), and each frame is drawn once."""
     units = axis_units(units)
-    import tempfile
-    from pathlib import Path
+    import io
 
-    from matplotlib.animation import FuncAnimation, PillowWriter
+    from PIL import Image
 
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(5, 5), layout="constrained")
     ax.set_title(_fit(title, 4.7), parse_math=False)
     drawing = _Drawing(ax, trajectory, scene, units=units, trails=True)
     index = np.linspace(0, len(trajectory.t) - 1, max(frames, 1)).astype(int)
-
-    def draw(frame: int) -> list[Any]:
-        return drawing.show(int(index[frame]))
-
-    animation = FuncAnimation(fig, draw, frames=len(index), blit=False)
-    with tempfile.TemporaryDirectory() as folder:
-        target = Path(folder) / "a.gif"
-        animation.save(target, writer=PillowWriter(fps=24))
-        plt.close(fig)
-        return target.read_bytes()
+    images = []
+    for k, i in enumerate(index):
+        drawing.show(int(i))
+        fig.canvas.draw()
+        if k == 0:
+            fig.set_layout_engine("none")  # laid out once: the same axes on every frame, at a fraction of the cost
+        width, height = fig.canvas.get_width_height()
+        images.append(Image.frombuffer("RGBA", (width, height), bytes(fig.canvas.buffer_rgba()), "raw", "RGBA", 0, 1))
+    plt.close(fig)
+    out = io.BytesIO()
+    images[0].save(out, format="GIF", save_all=True, append_images=images[1:], duration=int(1000 / 24), loop=0)
+    return out.getvalue()
 
 
 # --- curves against time -------------------------------------------------------------------------------
