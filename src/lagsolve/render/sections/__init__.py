@@ -1,0 +1,32 @@
+"""Each report section built once, as data; the outputs are projections of it.
+
+:func:`build` walks a :class:`~lagsolve.mechanics.results.Derivation` once and returns
+:class:`Sections`: frozen records holding the SymPy expressions and names each part of a report
+shows, in display order (:mod:`.core` for the equations of motion and their results). The Markdown,
+LaTeX and HTML templates (through :func:`lagsolve.render.report.context`), the JSON contract
+(:func:`~lagsolve.render.report.result_dict`) and the terminal summary
+(:func:`~lagsolve.render.report.summary`) each print these records; none walks the derivation again.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from lagsolve.render.sections.core import CoreSections, core_sections
+
+if TYPE_CHECKING:
+    from lagsolve.mechanics.results import Derivation
+
+
+@dataclass(frozen=True)
+class Sections:
+    """The sections of one derivation's report."""
+
+    core: CoreSections
+    derivation: Derivation
+
+
+def build(derivation: Derivation) -> Sections:
+    """The sections of ``derivation``'s report, each built once."""
+    return Sections(core=core_sections(derivation), derivation=derivation)
