@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 from lagsolve.app.simulation import SimulationOptions, SimulationResult, simulate_derivation, simulate_form
 from lagsolve.check.status import Status
 from lagsolve.files import safe_slug
+from lagsolve.render.formats import DEFAULT_FORMATS, FORMATS
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.derivation import Derivation
@@ -78,8 +79,8 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
     files: dict[str, bytes] = {}
     simulation = None
     # figures are made only for a format that shows them (JSON does not)
-    figures_shown = bool({"md", "tex", "html"} & set(formats))
-    figures_written = bool({"md", "tex"} & set(formats))
+    shown = [FORMATS[f].figures for f in formats if f in FORMATS]  # render() refuses an unknown one
+    figures_shown, figures_written = any(shown), "files" in shown
     potential = _potential_figure(derivation) if figures_shown else None
     if potential is not None:
         files[potential["file"]] = potential.pop("png")
@@ -155,7 +156,7 @@ def _potential_figure(derivation: Derivation) -> dict | None:
             "caption": "Effective potential with its equilibria, for the simulation's values"}
 
 
-def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json"), *,
+def derive_file(path: str | Path, formats: tuple[str, ...] = DEFAULT_FORMATS, *,
                 templates: Path | None = None, timeout: float = DEFAULT_TIMEOUT,
                 simulate: SimulationOptions | None = None) -> Reports:
     """Load, derive and render one problem file.

@@ -40,9 +40,8 @@ from lagsolve.enums import TextEnum
 from lagsolve.errors import SimulationError
 from lagsolve.numeric.minimal_state import NumericChart
 from lagsolve.numeric.system import NumericSystem
+from lagsolve.problem.methods import EXPLICIT, METHODS
 
-EXPLICIT = ("DOP853", "RK45", "RK23")
-METHODS = (*EXPLICIT, "Radau", "BDF", "LSODA")
 HOLD_TOLERANCE = 1e-12  # relative slack in |needed force| <= mu_s N when deciding to stick
 
 

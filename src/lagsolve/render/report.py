@@ -21,6 +21,7 @@ import jinja2
 from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.render.analysis_report import analysis_context, analysis_json, analysis_summary, contract_json
+from lagsolve.render.formats import FORMATS
 from lagsolve.render.hamiltonian_report import hamiltonian_context, hamiltonian_json, hamiltonian_summary
 from lagsolve.render.notation import FILTERS, Notation, symbol_table, to_json
 from lagsolve.render.sections import Sections, build
@@ -30,8 +31,6 @@ from lagsolve.render.units import units_context, units_json
 FORMAT_VERSION = 1
 #: above this many coordinates the matrix form is written one equation per row instead of as matrices
 LARGE = 3
-FORMATS = {"md": ("markdown", "report.md.j2"), "tex": ("latex", "report.tex.j2"), "html": ("html", "report.html.j2"),
-           "json": (None, None)}
 
 
 # -- context ------------------------------------------------------------------------------------
@@ -184,22 +183,22 @@ def render(derivation: Derivation, fmt: str, templates: Path | None = None,
     ``files`` are the figures the report shows (name → PNG bytes): Markdown and LaTeX refer to them by
     name, the HTML page carries them as ``data:`` URIs so that it is one self-contained file.
     """
-    if fmt == "json":
-        return result_json(derivation)
     if fmt not in FORMATS:
         raise RenderError(f"unknown format {fmt!r}; use {', '.join(FORMATS)}")
-    kind, name = FORMATS[fmt]
-    env = environment(kind or "", templates)
+    spec = FORMATS[fmt]
+    if spec.templates is None or spec.template is None:
+        return result_json(derivation)
+    kind, name = spec.templates, spec.template
+    env = environment(kind, templates)
     try:
-        template = env.get_template(name or "")
+        template = env.get_template(name)
     except jinja2.TemplateNotFound:
-        searched = ", ".join(str(d) for d in template_dirs(kind or "", templates))
+        searched = ", ".join(str(d) for d in template_dirs(kind, templates))
         raise RenderError(f"template {kind}/{name} not found; searched: {searched}") from None
-    if fmt == "html":
+    if spec.figures == "inline":
         simulation, potential = _inlined(simulation, files or {}), _inlined(potential, files or {})
     try:
-        return template.render(**context(derivation, "mathml" if fmt == "html" else "latex"), simulation=simulation,
-                               potential_plot=potential)
+        return template.render(**context(derivation, spec.math), simulation=simulation, potential_plot=potential)
     except jinja2.TemplateError as exc:
         raise RenderError(f"template {kind}/{name} failed: {exc}") from None
 
