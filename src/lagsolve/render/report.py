@@ -133,7 +133,7 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
         "forces": forces,
         "friction": friction,
         "analysis": analysis_context(sections.derivation, note, math),
-        "hamiltonian": hamiltonian_context(sections.derivation, note, math),
+        "hamiltonian": hamiltonian_context(sections.hamiltonian, note, math),
         "notes": [n.sentence() for n in core.notes],
         "symbols": symbol_table(dict(core.symbols), note),
         "math": math,
@@ -286,7 +286,7 @@ def sections_json(sections: Sections) -> dict[str, Any]:
         },
         **contract_json(derivation),
         "analysis": analysis_json(derivation),
-        "hamiltonian": hamiltonian_json(derivation),
+        "hamiltonian": hamiltonian_json(sections.hamiltonian),
         "notes": [{"stage": n.stage, "kind": n.kind, "reason": n.reason} for n in core.notes],
         **({"units": units} if (units := units_json(derivation)) is not None else {}),
     }
@@ -325,7 +325,7 @@ def sections_summary(sections: Sections) -> str:
     for f in core.friction:
         lines.append(f"  friction {f.name}: normal force {text(f.normal)} = {text(f.normal_shown)}")
     lines += analysis_summary(derivation, note)
-    lines += hamiltonian_summary(derivation, note)
+    lines += hamiltonian_summary(sections.hamiltonian, note)
     if core.notes:
         lines.append("  not completed:")
         lines += [f"    {n.sentence()}" for n in core.notes]

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from lagsolve.render.sections.core import CoreSections, core_sections
+from lagsolve.render.sections.hamiltonian import HamiltonianSection, hamiltonian_section
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.results import Derivation
@@ -24,9 +25,10 @@ class Sections:
     """The sections of one derivation's report."""
 
     core: CoreSections
+    hamiltonian: HamiltonianSection
     derivation: Derivation
 
 
 def build(derivation: Derivation) -> Sections:
     """The sections of ``derivation``'s report, each built once."""
-    return Sections(core=core_sections(derivation), derivation=derivation)
+    return Sections(core=core_sections(derivation), hamiltonian=hamiltonian_section(derivation), derivation=derivation)
