@@ -138,7 +138,7 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
         "symbols": symbol_table(dict(core.symbols), note),
         "math": math,
         "stage_notes": {n.stage: n.reason for n in core.notes},
-        "units": units_context(sections.derivation, tex),
+        "units": units_context(sections.units, tex),
     }
 
 
@@ -288,7 +288,7 @@ def sections_json(sections: Sections) -> dict[str, Any]:
         "analysis": analysis_json(derivation),
         "hamiltonian": hamiltonian_json(sections.hamiltonian),
         "notes": [{"stage": n.stage, "kind": n.kind, "reason": n.reason} for n in core.notes],
-        **({"units": units} if (units := units_json(derivation)) is not None else {}),
+        **({"units": units} if (units := units_json(sections.units)) is not None else {}),
     }
 
 

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 
 from lagsolve.render.sections.core import CoreSections, core_sections
 from lagsolve.render.sections.hamiltonian import HamiltonianSection, hamiltonian_section
+from lagsolve.render.sections.units import UnitsSection, units_section
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.results import Derivation
@@ -26,9 +27,11 @@ class Sections:
 
     core: CoreSections
     hamiltonian: HamiltonianSection
+    units: UnitsSection | None  # None: the problem declares no unit
     derivation: Derivation
 
 
 def build(derivation: Derivation) -> Sections:
     """The sections of ``derivation``'s report, each built once."""
-    return Sections(core=core_sections(derivation), hamiltonian=hamiltonian_section(derivation), derivation=derivation)
+    return Sections(core=core_sections(derivation), hamiltonian=hamiltonian_section(derivation),
+                    units=units_section(derivation), derivation=derivation)
