@@ -132,7 +132,7 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
         "unilateral": [{"name": c.name, "multiplier": tex(c.multiplier)} for c in core.constraints if c.unilateral],
         "forces": forces,
         "friction": friction,
-        "analysis": analysis_context(sections.derivation, note, math),
+        "analysis": analysis_context(sections.analysis, note, math),
         "hamiltonian": hamiltonian_context(sections.hamiltonian, note, math),
         "notes": [n.sentence() for n in core.notes],
         "symbols": symbol_table(dict(core.symbols), note),
@@ -229,7 +229,7 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
 
 def sections_json(sections: Sections) -> dict[str, Any]:
     """:func:`result_dict` of sections already built (the JSON projection)."""
-    core, derivation = sections.core, sections.derivation
+    core = sections.core
 
     def by_name(values: Any) -> dict[str, str]:
         return {q.name: to_json(v) for q, v in values}
@@ -284,8 +284,8 @@ def sections_json(sections: Sections) -> dict[str, Any]:
             }
             for f in core.friction
         },
-        **contract_json(derivation),
-        "analysis": analysis_json(derivation),
+        **contract_json(core.contract),
+        "analysis": analysis_json(sections.analysis),
         "hamiltonian": hamiltonian_json(sections.hamiltonian),
         "notes": [{"stage": n.stage, "kind": n.kind, "reason": n.reason} for n in core.notes],
         **({"units": units} if (units := units_json(sections.units)) is not None else {}),
@@ -304,7 +304,7 @@ def summary(derivation: Derivation) -> str:
 
 def sections_summary(sections: Sections) -> str:
     """:func:`summary` of sections already built (the terminal projection)."""
-    core, derivation = sections.core, sections.derivation
+    core = sections.core
     note = Notation([c.name for c in core.coordinates])
     text = note.text
     lines = [f"{core.name}"]
@@ -324,7 +324,7 @@ def sections_summary(sections: Sections) -> str:
         lines += [line for f in core.forces for line in _force_lines(f, text)]
     for f in core.friction:
         lines.append(f"  friction {f.name}: normal force {text(f.normal)} = {text(f.normal_shown)}")
-    lines += analysis_summary(derivation, note)
+    lines += analysis_summary(sections.analysis, note)
     lines += hamiltonian_summary(sections.hamiltonian, note)
     if core.notes:
         lines.append("  not completed:")

@@ -13,6 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from lagsolve.render.sections.analysis import AnalysisSection, analysis_section
 from lagsolve.render.sections.core import CoreSections, core_sections
 from lagsolve.render.sections.hamiltonian import HamiltonianSection, hamiltonian_section
 from lagsolve.render.sections.units import UnitsSection, units_section
@@ -26,12 +27,12 @@ class Sections:
     """The sections of one derivation's report."""
 
     core: CoreSections
+    analysis: AnalysisSection | None  # None: the derivation carries no analysis
     hamiltonian: HamiltonianSection
     units: UnitsSection | None  # None: the problem declares no unit
-    derivation: Derivation
 
 
 def build(derivation: Derivation) -> Sections:
     """The sections of ``derivation``'s report, each built once."""
-    return Sections(core=core_sections(derivation), hamiltonian=hamiltonian_section(derivation),
-                    units=units_section(derivation), derivation=derivation)
+    return Sections(core=core_sections(derivation), analysis=analysis_section(derivation),
+                    hamiltonian=hamiltonian_section(derivation), units=units_section(derivation))

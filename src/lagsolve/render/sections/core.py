@@ -227,6 +227,7 @@ class CoreSections:
     friction: tuple[Friction, ...]
     notes: tuple[StageNote, ...]
     symbols: tuple[tuple[str, Expr], ...]  # the problem's names, for the prose of notes and descriptions
+    contract: tuple[tuple[str, Any], ...]  # the contract forms: reduced, conserved, effective_potential (or None)
 
 
 def core_sections(derivation: Derivation) -> CoreSections:
@@ -276,6 +277,8 @@ def core_sections(derivation: Derivation) -> CoreSections:
         friction=tuple(_friction(f, coords) for f in derivation.friction),
         notes=tuple(derivation.notes),
         symbols=tuple(problem.symbols.items()),
+        contract=(("reduced", derivation.reduced), ("conserved", derivation.conserved),
+                  ("effective_potential", derivation.effective_potential)),
     )
 
 
