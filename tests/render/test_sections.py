@@ -12,6 +12,7 @@ import sympy
 from lagsolve.mechanics.derivation import Derivation, core
 from lagsolve.render.notation import Notation, to_json
 from lagsolve.render.report import (
+    render_sections,
     result_dict,
     sections_context,
     sections_json,
@@ -179,3 +180,34 @@ def test_units_section_rows_are_the_tables_rows(bead: Derivation) -> None:
     context = sections_context(sections)["units"]
     assert [r["unit_text"] for r in context["rows"]] == [r.unit or "?" for r in units.rows]
     assert sections_json(sections)["units"]["accelerations"] == dict(units.units.accelerations)
+
+
+#: the sentences the Markdown and LaTeX templates wrote for each agreement before they came from the sections
+OLD_SENTENCES = {
+    "symbolic": ("Solved for the accelerations they give exactly the accelerations of the multiplier route above, "
+                 "with the same substitutions (checked symbolically):"),
+    "unchecked": ("Solved for the accelerations they give (the multiplier route has no explicit accelerations to "
+                  "compare with here):"),
+    "numeric": ("Solved for the accelerations they agree with the multiplier route above at random states "
+                "(the symbolic check was inconclusive):"),
+    "differ": "{warning}: solved for the accelerations they differ from the multiplier route above; please report "
+              "this as a bug:",
+}
+
+
+@pytest.mark.parametrize("agreement", list(OLD_SENTENCES))
+def test_agreement_sentence_is_written_once_for_markdown_and_latex(bead: Derivation, agreement: str) -> None:
+    """The reduced system's agreement sentence, kept in the sections, reads in Markdown and LaTeX as the two
+    templates wrote it (a warning in bold), and the terminal names the agreement."""
+    sections = build(bead)
+    analysis = sections.analysis
+    assert analysis is not None and analysis.reduced is not None and not analysis.reduced.trivial
+    changed = dataclasses.replace(sections, analysis=dataclasses.replace(
+        analysis, reduced=dataclasses.replace(analysis.reduced, agreement=agreement)))
+    markdown, latex = render_sections(changed, "md"), render_sections(changed, "tex")
+    assert "\n" + OLD_SENTENCES[agreement].format(warning="**Warning**") + "\n" in markdown
+    assert "\n" + OLD_SENTENCES[agreement].format(warning="\\textbf{Warning}") + "\n" in latex
+    assert changed.analysis is not None and changed.analysis.reduced is not None
+    phrase = changed.analysis.reduced.agreement_text[0]
+    assert any(line.startswith("  minimal coordinates: ") and line.endswith(f"({phrase})")
+               for line in sections_summary(changed).splitlines())

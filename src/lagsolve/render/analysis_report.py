@@ -86,6 +86,8 @@ def _reduced_context(r: Reduced, tex: Any) -> dict[str, Any]:
         "equations": [{"coordinate": tex(q), "lhs": tex(lhs), "rhs": tex(rhs)} for q, lhs, rhs in r.equations],
         "accelerations": [{"symbol": tex(a), "tex": tex(value)} for a, value in r.accelerations],
         "agreement": r.agreement,
+        "agreement_sentence": r.agreement_text[1],
+        "agreement_warning": r.agreement_text[2],
         "all_coordinates": r.all_coordinates,
     }
 
@@ -246,10 +248,7 @@ def analysis_summary(section: AnalysisSection | None, note: Notation) -> list[st
             lines.append(f"  constraint {k.name}: {k.kind}")
     r = section.reduced
     if r is not None and not r.trivial:
-        agree = {"symbolic": "agrees with the multiplier route",
-                 "numeric": "agrees with the multiplier route (numerically)",
-                 "differ": "DIFFERS from the multiplier route"}[r.agreement]
-        lines.append(f"  minimal coordinates: {', '.join(text(q) for q in r.independent)} ({agree})")
+        lines.append(f"  minimal coordinates: {', '.join(text(q) for q in r.independent)} ({r.agreement_text[0]})")
     if section.conserved:
         lines.append("  conserved:")
         for c in section.conserved:

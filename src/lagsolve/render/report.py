@@ -185,9 +185,18 @@ def render(derivation: Derivation, fmt: str, templates: Path | None = None,
     """
     if fmt not in FORMATS:
         raise RenderError(f"unknown format {fmt!r}; use {', '.join(FORMATS)}")
+    return render_sections(build(derivation), fmt, templates, simulation, potential, files)
+
+
+def render_sections(sections: Sections, fmt: str, templates: Path | None = None,
+                    simulation: dict[str, Any] | None = None, potential: dict[str, Any] | None = None,
+                    files: dict[str, bytes] | None = None) -> str:
+    """:func:`render` of sections already built."""
+    if fmt not in FORMATS:
+        raise RenderError(f"unknown format {fmt!r}; use {', '.join(FORMATS)}")
     spec = FORMATS[fmt]
     if spec.templates is None or spec.template is None:
-        return result_json(derivation)
+        return _json_text(sections_json(sections))
     kind, name = spec.templates, spec.template
     env = environment(kind, templates)
     try:
@@ -198,7 +207,8 @@ def render(derivation: Derivation, fmt: str, templates: Path | None = None,
     if spec.figures == "inline":
         simulation, potential = _inlined(simulation, files or {}), _inlined(potential, files or {})
     try:
-        return template.render(**context(derivation, spec.math), simulation=simulation, potential_plot=potential)
+        return template.render(**sections_context(sections, spec.math), simulation=simulation,
+                               potential_plot=potential)
     except jinja2.TemplateError as exc:
         raise RenderError(f"template {kind}/{name} failed: {exc}") from None
 
@@ -294,7 +304,11 @@ def sections_json(sections: Sections) -> dict[str, Any]:
 
 def result_json(derivation: Derivation) -> str:
     """:func:`result_dict` as indented JSON text (stable key order, ASCII only)."""
-    return json.dumps(result_dict(derivation), indent=2, ensure_ascii=True) + "\n"
+    return _json_text(result_dict(derivation))
+
+
+def _json_text(data: dict[str, Any]) -> str:
+    return json.dumps(data, indent=2, ensure_ascii=True) + "\n"
 
 
 def summary(derivation: Derivation) -> str:

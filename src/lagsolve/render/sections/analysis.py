@@ -26,6 +26,23 @@ if TYPE_CHECKING:
 
 Expr = Any
 
+#: how the equations in minimal coordinates compare with the multiplier route (``Reduced.agreement``): the
+#: terminal's phrase, the reports' sentence (the same in every format), and whether it is a warning
+AGREEMENT: dict[str, tuple[str, str, bool]] = {
+    "symbolic": ("agrees with the multiplier route",
+                 "Solved for the accelerations they give exactly the accelerations of the multiplier route above, "
+                 "with the same substitutions (checked symbolically):", False),
+    "unchecked": ("not compared with the multiplier route (it has no explicit accelerations)",
+                  "Solved for the accelerations they give (the multiplier route has no explicit accelerations to "
+                  "compare with here):", False),
+    "numeric": ("agrees with the multiplier route (numerically)",
+                "Solved for the accelerations they agree with the multiplier route above at random states "
+                "(the symbolic check was inconclusive):", False),
+    "differ": ("DIFFERS from the multiplier route",
+               "solved for the accelerations they differ from the multiplier route above; please report this as a "
+               "bug:", True),
+}
+
 
 @dataclass(frozen=True)
 class Classified:
@@ -64,6 +81,11 @@ class Reduced:
     @property
     def trivial(self) -> bool:
         return not self.dependent
+
+    @property
+    def agreement_text(self) -> tuple[str, str, bool]:
+        """(terminal phrase, report sentence, warning) for ``agreement`` (:data:`AGREEMENT`)."""
+        return AGREEMENT.get(self.agreement, AGREEMENT["differ"])
 
 
 @dataclass(frozen=True)
