@@ -147,6 +147,7 @@ def analysis_context(section: AnalysisSection | None, note: Notation, math: str 
         "system": section.system,
         "conserved": conserved,
         "conserved_notes": list(section.conserved_notes),
+        "verified": section.verified,
         "cyclic": [tex(q) for q in section.cyclic],
         "effective": _effective_context(section.effective, tex, text) if section.effective is not None else None,
         "effective_note": section.effective_note,

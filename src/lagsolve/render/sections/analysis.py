@@ -210,6 +210,12 @@ class AnalysisSection:
         return any(k.kind != Integrability.HOLONOMIC for k in self.constraints)
 
     @property
+    def verified(self) -> str:
+        """How every conserved quantity was verified: one sentence, the same in every report format."""
+        full = ", with the constraints," if self.system == "full" else ""
+        return f"Each was verified: its time derivative along the equations of motion{full} simplifies to zero."
+
+    @property
     def equilibria_note(self) -> str:
         """Why no equilibrium is shown: the linearization's note when the coordinates are left, else the
         effective potential's."""
