@@ -74,7 +74,10 @@ def _render_core(formats: tuple[str, ...], templates: Path | None) -> Callable[[
 
 def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
             simulate: SimulationOptions | None) -> tuple[str, dict[str, str], dict[str, bytes]]:
-    from lagsolve.render.report import render, summary
+    from lagsolve.render.report import render_sections, sections_summary
+    from lagsolve.render.sections import build
+
+    sections = build(derivation)  # one walk of the derivation; every output projects it
 
     files: dict[str, bytes] = {}
     simulation = None
@@ -84,7 +87,7 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
     potential = _potential_figure(derivation) if figures_shown else None
     if potential is not None:
         files[potential["file"]] = potential.pop("png")
-    text = summary(derivation)
+    text = sections_summary(sections)
     if simulate is not None:
         from dataclasses import replace
 
@@ -101,7 +104,7 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
         simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures,
                       "animation": animation(run.trajectory, scene=run.scene)}
         text += run.summary
-    outputs = {fmt: render(derivation, fmt, templates, simulation, potential, files) for fmt in formats}
+    outputs = {fmt: render_sections(sections, fmt, templates, simulation, potential, files) for fmt in formats}
     if not figures_written:
         files = {}  # an HTML page carries its figures inside; JSON has none
     return text, outputs, files

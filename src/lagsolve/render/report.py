@@ -1,9 +1,10 @@
-"""Reports from a :class:`~lagsolve.mechanics.derivation.Derivation`.
+"""Reports from a :class:`~lagsolve.mechanics.derivation.Derivation`: projections of its sections.
 
-:func:`context` turns a derivation into plain strings (LaTeX, text, JSON syntax);
-the Jinja2 templates in ``templates/markdown`` and ``templates/latex`` lay them
-out as a worked solution; :func:`result_json` is the contract of the format's
-section 2; :func:`summary` is the short text shown in a terminal.
+:func:`lagsolve.render.sections.build` walks the derivation once; each output here prints those records:
+:func:`sections_context` (:func:`context`) gives the templates plain strings (LaTeX or MathML, text,
+JSON syntax), which the Jinja2 templates of each format in :mod:`lagsolve.render.formats` lay out as a
+worked solution; :func:`sections_json` (:func:`result_dict`, :func:`result_json`) is the contract of the
+format's section 2; :func:`sections_summary` (:func:`summary`) is the short text shown in a terminal.
 Nothing here simplifies: every expression arrives in display form.
 """
 

@@ -2,10 +2,13 @@
 
 :func:`build` walks a :class:`~lagsolve.mechanics.results.Derivation` once and returns
 :class:`Sections`: frozen records holding the SymPy expressions and names each part of a report
-shows, in display order (:mod:`.core` for the equations of motion and their results). The Markdown,
-LaTeX and HTML templates (through :func:`lagsolve.render.report.context`), the JSON contract
-(:func:`~lagsolve.render.report.result_dict`) and the terminal summary
-(:func:`~lagsolve.render.report.summary`) each print these records; none walks the derivation again.
+shows, in display order: :mod:`.core` (the problem, L, the constraints, Lagrange's equations, the
+matrix form, accelerations, multipliers, forces of constraint, friction, notes), :mod:`.analysis`,
+:mod:`.hamiltonian` and :mod:`.units`. The Markdown, LaTeX and HTML templates (through
+:func:`lagsolve.render.report.sections_context`), the JSON contract
+(:func:`~lagsolve.render.report.sections_json`) and the terminal summary
+(:func:`~lagsolve.render.report.sections_summary`) each print these records; none walks the
+derivation again. A new result is a record here and one line in each projection.
 """
 
 from __future__ import annotations
