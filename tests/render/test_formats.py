@@ -45,3 +45,10 @@ def test_extensions_name_the_written_files(tmp_path: Path) -> None:
     """Every extension starts with a dot and differs from the others (no report overwrites another)."""
     extensions = [f.extension for f in REGISTRY]
     assert all(e.startswith(".") for e in extensions) and len(set(extensions)) == len(extensions)
+
+
+def test_every_format_has_a_template_or_a_projection() -> None:
+    """A format of the registry is either a template or has its text projection of the sections."""
+    from lagsolve.render.report import TEXT_PROJECTIONS
+
+    assert {f.name for f in REGISTRY if f.templates is None} == set(TEXT_PROJECTIONS)

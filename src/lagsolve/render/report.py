@@ -197,7 +197,7 @@ def render_sections(sections: Sections, fmt: str, templates: Path | None = None,
         raise RenderError(f"unknown format {fmt!r}; use {', '.join(FORMATS)}")
     spec = FORMATS[fmt]
     if spec.templates is None or spec.template is None:
-        return _json_text(sections_json(sections))
+        return TEXT_PROJECTIONS[fmt](sections)
     kind, name = spec.templates, spec.template
     env = environment(kind, templates)
     try:
@@ -310,6 +310,10 @@ def result_json(derivation: Derivation) -> str:
 
 def _json_text(data: dict[str, Any]) -> str:
     return json.dumps(data, indent=2, ensure_ascii=True) + "\n"
+
+
+#: the formats of :mod:`lagsolve.render.formats` that are not templates: each one's projection of the sections
+TEXT_PROJECTIONS: dict[str, Callable[[Sections], str]] = {"json": lambda sections: _json_text(sections_json(sections))}
 
 
 def summary(derivation: Derivation) -> str:
