@@ -19,6 +19,9 @@ import click
 
 from lagsolve import __version__
 from lagsolve.errors import LagsolveError, SpecError
+from lagsolve.problem.methods import DEFAULT as DEFAULT_METHOD
+from lagsolve.problem.methods import EXPLICIT, METHODS
+from lagsolve.render.formats import DEFAULT_FORMATS, REGISTRY
 
 # numeric libraries run single-threaded: the budgets count the process's CPU time, which idle-spinning BLAS
 # threads would otherwise inflate (and the arrays here are small); set before NumPy is first imported
@@ -28,7 +31,8 @@ for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 if TYPE_CHECKING:
     from lagsolve.app.pipeline import Reports
 
-EXTENSIONS = {"md": ".md", "tex": ".tex", "html": ".html", "json": ".json"}
+#: each format's file extension (the registry: :mod:`lagsolve.render.formats`)
+EXTENSIONS = {f.name: f.extension for f in REGISTRY}
 
 
 def _fail(error: LagsolveError) -> int:
@@ -141,7 +145,7 @@ def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("-o", "--output", type=click.Path(path_type=Path),
               help="Output folder (default out/), or a file name when one file and one --format are given.")
-@click.option("--format", "fmt", type=click.Choice(["md", "tex", "html", "json", "jsonl"]),
+@click.option("--format", "fmt", type=click.Choice([*EXTENSIONS, "jsonl"]),
               help="Only this format; printed to stdout unless -o is given. json with several files prints one "
                    "array; jsonl prints one result per line.")
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,
@@ -174,7 +178,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
 
     if fmt == "jsonl" and (output is not None or golden is not None):
         raise click.UsageError("--format jsonl prints to stdout; redirect it, or use --format json with -o")
-    formats = ("json",) if fmt == "jsonl" else (fmt,) if fmt else ("md", "tex", "json")
+    formats = ("json",) if fmt == "jsonl" else (fmt,) if fmt else DEFAULT_FORMATS
     stream = fmt == "jsonl" or (fmt == "json" and output is None and golden is None and len(files) > 1)
     texts: list[str] = []
     slugs = [safe_slug(f) for f in files]
@@ -268,8 +272,9 @@ def _progress_bar(t_end: float) -> Callable[[float], None]:
 @click.option("--initial", multiple=True, metavar="NAME=VALUE",
               help="Initial coordinate or velocity, e.g. x=0.5 or x_dot=0 (repeatable).")
 @click.option("--samples", type=click.IntRange(min=2, max=1_000_000), help="Number of output times (default 1001).")
-@click.option("--method", type=click.Choice(["DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA"]),
-              help="Integrator (default DOP853; Radau/BDF/LSODA for stiff problems).")
+@click.option("--method", type=click.Choice(METHODS),
+              help=f"Integrator (default {DEFAULT_METHOD}; {'/'.join(m for m in METHODS if m not in EXPLICIT)} "
+                   "for stiff problems).")
 @click.option("--rtol", type=click.FloatRange(min=0, min_open=True), help="Relative tolerance (default 1e-10).")
 @click.option("--atol", type=click.FloatRange(min=0, min_open=True), help="Absolute tolerance (default 1e-12).")
 @click.option("--max-step", type=click.FloatRange(min=0, min_open=True), help="Largest step size.")
@@ -383,8 +388,8 @@ def _sweep_progress() -> Callable[[int, int], None]:
 @click.option("--runs", type=click.IntRange(min=1), help="Random runs (per grid point).")
 @click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True, help="Seed of the random values.")
 @click.option("--t-end", type=click.FloatRange(min=0, min_open=True), help="End time (default: simulation.t_end).")
-@click.option("--method", type=click.Choice(["DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA"]), default="DOP853",
-              show_default=True, help="Integrator; DOP853, RK45 and RK23 run batched.")
+@click.option("--method", type=click.Choice(METHODS), default=DEFAULT_METHOD,
+              show_default=True, help=f"Integrator; {', '.join(EXPLICIT[:-1])} and {EXPLICIT[-1]} run batched.")
 @click.option("--rtol", type=click.FloatRange(min=0, min_open=True), default=1e-10, show_default=True)
 @click.option("--atol", type=click.FloatRange(min=0, min_open=True), default=1e-12, show_default=True)
 @click.option("--poincare", metavar="SECTION", help='Record section crossings, e.g. "theta2=0, theta2_dot>0".')

@@ -12,6 +12,8 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from lagsolve.problem.methods import METHODS
+
 DRAFT = "https://json-schema.org/draft/2020-12/schema"
 KINDS = ("input", "output")
 
@@ -102,7 +104,7 @@ def input_schema() -> dict[str, Any]:
             "initial": _by_name({"type": "number"}),
             "t_end": _POSITIVE,
             "samples": {"type": "integer", "minimum": 2, "maximum": 1_000_000},
-            "method": {"enum": ["DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA"]},
+            "method": {"enum": list(METHODS)},
             "rtol": _POSITIVE,
             "atol": _POSITIVE,
         }),

@@ -10,6 +10,7 @@ import pytest
 from lagsolve.render.analysis_report import analysis_context
 from lagsolve.render.notation import Notation
 from lagsolve.render.report import render, result_dict, summary
+from lagsolve.render.sections.analysis import analysis_section
 from mechanics_support import derived_file
 
 
@@ -80,7 +81,8 @@ def test_context_is_plain_data(hole):
 
     for name in ("hole_table", "knife_edge", "rotating_tube", "double_pendulum", "spherical_pendulum"):
         derivation = derived_file(name)
-        check(analysis_context(derivation, Notation([c.name for c in derivation.problem.coordinates])))
+        note = Notation([c.name for c in derivation.problem.coordinates])
+        check(analysis_context(analysis_section(derivation), note))
 
 
 def test_summary_shows_the_analysis(hole):

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 from lagsolve.app.simulation import Progress, SimulationOptions, SimulationResult, simulate_derivation, simulate_form
 from lagsolve.check.status import Status
 from lagsolve.files import safe_slug
+from lagsolve.render.formats import DEFAULT_FORMATS, FORMATS
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.derivation import Derivation
@@ -73,17 +74,20 @@ def _render_core(formats: tuple[str, ...], templates: Path | None) -> Callable[[
 
 def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
             simulate: SimulationOptions | None) -> tuple[str, dict[str, str], dict[str, bytes]]:
-    from lagsolve.render.report import render, summary
+    from lagsolve.render.report import render_sections, sections_summary
+    from lagsolve.render.sections import build
+
+    sections = build(derivation)  # one walk of the derivation; every output projects it
 
     files: dict[str, bytes] = {}
     simulation = None
     # figures are made only for a format that shows them (JSON does not)
-    figures_shown = bool({"md", "tex", "html"} & set(formats))
-    figures_written = bool({"md", "tex"} & set(formats))
+    shown = [FORMATS[f].figures for f in formats if f in FORMATS]  # render() refuses an unknown one
+    figures_shown, figures_written = any(shown), "files" in shown
     potential = _potential_figure(derivation) if figures_shown else None
     if potential is not None:
         files[potential["file"]] = potential.pop("png")
-    text = summary(derivation)
+    text = sections_summary(sections)
     if simulate is not None:
         from dataclasses import replace
 
@@ -100,7 +104,7 @@ def _render(derivation: Any, formats: tuple[str, ...], templates: Path | None,
         simulation = {"summary": run_summary(run.trajectory, run.name, timing=False), "figures": figures,
                       "animation": animation(run.trajectory, scene=run.scene)}
         text += run.summary
-    outputs = {fmt: render(derivation, fmt, templates, simulation, potential, files) for fmt in formats}
+    outputs = {fmt: render_sections(sections, fmt, templates, simulation, potential, files) for fmt in formats}
     if not figures_written:
         files = {}  # an HTML page carries its figures inside; JSON has none
     return text, outputs, files
@@ -155,7 +159,7 @@ def _potential_figure(derivation: Derivation) -> dict | None:
             "caption": "Effective potential with its equilibria, for the simulation's values"}
 
 
-def derive_file(path: str | Path, formats: tuple[str, ...] = ("md", "tex", "json"), *,
+def derive_file(path: str | Path, formats: tuple[str, ...] = DEFAULT_FORMATS, *,
                 templates: Path | None = None, timeout: float = DEFAULT_TIMEOUT,
                 simulate: SimulationOptions | None = None) -> Reports:
     """Load, derive and render one problem file.

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from lagsolve.enums import TextEnum
+from lagsolve.problem.methods import DEFAULT as DEFAULT_METHOD
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.matrix_form import MatrixForm
@@ -121,7 +122,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     trajectory = integrate_motion(
         system, q0, qd0, t_end,
         samples=options.samples or (spec.samples if spec and spec.samples else 1001),
-        method=options.method or (spec.method if spec and spec.method else "DOP853"),
+        method=options.method or (spec.method if spec and spec.method else DEFAULT_METHOD),
         rtol=options.rtol or (spec.rtol if spec and spec.rtol else 1e-10),
         atol=options.atol or (spec.atol if spec and spec.atol else 1e-12),
         max_step=options.max_step or np.inf,

@@ -35,6 +35,7 @@ from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.simplify import tidy, tidy_sum
 from lagsolve.mechanics.surface import on_surface
+from lagsolve.problem.names import momentum_name
 
 
 @dataclass(frozen=True)
@@ -176,10 +177,10 @@ def conserved_quantities(system: MotionSystem, *, friction: bool = False) -> Con
             continue
         cyclic.append(q)
         if system.accelerations and not system.constant(momentum):
-            notes.append(f"p_{q.name}: {q.name} is cyclic but dp/dt did not simplify to 0; not claimed")
+            notes.append(f"{momentum_name(q)}: {q.name} is cyclic but dp/dt did not simplify to 0; not claimed")
             continue
         quantities.append(Conserved(
-            f"p_{q.name}", "momentum", tidy(momentum), q,
+            momentum_name(q), "momentum", tidy(momentum), q,
             f"{q.name} is cyclic: dL/d{q.name} = 0, Q_{q.name} = 0"
             + (f" and no constraint involves {q.name}_dot" if system.constraints else "") + _unverified(system),
         ))

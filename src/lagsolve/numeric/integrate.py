@@ -40,9 +40,8 @@ from lagsolve.enums import TextEnum
 from lagsolve.errors import SimulationError
 from lagsolve.numeric.minimal_state import NumericChart
 from lagsolve.numeric.system import NumericSystem
+from lagsolve.problem.methods import DEFAULT, EXPLICIT, METHODS
 
-EXPLICIT = ("DOP853", "RK45", "RK23")
-METHODS = (*EXPLICIT, "Radau", "BDF", "LSODA")
 HOLD_TOLERANCE = 1e-12  # relative slack in |needed force| <= mu_s N when deciding to stick
 
 
@@ -234,7 +233,7 @@ class _Run:
 
 
 def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_end: float, *,
-                     samples: int = 1001, method: str = "DOP853", rtol: float = 1e-10, atol: float = 1e-12,
+                     samples: int = 1001, method: str = DEFAULT, rtol: float = 1e-10, atol: float = 1e-12,
                      max_step: float = np.inf, project: bool = True, minimal: bool = True,
                      after_release: str = "stop", progress: Callable[[float], None] | None = None) -> Trajectory:
     """Integrate from ``(q0, qd0)`` at t = 0 to ``t_end``.

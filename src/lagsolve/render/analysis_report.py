@@ -1,9 +1,8 @@
-"""The analysis part of the reports: plain context for the templates, the JSON forms, the terminal lines.
+"""The analysis part of the reports: projections of :class:`~lagsolve.render.sections.analysis.AnalysisSection`.
 
-:func:`analysis_context` turns :class:`~lagsolve.mechanics.analysis.Analysis` into strings
-for ``templates/*/_analysis.*.j2``; :func:`contract_json` prints the format's ``reduced``,
-``conserved`` and ``effective_potential``; :func:`analysis_json` the extra ``analysis`` key;
-:func:`analysis_summary` the lines shown in a terminal. Nothing here simplifies.
+:func:`analysis_context` gives the strings for ``templates/*/_analysis.*.j2``; :func:`contract_json` prints the
+format's ``reduced``, ``conserved`` and ``effective_potential``; :func:`analysis_json` the extra ``analysis``
+key; :func:`analysis_summary` the lines shown in a terminal. Nothing here simplifies.
 """
 
 from __future__ import annotations
@@ -12,9 +11,9 @@ from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.integrability import Integrability
 from lagsolve.render.notation import Notation, to_json
+from lagsolve.render.sections.analysis import AnalysisSection, Classified, Contacts, Effective, Modes, Reduced
 
 KINDS = {
     Integrability.HOLONOMIC: "holonomic (as given)",
@@ -22,14 +21,6 @@ KINDS = {
     Integrability.NONHOLONOMIC: "nonholonomic",
     Integrability.UNRESOLVED: "velocity constraint (integrability not settled)",
 }
-
-
-def _at(q: Any, taken: Any = ()) -> Any:
-    """The display symbol of an equilibrium value: ``r`` → ``r_0`` (``r_eq`` when the problem
-    already uses ``r0`` or ``r_0``, which print alike)."""
-    if f"{q.name}0" in taken or f"{q.name}_0" in taken:
-        return sympy.Symbol(f"{q.name}_eq")
-    return sympy.Symbol(f"{q.name}_0")
 
 
 def _pfaffian(form: tuple[Any, ...], variables: tuple[Any, ...], tex: Any) -> str:
@@ -47,153 +38,121 @@ def _pfaffian(form: tuple[Any, ...], variables: tuple[Any, ...], tex: Any) -> st
     return out or "0"
 
 
-def _contact(checks: Any, tex: Any) -> dict[str, Any]:
+def _contact(contacts: Contacts, tex: Any) -> dict[str, Any]:
     """A unilateral constraint's force at an equilibrium, for the templates: ``admissible`` False when one
     would pull, None when a sign depends on the parameters, True when all push, and the multipliers there."""
-    if not checks:
-        return {"admissible": True, "contact": []}
-    verdicts = [c.admissible for c in checks]
-    admissible = False if False in verdicts else (None if None in verdicts else True)
-    return {"admissible": admissible,
-            "contact": [{"constraint": c.constraint, "multiplier": tex(sympy.Symbol(f"lambda_{c.constraint}")),
-                         "value": tex(c.multiplier), "admissible": c.admissible} for c in checks]}
+    return {"admissible": contacts.admissible,
+            "contact": [{"constraint": c.constraint, "multiplier": tex(c.symbol), "value": tex(c.value),
+                         "admissible": c.admissible} for c in contacts.checks]}
 
 
-def _contact_json(checks: Any) -> dict[str, Any]:
-    if not checks:
+def _contact_json(contacts: Contacts) -> dict[str, Any]:
+    if not contacts.checks:
         return {}
-    verdicts = [c.admissible for c in checks]
-    return {"admissible": False if False in verdicts else (None if None in verdicts else True),
-            "contact": {c.constraint: to_json(c.multiplier) for c in checks}}
+    return {"admissible": contacts.admissible, "contact": {c.constraint: to_json(c.value) for c in contacts.checks}}
 
 
-def analysis_context(derivation: Derivation, note: Notation, math: str = "latex") -> dict[str, Any] | None:
+def _classified_context(k: Classified, tex: Any, math: str) -> dict[str, Any]:
+    entry: dict[str, Any] = {"name": k.name, "kind": k.kind, "kind_text": KINDS[k.kind], "note": k.note}
+    if k.kind != Integrability.HOLONOMIC:
+        form, variables = tuple(w for w, _ in k.differential), tuple(x for _, x in k.differential)
+        entry["form"] = (_pfaffian(form, variables, tex) if math == "latex" else
+                         tex(sum((w * sympy.Symbol(f"d{x.name}") for w, x in k.differential), sympy.Integer(0))))
+        entry["exact"] = k.exact
+        entry["factor"] = tex(k.factor) if k.factor is not None and k.factor != 1 else ""
+    if k.kind == Integrability.INTEGRABLE:
+        entry["integral"] = tex(k.integral)
+        entry["constant"] = tex(k.constant)
+        entry["solved"] = ({"symbol": tex(k.solved[0]), "value": tex(k.solved[1])}
+                           if k.solved and k.integral != k.solved[0] else None)
+    if k.witness is not None:
+        (a, b, c), value = k.witness
+        entry["witness"] = {"indices": f"{tex(a)}{tex(b)}{tex(c)}" if all(len(tex(s)) == 1 for s in (a, b, c))
+                            else f"{tex(a)},{tex(b)},{tex(c)}", "value": tex(value)}
+    return entry
+
+
+def _reduced_context(r: Reduced, tex: Any) -> dict[str, Any]:
+    return {
+        "trivial": r.trivial,
+        "independent": [tex(q) for q in r.independent],
+        "dependent": [{"symbol": tex(d.symbol), "value": tex(d.value), "source": d.source} for d in r.dependent],
+        "velocities": [{"symbol": tex(v), "value": tex(e)} for v, e in r.velocities],
+        "constants": [tex(c) for c in r.constants],
+        "kinetic": tex(r.kinetic),
+        "potential": tex(r.potential),
+        "lagrangian": tex(r.lagrangian),
+        "forces": [{"coordinate": tex(q), "value": tex(f)} for q, f in r.forces if f != 0],
+        "equations": [{"coordinate": tex(q), "lhs": tex(lhs), "rhs": tex(rhs)} for q, lhs, rhs in r.equations],
+        "accelerations": [{"symbol": tex(a), "tex": tex(value)} for a, value in r.accelerations],
+        "agreement": r.agreement,
+        "agreement_sentence": r.agreement_text[1],
+        "agreement_warning": r.agreement_text[2],
+        "all_coordinates": r.all_coordinates,
+    }
+
+
+def _effective_context(v: Effective, tex: Any, text: Any) -> dict[str, Any]:
+    def shown(expr: Any) -> str:
+        return tex(expr) if expr is not None else ""
+
+    equilibria = [{
+        "value": shown(e.value), "condition": tex(e.condition), "exists_if": shown(e.exists_if),
+        "curvature": shown(e.curvature), "stable": e.stable, "stability_condition": shown(e.stability_condition),
+        "frequency": shown(e.frequency), "frequency_squared": shown(e.frequency_squared), **_contact(e.contact, tex),
+    } for e in v.equilibria]
+    return {
+        "coordinate": tex(v.coordinate), "at": tex(v.at), "velocity": tex(v.velocity),
+        "cyclic": [{"coordinate": tex(c.coordinate), "momentum": tex(c.momentum), "velocity": tex(c.velocity),
+                    "value": tex(c.value)} for c in v.cyclic],
+        "routhian": tex(v.routhian), "mass": tex(v.mass), "expression": tex(v.expression),
+        "expression_text": text(v.expression),
+        "lhs": tex(v.equation[0]), "rhs": tex(v.equation[1]), "damped": v.damped,
+        "equilibria": equilibria,
+    }
+
+
+def _modes_context(modes: Modes, tex: Any) -> dict[str, Any]:
+    equilibria = []
+    for m in modes.equilibria:
+        has_g, has_d = any(x != 0 for x in m.gyroscopic), any(x != 0 for x in m.damping)
+        equilibria.append({
+            "point": [{"coordinate": tex(q), "value": tex(x)} for q, x in m.point],
+            "free": [tex(q) for q in m.free],
+            "mass": tex(m.mass), "stiffness": tex(m.stiffness),
+            "gyroscopic": tex(m.gyroscopic) if has_g else "", "damping": tex(m.damping) if has_d else "",
+            "squares": [tex(s) for s in m.squared_frequencies] if m.squared_frequencies is not None else [],
+            "frequencies": [tex(f) if f is not None else "" for f in m.frequencies] if m.frequencies else [],
+            "stable": m.stable, "note": m.note, **_contact(m.contact, tex),
+        })
+    return {"coordinates": [tex(q) for q in modes.coordinates], "equilibria": equilibria}
+
+
+def analysis_context(section: AnalysisSection | None, note: Notation, math: str = "latex") -> dict[str, Any] | None:
     """Strings for the analysis sections (None when the derivation carries no analysis); expressions in LaTeX,
     or in presentation MathML when ``math`` is "mathml"."""
-    analysis = derivation.analysis
-    if analysis is None:
+    if section is None:
         return None
     tex, text = (note.mathml if math == "mathml" else note.latex), note.text
-    constraints = []
-    for k in analysis.classification:
-        entry: dict[str, Any] = {"name": k.name, "kind": k.kind, "kind_text": KINDS[k.kind], "note": k.note}
-        if k.kind != Integrability.HOLONOMIC:
-            entry["form"] = (_pfaffian(k.form, k.variables, tex) if math == "latex" else
-                             tex(sum((w * sympy.Symbol(f"d{x.name}") for w, x in zip(k.form, k.variables,
-                                                                                    strict=True)), sympy.Integer(0))))
-            entry["exact"] = k.exact
-            entry["factor"] = tex(k.factor) if k.factor is not None and k.factor != 1 else ""
-        if k.kind == Integrability.INTEGRABLE:
-            entry["integral"] = tex(k.integral)
-            entry["constant"] = tex(k.constant)
-            entry["solved"] = ({"symbol": tex(k.solved[0]), "value": tex(k.solved[1])}
-                               if k.solved and k.integral != k.solved[0] else None)
-        if k.witness is not None:
-            (a, b, c), value = k.witness
-            entry["witness"] = {"indices": f"{tex(a)}{tex(b)}{tex(c)}" if all(len(tex(s)) == 1 for s in (a, b, c))
-                                else f"{tex(a)},{tex(b)},{tex(c)}", "value": tex(value)}
-        constraints.append(entry)
-
-    reduced = None
-    r = analysis.reduced
-    if r is not None:
-        problem_coords = [c.symbol for c in derivation.problem.coordinates]
-        reduced = {
-            "trivial": not r.substitution.positions,
-            "independent": [tex(q) for q in r.independent],
-            "dependent": [{"symbol": tex(q), "value": tex(v), "source": r.substitution.sources.get(q, "")}
-                          for q, v in r.substitution.positions.items()],
-            "velocities": [{"symbol": tex(v), "value": tex(e)} for v, e in r.substitution.velocities.items()],
-            "constants": [tex(c) for c in r.constants],
-            "kinetic": tex(r.kinetic),
-            "potential": tex(r.potential),
-            "lagrangian": tex(r.lagrangian),
-            "forces": [{"coordinate": tex(q), "value": tex(f)} for q, f in zip(r.independent, r.generalized_forces,
-                                                                                strict=True) if f != 0],
-            "equations": [{"coordinate": tex(q), "lhs": tex(lhs), "rhs": tex(rhs)}
-                          for q, (lhs, rhs) in zip(r.independent, r.equation_sides, strict=True)]
-            if r.equation_sides else [],
-            "accelerations": [{"symbol": tex(c.acceleration), "tex": tex(r.accelerations[c.name])}
-                              for c in derivation.problem.coordinates if c.name in r.accelerations],
-            "agreement": r.agreement,
-            "all_coordinates": len(r.independent) == len(problem_coords),
-        }
-
-    conservation = analysis.conservation
-    conserved = []
-    for c in conservation.quantities:
-        symbol = tex(sympy.Symbol(c.name)) if c.kind == "momentum" else tex(sympy.Symbol("h"))
-        conserved.append({
-            "name": c.name, "kind": c.kind, "symbol": symbol, "tex": tex(c.expression), "text": text(c.expression),
-            "coordinate": tex(c.coordinate) if c.coordinate is not None else "",
-            "reason": c.reason, "equals_energy": bool(c.equals_energy), "moving": c.moving, "flags": list(c.flags),
-        })
-
-    effective = None
-    v = analysis.effective_potential
-    if v is not None:
-        q = v.coordinate
-        q0 = _at(q, derivation.problem.symbols)
-        equilibria = []
-        checks = analysis.effective_contact or ((),) * len(v.equilibria)
-        for e, check in zip(v.equilibria, checks, strict=True):
-            power = e.condition.lhs == q or (isinstance(e.condition.lhs, sympy.Pow) and e.condition.lhs.base == q)
-            equilibria.append({
-                "value": tex(e.value) if e.value is not None and not power else "",
-                "condition": tex(e.condition.xreplace({q: q0})),
-                "exists_if": tex(e.exists_if.xreplace({q: q0})) if e.exists_if is not None else "",
-                "curvature": (tex((e.curvature_at if e.curvature_at is not None else e.curvature).xreplace({q: q0}))
-                              if e.curvature is not None else ""),
-                "stable": e.stable,
-                "stability_condition": (tex(e.stability_condition.xreplace({q: q0}))
-                                        if e.stability_condition is not None else ""),
-                "frequency": tex(e.frequency.xreplace({q: q0})) if e.frequency is not None else "",
-                "frequency_squared": (tex((e.frequency_squared_at if e.frequency_squared_at is not None
-                                           else e.frequency_squared).xreplace({q: q0}))
-                                      if e.frequency_squared is not None else ""),
-                **_contact(check, tex),
-            })
-        effective = {
-            "coordinate": tex(q), "at": tex(q0), "velocity": tex(derivation.model.velocities[
-                derivation.model.coordinates.index(q)]),
-            "cyclic": [{"coordinate": tex(c), "momentum": tex(p), "velocity": tex(sympy.Symbol(f"{c.name}_dot")),
-                        "value": tex(w)} for c, p, w in v.cyclic],
-            "routhian": tex(v.routhian), "mass": tex(v.mass), "expression": tex(v.expression),
-            "expression_text": text(v.expression),
-            "lhs": tex(v.equation[0]), "rhs": tex(v.equation[1]), "damped": v.damped,
-            "equilibria": equilibria,
-        }
-
-    modes: dict[str, Any] | None = None
-    lin = analysis.linearization
-    if lin is not None:
-        modes = {"coordinates": [tex(q) for q in lin.coordinates], "equilibria": []}
-        checks = analysis.modes_contact or ((),) * len(lin.modes)
-        for m, check in zip(lin.modes, checks, strict=True):
-            has_g, has_d = any(x != 0 for x in m.gyroscopic), any(x != 0 for x in m.damping)
-            modes["equilibria"].append({
-                "point": [{"coordinate": tex(q), "value": tex(x)} for q, x in m.point],
-                "free": [tex(q) for q in m.free],
-                "mass": tex(m.mass), "stiffness": tex(m.stiffness),
-                "gyroscopic": tex(m.gyroscopic) if has_g else "", "damping": tex(m.damping) if has_d else "",
-                "squares": [tex(s) for s in m.squared_frequencies] if m.squared_frequencies is not None else [],
-                "frequencies": [tex(f) if f is not None else "" for f in m.frequencies] if m.frequencies else [],
-                "stable": m.stable, "note": m.note, **_contact(check, tex),
-            })
+    conserved = [{
+        "name": c.name, "kind": c.kind, "symbol": tex(c.symbol), "tex": tex(c.expression), "text": text(c.expression),
+        "coordinate": tex(c.coordinate) if c.coordinate is not None else "",
+        "reason": c.reason, "equals_energy": bool(c.equals_energy), "moving": c.moving, "flags": list(c.flags),
+    } for c in section.conserved]
     return {
-        "constraints": constraints,
-        "velocity_constraints": any(k.kind != Integrability.HOLONOMIC for k in analysis.classification),
-        "reduced": reduced,
-        "reduced_note": analysis.reduced_note,
-        "system": analysis.system.kind,
+        "constraints": [_classified_context(k, tex, math) for k in section.constraints],
+        "velocity_constraints": section.velocity_constraints,
+        "reduced": _reduced_context(section.reduced, tex) if section.reduced is not None else None,
+        "reduced_note": section.reduced_note,
+        "system": section.system,
         "conserved": conserved,
-        "conserved_notes": list(conservation.notes),
-        "cyclic": [tex(q) for q in conservation.cyclic],
-        "effective": effective,
-        "effective_note": analysis.effective_note,
-        "modes": modes,
-        "equilibria_note": (analysis.linearization_note if "coordinates are left" in analysis.effective_note
-                            else analysis.effective_note),
+        "conserved_notes": list(section.conserved_notes),
+        "verified": section.verified,
+        "cyclic": [tex(q) for q in section.cyclic],
+        "effective": _effective_context(section.effective, tex, text) if section.effective is not None else None,
+        "effective_note": section.effective_note,
+        "modes": _modes_context(section.modes, tex) if section.modes is not None else None,
+        "equilibria_note": section.equilibria_note,
     }
 
 
@@ -208,157 +167,136 @@ def _json(value: Any) -> Any:
     return to_json(value)
 
 
-def contract_json(derivation: Derivation) -> dict[str, Any]:
-    """``reduced``, ``conserved``, ``effective_potential`` of format section 2, as JSON values."""
-    return {
-        "reduced": _json(derivation.reduced),
-        "conserved": _json(derivation.conserved),
-        "effective_potential": _json(derivation.effective_potential),
-    }
+def contract_json(contract: tuple[tuple[str, Any], ...]) -> dict[str, Any]:
+    """``reduced``, ``conserved``, ``effective_potential`` of format section 2 (the derivation's contract forms,
+    :attr:`~lagsolve.render.sections.core.CoreSections.contract`), as JSON values."""
+    return {key: _json(value) for key, value in contract}
 
 
-def analysis_json(derivation: Derivation) -> dict[str, Any] | None:
+def _classified_json(k: Classified) -> dict[str, Any]:
+    entry: dict[str, Any] = {"class": k.kind}
+    if k.kind == Integrability.INTEGRABLE:
+        entry.update({"factor": to_json(k.factor), "integral": to_json(k.integral), "constant": to_json(k.constant)})
+        if k.solved:
+            entry["solved"] = {k.solved[0].name: to_json(k.solved[1])}
+    if k.witness is not None:
+        entry["frobenius"] = {"variables": [to_json(x) for x in k.witness[0]], "value": to_json(k.witness[1])}
+    if k.note:
+        entry["note"] = k.note
+    return entry
+
+
+def _matrix_json(m: Any) -> list[list[str]]:
+    return [[to_json(x) for x in row] for row in m.tolist()]
+
+
+def analysis_json(section: AnalysisSection | None) -> dict[str, Any] | None:
     """The extra ``analysis`` key: classification, reduction steps, reasons, equilibria, normal modes."""
-    analysis = derivation.analysis
-    if analysis is None:
+    if section is None:
         return None
-    constraints = {}
-    for k in analysis.classification:
-        entry: dict[str, Any] = {"class": k.kind}
-        if k.kind == Integrability.INTEGRABLE:
-            entry.update({"factor": to_json(k.factor), "integral": to_json(k.integral),
-                          "constant": to_json(k.constant)})
-            if k.solved:
-                entry["solved"] = {k.solved[0].name: to_json(k.solved[1])}
-        if k.witness is not None:
-            entry["frobenius"] = {"variables": [to_json(x) for x in k.witness[0]], "value": to_json(k.witness[1])}
-        if k.note:
-            entry["note"] = k.note
-        constraints[k.name] = entry
-    out: dict[str, Any] = {"constraints": constraints}
-    r = analysis.reduced
-    if r is None:
-        out["reduced"] = {"note": analysis.reduced_note}
-    else:
-        out["reduced"] = {
-            "dependent": {q.name: to_json(v) for q, v in r.substitution.positions.items()},
-            "constants": [to_json(c) for c in r.constants],
-            "lagrangian": to_json(r.lagrangian),
-            "generalized_forces": {q.name: to_json(f) for q, f in zip(r.independent, r.generalized_forces,
-                                                                       strict=True)},
-            "agreement": r.agreement,
-        }
+    out: dict[str, Any] = {"constraints": {k.name: _classified_json(k) for k in section.constraints}}
+    r = section.reduced
+    out["reduced"] = {"note": section.reduced_note} if r is None else {
+        "dependent": {d.symbol.name: to_json(d.value) for d in r.dependent},
+        "constants": [to_json(c) for c in r.constants],
+        "lagrangian": to_json(r.lagrangian),
+        "generalized_forces": {q.name: to_json(f) for q, f in r.forces},
+        "agreement": r.agreement,
+    }
     out["conserved"] = {c.name: {"reason": c.reason, **({"equals_total_energy": c.equals_energy}
                                                         if c.kind == "jacobi" else {})}
-                        for c in analysis.conservation.quantities}
-    out["conserved_notes"] = list(analysis.conservation.notes)
-    v = analysis.effective_potential
-    if v is None:
-        out["effective_potential"] = {"note": analysis.effective_note}
-    else:
-        out["effective_potential"] = {
-            "mass": to_json(v.mass), "routhian": to_json(v.routhian),
-            "equilibria": [{"condition": to_json(e.condition),
-                            "exists_if": to_json(e.exists_if) if e.exists_if is not None else None,
-                            "stability_condition": (to_json(e.stability_condition)
-                                                    if e.stability_condition is not None else None),
-                            "frequency_squared_at": (to_json(e.frequency_squared_at)
-                                                     if e.frequency_squared_at is not None else None),
-                            **_contact_json(check)}
-                           for e, check in zip(v.equilibria, analysis.effective_contact or ((),) * len(v.equilibria),
-                                               strict=True)],
-        }
-    lin = analysis.linearization
-    if lin is None:
-        out["linearization"] = {"note": analysis.linearization_note}
-    else:
-        out["linearization"] = {
-            "coordinates": [q.name for q in lin.coordinates],
-            "equilibria": [{
-                "point": {q.name: to_json(x) for q, x in m.point},
-                "mass": [[to_json(x) for x in row] for row in m.mass.tolist()],
-                "stiffness": [[to_json(x) for x in row] for row in m.stiffness.tolist()],
-                "gyroscopic": [[to_json(x) for x in row] for row in m.gyroscopic.tolist()],
-                "damping": [[to_json(x) for x in row] for row in m.damping.tolist()],
-                "squared_frequencies": ([to_json(s) for s in m.squared_frequencies]
-                                        if m.squared_frequencies is not None else None),
-                "stable": m.stable,
-                **({"free": [q.name for q in m.free]} if m.free else {}),
-                **_contact_json(check),
-            } for m, check in zip(lin.modes, analysis.modes_contact or ((),) * len(lin.modes), strict=True)],
-        }
+                        for c in section.conserved}
+    out["conserved_notes"] = list(section.conserved_notes)
+    v = section.effective
+
+    def maybe(expr: Any) -> str | None:
+        return to_json(expr) if expr is not None else None
+
+    out["effective_potential"] = {"note": section.effective_note} if v is None else {
+        "mass": to_json(v.mass), "routhian": to_json(v.routhian),
+        "equilibria": [{"condition": to_json(e.derived.condition), "exists_if": maybe(e.derived.exists_if),
+                        "stability_condition": maybe(e.derived.stability_condition),
+                        "frequency_squared_at": maybe(e.derived.frequency_squared_at), **_contact_json(e.contact)}
+                       for e in v.equilibria],
+    }
+    modes = section.modes
+    out["linearization"] = {"note": section.linearization_note} if modes is None else {
+        "coordinates": [q.name for q in modes.coordinates],
+        "equilibria": [{
+            "point": {q.name: to_json(x) for q, x in m.point},
+            "mass": _matrix_json(m.mass), "stiffness": _matrix_json(m.stiffness),
+            "gyroscopic": _matrix_json(m.gyroscopic), "damping": _matrix_json(m.damping),
+            "squared_frequencies": ([to_json(s) for s in m.squared_frequencies]
+                                    if m.squared_frequencies is not None else None),
+            "stable": m.stable,
+            **({"free": [q.name for q in m.free]} if m.free else {}),
+            **_contact_json(m.contact),
+        } for m in modes.equilibria],
+    }
     return out
 
 
-def analysis_summary(derivation: Derivation, note: Notation) -> list[str]:
+def analysis_summary(section: AnalysisSection | None, note: Notation) -> list[str]:
     """Terminal lines: minimal coordinates, conserved quantities, effective potential and equilibria."""
-    analysis = derivation.analysis
-    if analysis is None:
+    if section is None:
         return []
     text = note.text
     lines = []
-    for k in analysis.classification:
+    for k in section.constraints:
         if k.kind == Integrability.INTEGRABLE and k.solved:
             lines.append(f"  constraint {k.name}: integrable, {text(k.solved[0])} = {text(k.solved[1])}")
         elif k.kind in (Integrability.NONHOLONOMIC, Integrability.UNRESOLVED):
             lines.append(f"  constraint {k.name}: {k.kind}")
-    r = analysis.reduced
-    if r is not None and r.substitution.positions:
-        agree = {"symbolic": "agrees with the multiplier route",
-                 "numeric": "agrees with the multiplier route (numerically)",
-                 "differ": "DIFFERS from the multiplier route"}[r.agreement]
-        lines.append(f"  minimal coordinates: {', '.join(text(q) for q in r.independent)} ({agree})")
-    if analysis.conservation.quantities:
+    r = section.reduced
+    if r is not None and not r.trivial:
+        lines.append(f"  minimal coordinates: {', '.join(text(q) for q in r.independent)} ({r.agreement_text[0]})")
+    if section.conserved:
         lines.append("  conserved:")
-        for c in analysis.conservation.quantities:
-            symbol = text(sympy.Symbol(c.name)) if c.kind == "momentum" else "h"
+        for c in section.conserved:
             extra = " (= T + V)" if c.equals_energy else (" (not T + V)" if c.kind == "jacobi" else "")
-            lines.append(f"    {symbol} = {text(c.expression)}{extra}")
-    v = analysis.effective_potential
-    if v is not None:
-        q, q0 = v.coordinate, _at(v.coordinate, derivation.problem.symbols)
-        lines.append(f"  effective potential: V_eff({text(q)}) = {text(v.expression)}")
-        for k, e in enumerate(v.equilibria):
-            condition = e.condition.xreplace({q: q0})
-            power = e.condition.lhs == q or (isinstance(e.condition.lhs, sympy.Pow) and e.condition.lhs.base == q)
-            where = (f"{text(q0)} = {text(e.value)}" if e.value is not None and not power
-                     else f"{text(condition.lhs)} = {text(condition.rhs)}")
-            if e.stable is True:
-                verdict = "stable"
-            elif e.stable is False:
-                verdict = "unstable"
-            elif e.stability_condition is not None:
-                verdict = f"stable if {text(e.stability_condition.xreplace({q: q0}))}"
-            else:
-                verdict = "stability not analysed (several momenta)"
-            line = f"    equilibrium {where}: {verdict}"
-            if e.frequency_squared is not None:
-                square = e.frequency_squared_at if e.frequency_squared_at is not None else e.frequency_squared
-                line += f", ω² = {text(square.xreplace({q: q0}))}"
-            line += _contact_summary(analysis.effective_contact[k] if analysis.effective_contact else (), text)
-            lines.append(line)
-    lin = analysis.linearization
-    if lin is not None:
+            lines.append(f"    {text(c.symbol)} = {text(c.expression)}{extra}")
+    if section.effective is not None:
+        lines += _effective_summary(section.effective, text)
+    if section.modes is not None:
         lines.append("  equilibria:")
-        for k, m in enumerate(lin.modes):
+        for m in section.modes.equilibria:
             point = ", ".join([f"{text(q)} = {text(x)}" for q, x in m.point]
                               + ([f"any {', '.join(text(q) for q in m.free)}"] if m.free else []))
             verdict = {True: "stable", False: "unstable", None: "stability not decided"}[m.stable]
             squares = ""
             if m.squared_frequencies is not None and m.stable:
                 squares = ", ω² = " + "; ".join(text(s) for s in m.squared_frequencies)
-            contact = _contact_summary(analysis.modes_contact[k] if analysis.modes_contact else (), text)
-            lines.append(f"    {point}: {verdict}{squares}{contact}")
+            lines.append(f"    {point}: {verdict}{squares}{_contact_summary(m.contact, text)}")
     return lines
 
 
-def _contact_summary(checks: Any, text: Any) -> str:
+def _effective_summary(v: Effective, text: Any) -> list[str]:
+    lines = [f"  effective potential: V_eff({text(v.coordinate)}) = {text(v.expression)}"]
+    for e in v.equilibria:
+        where = (f"{text(v.at)} = {text(e.value)}" if e.value is not None
+                 else f"{text(e.condition.lhs)} = {text(e.condition.rhs)}")
+        if e.stable is True:
+            verdict = "stable"
+        elif e.stable is False:
+            verdict = "unstable"
+        elif e.stability_condition is not None:
+            verdict = f"stable if {text(e.stability_condition)}"
+        else:
+            verdict = "stability not analysed (several momenta)"
+        line = f"    equilibrium {where}: {verdict}"
+        if e.frequency_squared is not None:
+            line += f", ω² = {text(e.frequency_squared)}"
+        lines.append(line + _contact_summary(e.contact, text))
+    return lines
+
+
+def _contact_summary(contacts: Contacts, text: Any) -> str:
     """`` (not admissible: surface would pull, λ = -g m)`` for a terminal line; empty when every force pushes."""
-    pulling = [c for c in checks if c.admissible is False]
+    pulling = [c for c in contacts.checks if c.admissible is False]
     if pulling:
-        return " (not admissible: " + "; ".join(f"{c.constraint} would pull, λ = {text(c.multiplier)}"
+        return " (not admissible: " + "; ".join(f"{c.constraint} would pull, λ = {text(c.value)}"
                                                 for c in pulling) + ")"
-    open_ = [c for c in checks if c.admissible is None]
+    open_ = [c for c in contacts.checks if c.admissible is None]
     if open_:
-        return " (only while " + "; ".join(f"{text(c.multiplier)} ≥ 0" for c in open_) + ")"
+        return " (only while " + "; ".join(f"{text(c.value)} ≥ 0" for c in open_) + ")"
     return ""

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 import sympy
 
 from lagsolve.check.status import Status
+from lagsolve.problem.names import momentum_name
 from lagsolve.render.notation import Notation
 
 if TYPE_CHECKING:
@@ -66,8 +67,9 @@ def label(verdict: Verdict, note: Notation, coordinates: tuple[str, ...] = ()) -
         inner = dataclasses.replace(verdict, name=name.removesuffix(".poisson_bracket"))
         return "{" + label(inner, note, coordinates) + ", H}"
     if verdict.quantity == "conserved":
-        if name.startswith("p_") and name[2:] in coordinates:
-            return "p_" + note.text(sympy.Symbol(name[2:]))
+        conjugate = next((q for q in coordinates if momentum_name(q) == name), None)
+        if conjugate is not None:
+            return momentum_name(note.text(sympy.Symbol(conjugate)))
         return note.text(sympy.Symbol(name))
     if name == "expression":
         return "V_eff"

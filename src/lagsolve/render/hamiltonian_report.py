@@ -1,5 +1,6 @@
-"""The Hamiltonian part of the reports: plain context for ``templates/*/_hamiltonian.*.j2``, the JSON key
-``hamiltonian`` and the terminal lines. Nothing here simplifies (every expression arrives in display form).
+"""The Hamiltonian part of the reports: projections of :class:`~lagsolve.render.sections.hamiltonian.HamiltonianSection`
+onto the templates (``templates/*/_hamiltonian.*.j2``), the JSON key ``hamiltonian`` and the terminal lines.
+Nothing here simplifies (every expression arrives in display form).
 """
 
 from __future__ import annotations
@@ -8,89 +9,64 @@ from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.derivation import Derivation
-from lagsolve.mechanics.hamiltonian import T2_T0_V0, Hamiltonian
 from lagsolve.render.notation import Notation, to_json
+from lagsolve.render.sections.hamiltonian import HamiltonianSection
 
 
-def _back(derivation: Derivation) -> dict[Any, Any]:
-    """Constants of integration written back as the integrals they stand for (as ``contract_forms`` does)."""
-    analysis = derivation.analysis
-    if analysis is None:
-        return {}
-    return {k.constant: k.integral for k in analysis.classification if k.constant is not None}
-
-
-def hamiltonian_context(derivation: Derivation, note: Notation, math: str = "latex") -> dict[str, Any] | None:
+def hamiltonian_context(section: HamiltonianSection, note: Notation, math: str = "latex") -> dict[str, Any] | None:
     """Strings for the Hamiltonian section (None without an analysis); expressions in LaTeX, or in presentation
     MathML when ``math`` is "mathml". ``applies`` False carries the ``reason``."""
-    if derivation.analysis is None:
+    if not section.analysed:
         return None
-    h = derivation.hamiltonian
+    h = section.parts
     if h is None:
-        return {"applies": False, "reason": derivation.hamiltonian_note or "not derived"}
+        return {"applies": False, "reason": section.note or "not derived"}
     tex, text = (note.mathml if math == "mathml" else note.latex), note.text
-    coordinates = []
-    for i, q in enumerate(h.coordinates):
-        coordinates.append({
-            "coordinate": tex(q), "velocity": tex(h.velocities[i]), "momentum": tex(h.momentum_symbols[i]),
-            "momentum_text": text(h.momentum_symbols[i]), "rate_symbol": _dotted(tex(h.momentum_symbols[i]), math),
-            "momentum_value": tex(h.momenta[i]), "inverse": tex(h.inverse[i]), "rate": tex(h.rates[i]),
-            "momentum_rate": tex(_momentum_rate(h, i)), "momentum_rate_text": text(_momentum_rate(h, i)),
-            "rate_text": text(h.rates[i]),
-            "force": tex(h.forces[i]) if h.forces[i] != 0 else "",
-            "dissipation": tex(h.dissipation[i]) if h.dissipation[i] != 0 else "",
-        })
+    coordinates = [{
+        "coordinate": tex(c.coordinate), "velocity": tex(c.velocity), "momentum": tex(c.momentum),
+        "momentum_text": text(c.momentum), "rate_symbol": _dotted(tex(c.momentum), math),
+        "momentum_value": tex(c.momentum_value), "inverse": tex(c.inverse), "rate": tex(c.rate),
+        "momentum_rate": tex(c.momentum_rate), "momentum_rate_text": text(c.momentum_rate),
+        "rate_text": text(c.rate),
+        "force": tex(c.force) if c.force != 0 else "",
+        "dissipation": tex(c.dissipation) if c.dissipation != 0 else "",
+    } for c in h.canonical]
     T2, T1, T0 = h.kinetic_parts
-    linear = any(not b.is_zero for b in h.offset)
-    routhian = None
     r = h.routhian
-    if r is not None:
-        routhian = {
-            "cyclic": [{"coordinate": tex(c), "momentum": tex(p), "velocity": tex(sympy.Symbol(f"{c.name}_dot")),
-                        "value": tex(v), "rate": tex(w)}
-                       for c, p, v, w in zip(r.cyclic, r.momenta, r.velocities, r.cyclic_rates, strict=True)],
-            "expression": tex(r.expression),
-            "equations": [{"coordinate": tex(q), "lhs": tex(lhs), "rhs": tex(rhs)}
-                          for q, (lhs, rhs) in zip(r.coordinates, r.equations, strict=True)],
-            "coordinates": [tex(q) for q in r.coordinates],
-            "single": len(r.coordinates) == 1,
-        }
-    brackets = [{"name": b.name, "symbol": tex(sympy.Symbol(b.name)) if b.name != "energy" else tex(sympy.Symbol("h")),
-                 "quantity": tex(b.quantity), "bracket": tex(b.bracket), "partial_t": tex(b.partial_t),
-                 "forces": tex(b.forces) if b.forces != 0 else "", "rate": tex(b.rate), "status": b.status,
-                 "same": "H" if b.quantity == h.expression else ("momentum" if b.quantity in h.momentum_symbols
-                                                                 and b.name == b.quantity.name else "")}
-                for b in h.brackets]
-    sizes = [sympy.count_ops(e) for e in (h.expression, *h.inverse, *h.rates)]
-    compact = max(sizes) > COMPACT_LIMIT or max(sympy.count_ops(e) for e in h.momentum_rates) > 2 * COMPACT_LIMIT
+    routhian = None if r is None else {
+        "cyclic": [{"coordinate": tex(c.coordinate), "momentum": tex(c.momentum), "velocity": tex(c.velocity),
+                    "value": tex(c.value), "rate": tex(c.rate)} for c in r.cyclic],
+        "expression": tex(r.expression),
+        "equations": [{"coordinate": tex(e.coordinate), "lhs": tex(e.lhs), "rhs": tex(e.rhs)} for e in r.equations],
+        "coordinates": [tex(q) for q in r.coordinates],
+        "single": len(r.coordinates) == 1,
+    }
+    brackets = [{"name": b.name, "symbol": tex(b.symbol), "quantity": tex(b.quantity), "bracket": tex(b.bracket),
+                 "partial_t": tex(b.partial_t), "forces": tex(b.forces) if b.forces != 0 else "", "rate": tex(b.rate),
+                 "status": b.status, "same": b.same} for b in h.brackets]
     return {
         "applies": True,
-        "compact": compact,
+        "compact": h.compact,
         "remainder": tex(h.remainder),
         "coordinates": coordinates,
         "lagrangian": tex(h.lagrangian),
         "mass": tex(h.mass),
-        "offset": tex(h.offset) if linear else "",
-        "velocities": tex(sympy.Matrix(h.velocities)),
-        "momenta_vector": tex(sympy.Matrix(h.momentum_symbols)),
+        "offset": tex(h.offset) if h.offset is not None else "",
+        "velocities": tex(sympy.Matrix([c.velocity for c in h.canonical])),
+        "momenta_vector": tex(sympy.Matrix([c.momentum for c in h.canonical])),
         "diagonal": h.mass.is_diagonal(),
         "expression": tex(h.expression),
         "expression_text": text(h.expression),
         "form": h.form,
-        "magnetic": h.form == T2_T0_V0,
+        "magnetic": h.magnetic,
         "kinetic_two": tex(T2), "kinetic_one": tex(T1) if T1 != 0 else "", "kinetic_zero": tex(T0) if T0 != 0 else "",
         "time_dependent": h.time_dependent,
-        "forces": any(f != 0 for f in h.forces),
-        "dissipation": any(d != 0 for d in h.dissipation),
+        "forces": any(c.force != 0 for c in h.canonical),
+        "dissipation": any(c.dissipation != 0 for c in h.canonical),
         "routhian": routhian,
         "routhian_note": h.routhian_note,
         "brackets": brackets,
     }
-
-
-#: past this many operations H, q̇(q, p) and Hamilton's equations are shown in matrix form (in full in the JSON)
-COMPACT_LIMIT = 45
 
 
 def _dotted(momentum: str, math: str) -> str:
@@ -100,45 +76,35 @@ def _dotted(momentum: str, math: str) -> str:
     return "\\dot{p}" + momentum[1:]
 
 
-def _momentum_rate(h: Hamiltonian, i: int) -> Any:
-    r""":math:`\dot p_i` in full: :math:`-\partial H/\partial q_i + Q_i - \partial\mathcal R/\partial\dot q_i`."""
-    return sympy.Add(h.momentum_rates[i], h.forces[i], h.dissipation[i])
-
-
-def hamiltonian_json(derivation: Derivation) -> dict[str, Any] | None:
+def hamiltonian_json(section: HamiltonianSection) -> dict[str, Any] | None:
     """The ``hamiltonian`` key: ``coordinates``, ``momenta`` (``p_<q>`` in q and q_dot), ``H`` (in q and p),
     ``equations`` (``<q>_dot``, ``p_<q>_dot`` in q and p), ``form``, ``routhian`` (or null) and
     ``poisson_brackets``; ``{"not_applicable": reason}`` where there is none by the physics, null when its
-    stage did not finish (the ``notes`` say why) or there is no analysis."""
-    h = derivation.hamiltonian
+    stage did not finish (the ``notes`` say why) or there is no analysis. Constants of integration are written
+    back as the integrals they stand for (as ``contract_forms`` does)."""
+    h = section.parts
     if h is None:
-        analysis = derivation.analysis
-        stopped = any(n.stage == "hamiltonian" for n in derivation.notes)
-        if analysis is None or stopped or not derivation.hamiltonian_note:
+        if not section.analysed or section.stopped or not section.note:
             return None
-        return {"not_applicable": derivation.hamiltonian_note}
-    back = _back(derivation)
+        return {"not_applicable": section.note}
+    back = dict(section.constants)
 
     def js(expr: Any) -> str:
         return to_json(expr.xreplace(back) if isinstance(expr, sympy.Basic) else expr)
 
-    equations: dict[str, str] = {}
-    for i, q in enumerate(h.coordinates):
-        equations[f"{q.name}_dot"] = js(h.rates[i])
-    for i, p in enumerate(h.momentum_symbols):
-        equations[f"{p.name}_dot"] = js(_momentum_rate(h, i))
+    equations = {f"{c.coordinate.name}_dot": js(c.rate) for c in h.canonical}
+    equations.update({f"{c.momentum.name}_dot": js(c.momentum_rate) for c in h.canonical})
     r = h.routhian
     routhian = None if r is None else {
-        "cyclic": [c.name for c in r.cyclic],
+        "cyclic": [c.coordinate.name for c in r.cyclic],
         "expression": js(r.expression),
-        "velocities": {f"{c.name}_dot": js(v) for c, v in zip(r.cyclic, r.velocities, strict=True)},
-        "equations": {q.name: {"lhs": js(lhs), "rhs": js(rhs)} for q, (lhs, rhs) in zip(r.coordinates, r.equations,
-                                                                                      strict=True)},
+        "velocities": {f"{c.coordinate.name}_dot": js(c.value) for c in r.cyclic},
+        "equations": {e.coordinate.name: {"lhs": js(e.lhs), "rhs": js(e.rhs)} for e in r.equations},
     }
     return {
-        "coordinates": [q.name for q in h.coordinates],
-        "momenta": {p.name: js(v) for p, v in zip(h.momentum_symbols, h.momenta, strict=True)},
-        "velocities": {f"{q.name}_dot": js(v) for q, v in zip(h.coordinates, h.inverse, strict=True)},
+        "coordinates": [c.coordinate.name for c in h.canonical],
+        "momenta": {c.momentum.name: js(c.momentum_value) for c in h.canonical},
+        "velocities": {f"{c.coordinate.name}_dot": js(c.inverse) for c in h.canonical},
         "H": js(h.expression),
         "form": h.form or None,
         "equations": equations,
@@ -150,21 +116,20 @@ def hamiltonian_json(derivation: Derivation) -> dict[str, Any] | None:
     }
 
 
-def hamiltonian_summary(derivation: Derivation, note: Notation) -> list[str]:
+def hamiltonian_summary(section: HamiltonianSection, note: Notation) -> list[str]:
     """Terminal lines: H and Hamilton's equations, or why there is no Hamiltonian."""
-    if derivation.analysis is None:
+    if not section.analysed:
         return []
-    h = derivation.hamiltonian
+    h = section.parts
     if h is None:
-        stopped = any(n.stage == "hamiltonian" for n in derivation.notes)
-        return [] if stopped else [f"  Hamiltonian: not applicable: {derivation.hamiltonian_note}"]
+        return [] if section.stopped else [f"  Hamiltonian: not applicable: {section.note}"]
     text = note.text
     extra = {"T + V": " (= T + V)", "T2 - T0 + V": " (= T2 - T0 + V, not T + V)",
              "T2 - T0 + V0": " (= T2 - T0 + V0)"}.get(h.form, "")
     lines = [f"  Hamiltonian: H = {text(h.expression)}{extra}"]
-    for i, (q, p) in enumerate(zip(h.coordinates, h.momentum_symbols, strict=True)):
-        lines.append(f"    {text(sympy.Symbol(q.name + '_dot'))} = {text(h.rates[i])},  "
-                     f"ṗ{text(p)[1:]} = {text(_momentum_rate(h, i))}")
+    for c in h.canonical:
+        lines.append(f"    {text(sympy.Symbol(c.coordinate.name + '_dot'))} = {text(c.rate)},  "
+                     f"ṗ{text(c.momentum)[1:]} = {text(c.momentum_rate)}")
     if h.routhian is not None:
         lines.append(f"    Routhian R = {text(h.routhian.expression)}")
     return lines

@@ -22,6 +22,7 @@ from sympy.printing.latex import LatexPrinter
 from sympy.printing.mathml import MathMLPresentationPrinter
 from sympy.printing.str import StrPrinter
 
+from lagsolve.problem.names import momentum_name
 from lagsolve.render.breaking import boxed, broken, equation, formula, matrix, vector
 from lagsolve.render.prose import description_segments, render_segments, segments
 
@@ -464,7 +465,7 @@ def symbol_table(names: dict[str, Any], note: Notation) -> dict[str, list[str]]:
     """The problem's names (and ``x_dot``, ``p_x``, ``Q_x`` of each coordinate) → [LaTeX, text] (plain data)."""
     table = {name: [note.latex(sym), note.text(sym)] for name, sym in names.items() if isinstance(sym, sympy.Symbol)}
     for name in note.coordinates:
-        for extra in (f"{name}_dot", f"{name}_ddot", f"p_{name}", f"Q_{name}"):
+        for extra in (f"{name}_dot", f"{name}_ddot", momentum_name(name), f"Q_{name}"):
             sym = sympy.Symbol(extra)
             table[extra] = [note.latex(sym), note.text(sym)]
     return table

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from lagsolve.errors import Issue, SpecError
+from lagsolve.problem.methods import DEFAULT as DEFAULT_METHOD
 
 ProgressCallback = Callable[[int, int], None]  # (runs done, runs in all)
 
@@ -45,7 +46,7 @@ def _as_specs(given: Mapping[str, Any] | Sequence[str] | None, option: str) -> l
 
 def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequence[str] | None = None,
           random: Mapping[str, tuple[float, float]] | Sequence[str] | None = None, runs: int | None = None,
-          seed: int = 0, t_end: float | None = None, method: str = "DOP853", rtol: float = 1e-10,
+          seed: int = 0, t_end: float | None = None, method: str = DEFAULT_METHOD, rtol: float = 1e-10,
           atol: float = 1e-12, poincare: str | None = None, workers: int = 0, scheduler: str | None = None,
           chunk_size: int | None = None, progress: ProgressCallback | None = None) -> Any:
     """Run a problem many times and return one row per run (a :class:`pandas.DataFrame`).

@@ -24,8 +24,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import integrate
 
+from lagsolve.problem.methods import EXPLICIT
+
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0
-METHODS = ("DOP853", "RK45", "RK23")
+METHODS = EXPLICIT  # the batched methods: the explicit ones of the registry
 
 Rhs = Callable[[np.ndarray, np.ndarray, np.ndarray], np.ndarray]  # (t (N,), y (N, d), rows (N,)) -> (N, d)
 

@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from lagsolve.errors import LagsolveError
+from lagsolve.problem.methods import DEFAULT, EXPLICIT
 from lagsolve.sweep.spec import Section
 
 #: samples a per-run integration keeps (the drift of the conserved quantities is measured on them)
@@ -35,7 +36,7 @@ class Settings:
     """How every run of a sweep is integrated."""
 
     t_end: float
-    method: str = "DOP853"
+    method: str = DEFAULT
     rtol: float = 1e-10
     atol: float = 1e-12
     section: Section | None = None
@@ -115,7 +116,7 @@ def run_chunk(text: str, source: str, settings: Settings, inputs: Mapping[str, n
         if name in names:
             parameters[:, names.index(name)] = values
     starts, failures = _initial_states(problem, inputs, parameters, count)
-    batched = problem.batch is not None and settings.method in _BATCH_METHODS
+    batched = problem.batch is not None and settings.method in EXPLICIT
     if batched:
         rows = _batched(problem, settings, parameters, starts, failures)
     else:
@@ -126,8 +127,6 @@ def run_chunk(text: str, source: str, settings: Settings, inputs: Mapping[str, n
     frame = pandas.DataFrame(table)
     return pandas.concat([frame, pandas.DataFrame(rows)], axis=1)
 
-
-_BATCH_METHODS = ("DOP853", "RK45", "RK23")
 
 
 def _initial_states(problem: Compiled, inputs: Mapping[str, np.ndarray], parameters: np.ndarray,

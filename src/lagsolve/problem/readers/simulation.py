@@ -7,6 +7,7 @@ from typing import Any
 import sympy
 
 from lagsolve.problem import expr as gateway
+from lagsolve.problem.methods import METHODS
 from lagsolve.problem.readers.base import Reader, known_names
 from lagsolve.problem.schema import (
     ConcreteFunction,
@@ -16,7 +17,6 @@ from lagsolve.problem.schema import (
 )
 
 _SIMULATION_KEYS = ("values", "functions", "initial", "t_end", "samples", "method", "rtol", "atol")
-_METHODS = ("DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA")
 
 
 class SimulationReader(Reader):
@@ -60,8 +60,8 @@ class SimulationReader(Reader):
             else:
                 samples = raw
         method = spec.get("method")
-        if method is not None and method not in _METHODS:
-            self.issue((*path, "method"), f"unknown method {method!r}", "use one of: " + ", ".join(_METHODS))
+        if method is not None and method not in METHODS:
+            self.issue((*path, "method"), f"unknown method {method!r}", "use one of: " + ", ".join(METHODS))
             method = None
         rtol = self.number((*path, "rtol"), spec["rtol"], positive=True) if "rtol" in spec else None
         atol = self.number((*path, "atol"), spec["atol"], positive=True) if "atol" in spec else None
