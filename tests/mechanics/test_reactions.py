@@ -337,3 +337,38 @@ def test_point_velocity_jacobian_includes_the_rotation():
     assert (J - sympy.Matrix([[1, -s["R"]], [0, 0]])).is_zero_matrix
     force = derived_text(text).constraint_forces["roll"]
     assert force.vector is not None and force.vector[1] == 0
+
+
+def test_a_cylinder_rolling_on_a_sliding_wedge_pushes_along_the_face_and_back_on_the_wedge():
+    """Rolling on a face that moves (on: [cyl, wedge]): the force on the cylinder is the friction along the face,
+    f = m s_ddot/2 from Newton's law for its rotation, (m R^2/2) phi_ddot = f R with s = R phi, and the wedge
+    gets -f at the contact; named on the cylinder alone, no force on the wedge could keep X's work zero."""
+    from lagsolve.mechanics.derivation import derive
+    from lagsolve.problem.load import load_text
+
+    text = """\
+name: Cylinder on a wedge
+parameters: [M, m, R, g, alpha]
+coordinates: [X, s, phi]
+particles:
+  wedge: {mass: M, position: [X, 0]}
+bodies:
+  cyl: {mass: m, position: [X + s*cos(alpha), -s*sin(alpha)], inertia: m*R**2/2, angular_velocity: -phi_dot}
+gravity: [0, -g]
+constraints:
+  roll: {holonomic: s - R*phi, on: [cyl, wedge], at: [X + s*cos(alpha) - R*sin(alpha), -s*sin(alpha) - R*cos(alpha)]}
+"""
+    d = derive(load_text(text, "wedge.yaml"))
+    s = {str(k): v for k, v in d.problem.symbols.items()}
+    m, M, g, a = s["m"], s["M"], s["g"], s["alpha"]
+    # the textbook accelerations (Lagrange by hand): (M + m) X'' + m cos a s'' = 0, m cos a X'' + 3m/2 s'' = m g sin a
+    s_ddot = g * sympy.sin(a) * (M + m) / (sympy.Rational(3, 2) * (M + m) - m * sympy.cos(a) ** 2)
+    assert sympy.simplify(d.accelerations["s"] - s_ddot) == 0
+    force = d.constraint_forces["roll"]
+    (cyl, on_cyl, size), (wedge, on_wedge, _) = force.particles
+    assert (cyl, wedge) == ("cyl", "wedge")
+    friction = m * s_ddot / 2  # up the face, along (-cos a, sin a)
+    along = (-friction * sympy.cos(a), friction * sympy.sin(a))
+    assert all(sympy.simplify(c - e) == 0 for c, e in zip(on_cyl, along, strict=True))
+    assert all(sympy.simplify(c + e) == 0 for c, e in zip(on_wedge, on_cyl, strict=True))
+    assert sympy.simplify(size.subs({a: sympy.Rational(2, 5)}) - friction.subs({a: sympy.Rational(2, 5)})) == 0

@@ -286,6 +286,38 @@ def test_bad_contact_points_are_refused(constraint: str, field: str, words: str)
     assert all(i.line > 0 for i in issues)
 
 
+WEDGE_AND_CYLINDER = """\
+name: Cylinder on a wedge
+parameters: [M, m, R, g, alpha]
+coordinates: [X, s, phi]
+particles:
+  wedge: {mass: M, position: [X, 0]}
+bodies:
+  cyl: {mass: m, position: [X + s*cos(alpha), -s*sin(alpha)], inertia: m*R**2/2, angular_velocity: -phi_dot}
+gravity: [0, -g]
+constraints:
+  roll: {holonomic: s - R*phi, on: ON, at: [X + s*cos(alpha) - R*sin(alpha), -s*sin(alpha) - R*cos(alpha)]}
+"""
+
+
+def test_a_body_pressing_on_a_second_one_is_named_after_it() -> None:
+    """'on: [cyl, wedge]' with 'at:': the body the point belongs to, then the particle (or planar body) it
+    presses on; a one-name list is the body alone."""
+    assert load(WEDGE_AND_CYLINDER.replace("ON", "[cyl, wedge]")).constraints[0].on == ("cyl", "wedge")
+    assert load(WEDGE_AND_CYLINDER.replace("ON", "[cyl]")).constraints[0].on == ("cyl",)
+
+
+@pytest.mark.parametrize(("on", "words"), [
+    ("[cyl, table]", "'table'"), ("[cyl, wedge, wedge]", "at most one"), ("[cyl, cyl]", "'cyl', 'cyl'"),
+    ("[wedge, cyl]", "must name that body (first"), ("[cyl, 3]", "write on: [cyl, OTHER]"),
+])
+def test_bad_pairs_of_a_contact_are_refused(on: str, words: str) -> None:
+    """An unknown second name, three names, the body twice, the body second or a number: exit 2, field, fix."""
+    issues = issues_of(WEDGE_AND_CYLINDER.replace("ON", on))
+    assert any(i.where == "constraints.roll.on" and words in i.message + i.hint for i in issues), issues
+    assert all(i.line > 0 for i in issues)
+
+
 def test_a_point_of_a_3d_body_is_refused_with_the_alternative() -> None:
     """'at:' is for planar bodies: a 3-D body's point is refused, and the fix says what is reported without it."""
     text = """\

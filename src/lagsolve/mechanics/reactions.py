@@ -59,7 +59,7 @@ def reaction(problem: Problem, model: Model, terms: ConstraintTerms) -> Reaction
     a = sympy.Matrix(terms.coefficients)
     spec = next((c for c in problem.constraints if c.name == terms.name), None)
     if spec is not None and spec.at is not None:
-        return _at_point(problem, model, terms, spec.on[0], spec.at)
+        return _at_point(problem, model, terms, spec.on, spec.at)
     if not problem.particles:
         return Reaction(terms.name, (), True, GENERALIZED)
     if not terms.on:
@@ -103,20 +103,39 @@ def point_velocity_jacobian(problem: Problem, model: Model, body: str, point: tu
     return sympy.Matrix.hstack(*columns)
 
 
-def _at_point(problem: Problem, model: Model, terms: ConstraintTerms, body: str,
+def _at_point(problem: Problem, model: Model, terms: ConstraintTerms, on: tuple[str, ...],
               point: tuple[Any, ...]) -> Reaction:
-    """The force of a constraint acting at ``point`` of ``body``: J_Pᵀ f = a with J_P the point's velocity
-    Jacobian (least norm: the components the constraint does not fix are zero)."""
+    """The force of a constraint acting at ``point`` of the body ``on[0]``: J_Pᵀ f = a with J_P the point's
+    velocity Jacobian (least norm: the components the constraint does not fix are zero). With a second name
+    (a particle or planar body the first presses on, a surface that moves) the force on it is -f at the same
+    point, so J_P is the relative velocity's Jacobian: the first body's point minus the point moving with the
+    second."""
+    body = on[0]
     J = point_velocity_jacobian(problem, model, body, point)
+    if len(on) > 1:
+        J = J - _carried(problem, model, on[1], point)
     a = sympy.Matrix(terms.coefficients)
     direction = _least_norm(J, a)
+    where = " and ".join(repr(n) for n in on)
     if direction is None or any(tidy(e) != 0 for e in (J.T * direction - a)):
         return Reaction(terms.name, (), False,
                         f"λ·a is not the generalized force of a force at the point {[str(c) for c in point]} of "
-                        f"{body!r}, so no physical force is claimed; check 'at:' (and that the body's "
+                        f"{where}, so no physical force is claimed; check 'at:' (and that the body's "
                         "angular velocity is counter-clockwise positive)")
-    return Reaction(terms.name, (ParticleForce(body, tuple(tidy(c) for c in direction)),), False,
-                    f"the force on {body} at the point given under 'at:'")
+    force = tuple(tidy(c) for c in direction)
+    if len(on) == 1:
+        return Reaction(terms.name, (ParticleForce(body, force),), False,
+                        f"the force on {body} at the point given under 'at:'")
+    return Reaction(terms.name, (ParticleForce(body, force), ParticleForce(on[1], tuple(-c for c in force))), False,
+                    f"the force on {body} at the point given under 'at:', and its reaction on {on[1]}")
+
+
+def _carried(problem: Problem, model: Model, name: str, point: tuple[Any, ...]) -> sympy.Matrix:
+    r""":math:`\partial\mathbf v/\partial\dot q` of the point ``point`` carried along by the particle (it
+    translates) or planar body ``name``."""
+    if any(b.name == name for b in problem.bodies):
+        return point_velocity_jacobian(problem, model, name, point)
+    return position_jacobian(problem.particle(name).position, model)
 
 
 def _least_norm(J: sympy.Matrix, a: sympy.Matrix) -> sympy.Matrix | None:

@@ -45,13 +45,15 @@ class ConstraintsReader(Reader):
                 self.issue(path, "give exactly one of 'holonomic: psi(q, t)' or 'nonholonomic: a.q_dot + b'")
                 continue
             kind = kinds[0]
-            body = next((b for b in bodies if spec.get("on") == b.name), None)
+            raw_on = spec.get("on")
+            first = raw_on[0] if isinstance(raw_on, list) and raw_on else raw_on
+            body = next((b for b in bodies if first == b.name), None)
             at = None
             if body is not None or "at" in spec:
                 at = self.contact_point(path, spec, body, points)
                 if at is None:
                     continue
-                on: tuple[str, ...] | None = (body.name,) if body is not None else None
+                on: tuple[str, ...] | None = self.contact_pair(path, raw_on, body, particles, bodies)
             else:
                 on = self.constraint_on(path, spec, particles)
             if on is None:
@@ -88,7 +90,8 @@ class ConstraintsReader(Reader):
                       positions: gateway.Namespace) -> tuple[Any, ...] | None:
         """``on: disk`` with ``at: [X, Y - R]``: the point of a planar body where a constraint acts."""
         if body is None:
-            self.issue((*path, "on"), "'at:' names a point of a body; 'on:' must name that body",
+            self.issue((*path, "on"),
+                       "'at:' names a point of a body; 'on:' must name that body (first, when it names two)",
                        known_names("bodies", [n for n in (self.data.get("bodies") or {}) if isinstance(n, str)]))
             return None
         if "at" not in spec:
@@ -106,6 +109,23 @@ class ConstraintsReader(Reader):
                        f"{len(body.position)}", "give it as many components as the body's position")
             return None
         return point
+
+    def contact_pair(self, path: tuple, raw: Any, body: Body | None, particles: list[str],
+                     bodies: list[Body]) -> tuple[str, ...] | None:
+        """``on: disk`` or ``on: [disk, other]``: the body the point belongs to, and the particle or planar body
+        it presses on (which gets the opposite force at the same point: a surface that moves)."""
+        if body is None:
+            return None
+        if not isinstance(raw, list) or len(raw) == 1:
+            return (body.name,)
+        planar = [b.name for b in bodies if b.planar]
+        if len(raw) != 2 or not isinstance(raw[1], str) or raw[1] == body.name or raw[1] not in [*particles, *planar]:
+            self.issue((*path, "on"), f"with 'at:', 'on:' names the body {body.name!r} and at most one particle or "
+                       f"planar body it presses on (found {', '.join(shown(x) for x in raw[:4])})",
+                       "write on: [" + body.name + ", OTHER] with OTHER one of: "
+                       + (", ".join(n for n in [*particles, *planar] if n != body.name) or "(none)"))
+            return None
+        return (body.name, raw[1])
 
     def constraint_on(self, path: tuple, spec: dict, particles: list[str]) -> tuple[str, ...] | None:
         if "on" not in spec:
