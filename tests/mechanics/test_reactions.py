@@ -340,25 +340,10 @@ def test_point_velocity_jacobian_includes_the_rotation():
 
 
 def test_a_cylinder_rolling_on_a_sliding_wedge_pushes_along_the_face_and_back_on_the_wedge():
-    """Rolling on a face that moves (on: [cyl, wedge]): the force on the cylinder is the friction along the face,
-    f = m s_ddot/2 from Newton's law for its rotation, (m R^2/2) phi_ddot = f R with s = R phi, and the wedge
-    gets -f at the contact; named on the cylinder alone, no force on the wedge could keep X's work zero."""
-    from lagsolve.mechanics.derivation import derive
-    from lagsolve.problem.load import load_text
-
-    text = """\
-name: Cylinder on a wedge
-parameters: [M, m, R, g, alpha]
-coordinates: [X, s, phi]
-particles:
-  wedge: {mass: M, position: [X, 0]}
-bodies:
-  cyl: {mass: m, position: [X + s*cos(alpha), -s*sin(alpha)], inertia: m*R**2/2, angular_velocity: -phi_dot}
-gravity: [0, -g]
-constraints:
-  roll: {holonomic: s - R*phi, on: [cyl, wedge], at: [X + s*cos(alpha) - R*sin(alpha), -s*sin(alpha) - R*cos(alpha)]}
-"""
-    d = derive(load_text(text, "wedge.yaml"))
+    """problems/wedge_cylinder.yaml, rolling on a face that moves (on: [cyl, wedge]): the force on the
+    cylinder is the friction along the face, f = m s_ddot/2 from Newton's law for its rotation,
+    (m R^2/2) phi_ddot = f R with s = R phi, and the wedge gets -f at the contact."""
+    d = derived_file("wedge_cylinder")
     s = {str(k): v for k, v in d.problem.symbols.items()}
     m, M, g, a = s["m"], s["M"], s["g"], s["alpha"]
     # the textbook accelerations (Lagrange by hand): (M + m) X'' + m cos a s'' = 0, m cos a X'' + 3m/2 s'' = m g sin a
