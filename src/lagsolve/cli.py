@@ -145,9 +145,10 @@ def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
 @click.option("-o", "--output", type=click.Path(path_type=Path),
               help="Output folder (default out/), or a file name when one file and one --format are given.")
-@click.option("--format", "fmt", type=click.Choice([*EXTENSIONS, "jsonl"]),
+@click.option("--format", "fmts", type=click.Choice([*EXTENSIONS, "jsonl"]), multiple=True,
               help="Only this format; printed to stdout unless -o is given. json with several files prints one "
-                   "array; jsonl prints one result per line.")
+                   "array; jsonl prints one result per line. Repeat it for several formats (with -o DIR, as "
+                   "without --format: DIR/<problem>/).")
 @click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,
               help="CPU seconds allowed for each derivation; a stage that runs out of its share is named "
                    "and the rest is still given.")
@@ -158,7 +159,7 @@ def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
 @click.option("--update-golden", is_flag=True, help="With --golden: write the golden files instead.")
 @click.option("--simulate", "with_simulation", is_flag=True,
               help="Also simulate (the file's simulation block) and embed the figures in the reports.")
-def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeout: float,
+def derive(files: tuple[Path, ...], output: Path | None, fmts: tuple[str, ...], timeout: float,
            templates: Path | None, golden: Path | None, update_golden: bool, with_simulation: bool) -> None:
     """Derive the equations of motion of each problem FILE.
 
@@ -168,6 +169,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     lagsolve derive problems/bead.yaml --format json   # the result contract on stdout
     lagsolve derive problems/*.yaml --format jsonl     # one JSON result per line
     lagsolve derive problems/bead.yaml --format tex -o bead.tex
+    lagsolve derive problems/bead.yaml --format md --format html -o reports/
     lagsolve derive problems/bead.yaml --simulate      # the report with the simulation's figures
     """
     from lagsolve.app.pipeline import SimulationOptions, derive_file
@@ -176,9 +178,15 @@ def derive(files: tuple[Path, ...], output: Path | None, fmt: str | None, timeou
     if update_golden and golden is None:
         raise click.UsageError("--update-golden needs --golden DIR")
 
+    chosen = tuple(dict.fromkeys(fmts))
+    if len(chosen) > 1 and "jsonl" in chosen:
+        raise click.UsageError("--format jsonl prints to stdout alone; give it without other formats")
+    if len(chosen) > 1 and output is None and golden is None:
+        raise click.UsageError(f"several formats ({', '.join(chosen)}) are written as files: give -o DIR")
+    fmt = chosen[0] if len(chosen) == 1 else None
     if fmt == "jsonl" and (output is not None or golden is not None):
         raise click.UsageError("--format jsonl prints to stdout; redirect it, or use --format json with -o")
-    formats = ("json",) if fmt == "jsonl" else (fmt,) if fmt else DEFAULT_FORMATS
+    formats = ("json",) if fmt == "jsonl" else (fmt,) if fmt else chosen or DEFAULT_FORMATS
     stream = fmt == "jsonl" or (fmt == "json" and output is None and golden is None and len(files) > 1)
     texts: list[str] = []
     slugs = [safe_slug(f) for f in files]

@@ -244,3 +244,23 @@ def test_terminal_without_unicode_gets_ascii_notation(tmp_path: Path) -> None:
     check = subprocess.run([sys.executable, "-m", "lagsolve", "check", BEAD], env=env, capture_output=True)
     assert check.returncode == 0, check.stderr.decode("cp1252")
     assert "+ lambda_wire" in check.stdout.decode("cp1252")
+
+
+def test_several_formats_are_written_together(runner: CliRunner, tmp_path: Path) -> None:
+    """--format md --format html -o DIR writes both for each problem in DIR/<problem>/ (and only those)."""
+    result = runner.invoke(main, ["derive", BEAD, HOLE, "--format", "md", "--format", "html", "-o", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    for slug in ("bead", "hole_table"):
+        assert sorted(p.suffix for p in (tmp_path / slug).iterdir() if p.suffix in (".md", ".html", ".tex",
+                                                                                    ".json")) == [".html", ".md"]
+    assert (tmp_path / "bead" / "bead.html").read_text().lstrip().lower().startswith("<!doctype html")
+
+
+@pytest.mark.parametrize(("args", "words"), [
+    (["--format", "md", "--format", "html"], "give -o DIR"),
+    (["--format", "jsonl", "--format", "md", "-o", "x"], "jsonl prints to stdout alone"),
+])
+def test_several_formats_without_a_folder_are_refused(runner: CliRunner, args: list[str], words: str) -> None:
+    """Several formats cannot share stdout, and jsonl is a stream: exit 2 with the fix."""
+    result = runner.invoke(main, ["derive", BEAD, *args])
+    assert result.exit_code == 2 and words in result.stderr
