@@ -21,7 +21,7 @@ def _choices(command: click.Command, option: str) -> list[str]:
 
 def test_cli_formats_and_extensions_come_from_the_registry() -> None:
     """``derive --format`` offers the registry's formats (and jsonl); files get the registry's extensions."""
-    assert _choices(cli.derive, "fmt") == [*FORMATS, "jsonl"]
+    assert _choices(cli.derive, "fmts") == [*FORMATS, "jsonl"]
     assert cli.EXTENSIONS == {"md": ".md", "tex": ".tex", "html": ".html", "json": ".json"}
     assert DEFAULT_FORMATS == ("md", "tex", "json")
 
