@@ -40,3 +40,26 @@ def shipped_reports() -> Callable[[str], Reports]:
         return cache[name]
 
     return reports
+
+
+#: a test function run over at least this many shipped problems runs the whole problem library: it is marked
+#: slow, so `make test-fast` leaves it out (`make test` runs it)
+LIBRARY = 10
+
+
+def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
+    """Mark ``slow`` every test function parametrized over the problem library (whatever its parameter is
+    called): deriving every shipped problem is most of the suite's time."""
+    names = {p.stem for p in PROBLEMS.glob("*.yaml")}
+    over: dict[tuple[str, str], list[pytest.Item]] = {}
+    for item in items:
+        spec = getattr(item, "callspec", None)
+        if spec is None:
+            continue
+        values = [v if isinstance(v, str) else getattr(v, "stem", None) for v in spec.params.values()]
+        if any(isinstance(v, str) and (v in names or Path(v).stem in names) for v in values):
+            over.setdefault((item.nodeid.split("::")[0], getattr(item, "originalname", item.name)), []).append(item)
+    for group in over.values():
+        if len(group) >= LIBRARY:
+            for item in group:
+                item.add_marker(pytest.mark.slow)

@@ -58,6 +58,7 @@ def test_check_hook_fails_on_a_wrong_answer(tmp_path: Path) -> None:
     assert "opposite sign" in result.stdout
 
 
+@pytest.mark.slow
 def test_golden_hook_compares_with_tests_golden(tmp_path: Path) -> None:
     """The golden hook exits 0 when tests/golden holds the problem's reports, and 1 with a diff when one changed."""
     (tmp_path / "problems").mkdir()

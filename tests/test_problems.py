@@ -35,11 +35,13 @@ def derivations(shipped_derivation: Callable[[str], Derivation]) -> dict[str, De
     return {p.stem: shipped_derivation(p.stem) for p in PROBLEMS}
 
 
+@pytest.mark.slow
 def test_reports_match_golden_files(reports: Reports) -> None:
     """Markdown, LaTeX and JSON of every problem equal the reviewed golden files (`make golden` rewrites them)."""
     assert golden_differences(reports, GOLDEN) == []
 
 
+@pytest.mark.slow
 def test_json_has_the_contract_keys(reports: Reports) -> None:
     """The JSON result carries every key of the format's section 2, with one equation per coordinate."""
     data = json.loads(reports.outputs["json"])
@@ -111,6 +113,7 @@ def _agree(derivation: Derivation, got: sympy.Expr, want: sympy.Expr) -> None:
         assert abs(a - b) <= 1e-9 * max(1.0, abs(b)), (got, want, point[0])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", [p.stem for p in PROBLEMS])
 def test_expected_answers_hold(derivations: dict[str, Derivation], name: str) -> None:
     """Every `expected:` answer in a problem file agrees with the derivation at many random states."""

@@ -325,6 +325,7 @@ def test_same_seed_same_states() -> None:
     assert first.verdicts[0].witness == second.verdicts[0].witness
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", PROBLEMS, ids=[p.stem for p in PROBLEMS])
 def test_every_shipped_answer_is_ok(path: Path) -> None:
     """Every `expected:` answer of every problem in problems/ gets the verdict ok (`lagsolve check` passes)."""

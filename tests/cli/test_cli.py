@@ -232,6 +232,7 @@ def test_json_output_writes_no_figure(runner: CliRunner, tmp_path: Path) -> None
     assert sorted(p.name for p in tmp_path.iterdir()) == ["x.json"]
 
 
+@pytest.mark.slow
 def test_terminal_without_unicode_gets_ascii_notation(tmp_path: Path) -> None:
     """With stdout in cp1252 the summary and the check table fall back to ASCII (x_ddot, lambda, +),
     with exit 0 instead of a UnicodeEncodeError traceback."""

@@ -104,6 +104,7 @@ def test_after_release(runner: CliRunner) -> None:
     assert "simulated to t = 3" in go_on.stdout
 
 
+@pytest.mark.slow
 def test_animate_and_show(runner: CliRunner, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """--animate writes a GIF; --show opens each written figure with the system viewer."""
     opened: list[str] = []
@@ -150,6 +151,7 @@ def test_simulation_timeout(runner: CliRunner) -> None:
     assert result.exit_code == 1 and "used up its 1 s CPU budget; raise it with --timeout" in result.stderr
 
 
+@pytest.mark.slow
 def test_tables_do_not_depend_on_hash_seed(tmp_path: Path) -> None:
     """The same run under two PYTHONHASHSEED values writes byte-identical CSV tables (minimal and full
     coordinates, friction, a chaotic system)."""

@@ -216,6 +216,7 @@ def _shipped():
     return shipped()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", _shipped())
 def test_both_routes_agree_on_every_shipped_problem(name):
     """Where minimal coordinates exist, the reduced accelerations equal the multiplier route's."""
@@ -224,6 +225,7 @@ def test_both_routes_agree_on_every_shipped_problem(name):
         assert derivation.analysis.reduced.agreement in ("symbolic", "numeric")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", _shipped())
 def test_expected_conserved_quantities_hold(name):
     """Every `expected: conserved:` answer that the analysis derives under its name (energy, p_<q>) is equal to it on
@@ -248,6 +250,7 @@ def test_expected_conserved_quantities_hold(name):
             assert_same(g, 0)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", _shipped())
 def test_expected_effective_potentials_hold(name):
     """Every `expected: effective_potential:` agrees: same coordinate, V_eff up to a constant, equilibria."""

@@ -355,6 +355,7 @@ def test_rough_tube_acceleration():
     assert exactly_equal(derivation.multipliers["spin"], 2 * m * r * rd * omega * sn**2)
 
 
+@pytest.mark.slow
 def test_coupled_friction_normal_force_closed_form_matches_the_numeric_solve():
     """On the rough-floor ladder the closed-form N (the quadratic's root) equals the per-step numeric N
     and the floor multiplier's size, and the accelerations use the symbol N with that value."""

@@ -118,6 +118,7 @@ def test_no_effective_potential_with_friction_or_several_degrees_of_freedom():
     assert "2 coordinates are left" in derived_file("double_pendulum").analysis.effective_note
 
 
+@pytest.mark.slow
 def test_heavy_top_effective_potential_with_two_momenta():
     """Heavy top: V_eff = m g l cos + (p_phi - p_psi cos)^2/(2 (I1 + m l^2) sin^2) up to a constant; the
     equilibrium relation involves both momenta, so its stability is not claimed."""

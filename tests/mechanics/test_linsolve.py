@@ -34,6 +34,7 @@ def _random_system(seed: int) -> tuple[sympy.Matrix, sympy.Matrix, sympy.Matrix,
     return M, F, A, beta
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", range(4))
 def test_structured_solve_agrees_with_sympy(seed: int) -> None:
     """The block and Schur-complement solve equals SymPy's LU solve of the whole augmented system."""

@@ -149,6 +149,7 @@ def test_ladder_with_a_rough_floor_matches_newton():
         checked += 1
 
 
+@pytest.mark.slow
 def test_several_coupled_contacts_state_the_system_they_solve():
     """Two coupled contacts (floor and wall both rough): each contact gives the equation N = |a + B N| it solves;
     when the signs are not determined N stays a symbol, and either way the equation holds for the value given."""
@@ -199,6 +200,7 @@ def _corner_by_newton(m1: float, m2: float, g: float, mu: float, nu: float, s: f
     return found[0]
 
 
+@pytest.mark.slow
 def test_several_coupled_contacts_with_known_signs_match_newton():
     """Floor and wall both rough and coupled through the link: the signs of a are known, so both N come in closed
     form, substituted in the accelerations, and they agree with Newton's laws solved by hand."""
@@ -252,6 +254,7 @@ def test_no_json_result_keeps_a_normal_force_that_has_a_closed_form(stem):
         assert not _normal_symbols(text) & {str(n) for n in unsolved}, text
 
 
+@pytest.mark.slow
 def test_an_implicit_normal_force_is_shown_by_the_equation_it_solves():
     """Where N stays implicit, the summary and the reports write N = |a + B N| (the system), not N = N."""
     from lagsolve.render.report import summary

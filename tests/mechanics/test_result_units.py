@@ -51,6 +51,7 @@ def test_multiplier_and_force_units(name: str, multipliers: dict[str, str], forc
     assert {k: units.generalized_forces[k] for k in generalized} == generalized
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", SHIPPED_WITH_UNITS)
 def test_derived_results_have_the_predicted_units(name: str) -> None:
     """Independent route: walking each *derived* expression gives the unit predicted from the declared units

@@ -127,6 +127,7 @@ def test_norm_takes_a_shared_factor_out_before_the_squares():
     assert common_factor([x, 0]) == 1 and common_factor([x * v, x * v**2]) == x * v
 
 
+@pytest.mark.slow
 def test_each_derivation_seeds_sympys_random_generator():
     """SymPy's multivariate factorisation draws random evaluation points; a derivation seeds the generator
     first, so the same problem does the same work (and takes the same time) in every process. Without the

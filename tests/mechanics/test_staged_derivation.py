@@ -64,6 +64,7 @@ def _lagranges_method(n: int) -> tuple[sympy.Matrix, sympy.Matrix, list, list]:
     return method.mass_matrix, method.forcing, q, [sympy.diff(c, t) for c in q]
 
 
+@pytest.mark.slow
 def test_four_link_pendulum_gives_the_matrix_form_of_lagranges_method() -> None:
     """The 4-link pendulum's explicit solve is too large, so the result is M q̈ = F, equal to what
     SymPy's LagrangesMethod derives at random states; the note names the stage."""

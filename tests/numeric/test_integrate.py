@@ -34,6 +34,7 @@ def _period(t: np.ndarray, x: np.ndarray) -> float:
     return float(np.mean(np.diff(crossings)))
 
 
+@pytest.mark.slow
 def test_frictionless_bead_conserves_energy_for_100_periods() -> None:
     """A frictionless bead on a wire keeps its energy to 1e-8 over 100 oscillations at default tolerances."""
     first = run(BEAD_SMOOTH, 10.0)
@@ -44,6 +45,7 @@ def test_frictionless_bead_conserves_energy_for_100_periods() -> None:
     assert len(np.where((trajectory.q[:-1, 0] < 0) & (trajectory.q[1:, 0] >= 0))[0]) >= 99
 
 
+@pytest.mark.slow
 def test_cartesian_pendulum_stays_on_its_rod_for_1000_periods() -> None:
     """With projection after every step, a pendulum in x, y keeps x² + y² = l² to 1e-10 for 1000 periods."""
     period = 2 * math.pi * math.sqrt(1.0 / 9.81) * 1.02  # amplitude 30 degrees lengthens it a little
@@ -54,6 +56,7 @@ def test_cartesian_pendulum_stays_on_its_rod_for_1000_periods() -> None:
     assert trajectory.stats["energy_drift"] < 1e-8
 
 
+@pytest.mark.slow
 def test_without_projection_the_rod_drifts() -> None:
     """Projection is what keeps the constraint: an implicit method without per-step projection drifts more."""
     projected = run(CARTESIAN_PENDULUM, 200.0, rtol=1e-6, atol=1e-8)
@@ -62,6 +65,7 @@ def test_without_projection_the_rod_drifts() -> None:
     assert np.max(np.abs(np.hypot(projected.q[:, 0], projected.q[:, 1]) - 1)) < 1e-12
 
 
+@pytest.mark.slow
 def test_small_pendulum_period() -> None:
     """A pendulum released at 0.01 rad swings with period 2π√(l/g) to 1e-6."""
     angle = 0.01

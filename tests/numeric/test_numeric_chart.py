@@ -72,6 +72,7 @@ def _simulated():
     return list(shipped())
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", _simulated())
 def test_minimal_and_full_coordinates_give_the_same_motion(name):
     """Every shipped problem simulates from its file's defaults in both modes; where a chart exists the
@@ -97,6 +98,7 @@ def test_minimal_and_full_coordinates_give_the_same_motion(name):
     assert np.max(np.abs(small.multipliers - full.multipliers)) < 1e-5 * (1 + np.max(np.abs(full.multipliers)))
 
 
+@pytest.mark.slow
 def test_frictionless_bead_in_minimal_coordinates_conserves_energy_for_100_periods():
     """The bead integrated in x alone keeps its energy to 1e-8 over 100 oscillations, y on the wire exactly."""
     derivation = derived_file("bead")

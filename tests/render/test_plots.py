@@ -105,6 +105,7 @@ SHIPPED = ["bead", "double_pendulum", "pendulum_cartesian", "spring_on_rough_flo
            "ladder_rough_floor", "rotating_tube", "bead_on_rotating_hoop", "hole_table"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", SHIPPED)
 def test_no_figure_of_a_shipped_problem_has_an_empty_panel(name: str) -> None:
     """Every Axes of every figure holds data (lines, shading or the sketch), and each title fits its figure."""

@@ -30,6 +30,7 @@ def _children() -> set[int]:
     return found
 
 
+@pytest.mark.slow
 def test_two_workers_give_the_table_of_one_process() -> None:
     """With 2 worker processes and small chunks, batched and per-run problems give identical tables,
     progress reaches every run, and the cluster's processes are gone afterwards."""
@@ -48,6 +49,7 @@ def test_two_workers_give_the_table_of_one_process() -> None:
     assert _children() - before == set()
 
 
+@pytest.mark.slow
 def test_an_existing_cluster_through_the_command_line(tmp_path: Path) -> None:
     """--scheduler ADDRESS runs the chunks on a cluster started elsewhere, and leaves it running."""
     import logging
