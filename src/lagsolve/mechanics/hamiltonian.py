@@ -49,6 +49,7 @@ from typing import TYPE_CHECKING, Any
 
 import sympy
 
+from lagsolve.mechanics.energy import jacobi_integral
 from lagsolve.mechanics.identities import Zero, numerically_zero, proved_zero, zero_status
 from lagsolve.mechanics.linsolve import SIZE_LIMIT
 from lagsolve.mechanics.model import Model, time_derivative
@@ -220,7 +221,8 @@ def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonia
         momentum_rates=momentum_rates, routhian=None, routhian_note="", brackets=(),
         time_dependent=not proved_zero(sympy.diff(H, t)), remainder=remainder)
     routhian, note = routh(model, reduced.generalized_forces, analysis)
-    brackets = tuple(_bracket(result, c.name, c.expression) for c in analysis.conservation.quantities)
+    energy = jacobi_integral(model)
+    brackets = tuple(_bracket(result, c.name, c.expression, energy) for c in analysis.conservation.quantities)
     return dataclasses.replace(result, routhian=routhian, routhian_note=note, brackets=brackets), ""
 
 
@@ -232,10 +234,14 @@ class Squares:
     :math:`(p_\phi - p_\psi\cos\theta)^2/(2I_1\sin^2\theta)`), ``solution`` :math:`A^{-1}w` by back
     substitution (:math:`\dot\psi = p_\psi/I_3 - \cos\theta\,\dot\phi`, written out)."""
 
-    terms: tuple[Any, ...]
     solution: tuple[Any, ...]
     #: (y_k, D_k) of each term, so that term k is y_k**2 / (2 D_k) (in the form shown)
-    pairs: tuple[tuple[Any, Any], ...] = ()
+    pairs: tuple[tuple[Any, Any], ...]
+
+    @property
+    def terms(self) -> tuple[Any, ...]:
+        """The squares :math:`y_k^2/(2D_k)` themselves."""
+        return tuple(_square_term(pair) for pair in self.pairs)
 
 
 def complete_squares(A: sympy.Matrix, w: sympy.Matrix, limit: int = SIZE_LIMIT) -> Squares:
@@ -267,13 +273,12 @@ def complete_squares(A: sympy.Matrix, w: sympy.Matrix, limit: int = SIZE_LIMIT) 
                 M[i][j] = sympy.cancel(M[i][j] - f * M[k][j])
             _guard((y[i], *M[i]), limit)
     pairs = tuple(_square(y[k], pivots[k]) for k in order if y[k] != 0)
-    terms = tuple(sympy.Rational(1, 2) * top**2 / bottom for top, bottom in pairs)
     solution: dict[int, Any] = {}
     for at, k in reversed(list(enumerate(order))):
         later = order[at + 1:]
         solution[k] = sympy.Add(tidy(y[k] / pivots[k]), *(-factors[(i, k)] * solution[i] for i in later))
         _guard((solution[k],), limit)
-    return Squares(terms, tuple(solution[i] for i in range(n)), pairs)
+    return Squares(tuple(solution[i] for i in range(n)), pairs)
 
 
 def _square(y: Any, d: Any) -> tuple[Any, Any]:
@@ -284,7 +289,13 @@ def _square(y: Any, d: Any) -> tuple[Any, Any]:
     if denominator == 1:
         return plain
     cleared = (tidy_sum(numerator), tidy(d * denominator**2))
-    return min((plain, cleared), key=lambda pair: measure(sympy.Rational(1, 2) * pair[0] ** 2 / pair[1]))
+    return min((plain, cleared), key=lambda pair: measure(_square_term(pair)))
+
+
+def _square_term(pair: tuple[Any, Any]) -> Any:
+    """``top**2 / (2 bottom)`` of a pair (top, bottom) of :class:`Squares`."""
+    top, bottom = pair
+    return sympy.Rational(1, 2) * top**2 / bottom
 
 
 def _guard(exprs: tuple[Any, ...], limit: int) -> None:
@@ -396,12 +407,14 @@ def _dissipation(reduced: Any, rayleigh: Any) -> tuple[Any, ...]:
     return tuple(-sympy.diff(R, v) for v in model.velocities)
 
 
-def _bracket(h: Hamiltonian, name: str, expression: Any) -> Bracket:
+def _bracket(h: Hamiltonian, name: str, expression: Any, energy: Any) -> Bracket:
     """The rate of one conserved quantity (in q, q̇), computed from it written in (q, p); shown as ``H``
-    or ``p_<q>`` when it is that."""
+    or ``p_<q>`` when it is that. ``energy`` is the Jacobi integral of the L that H was built from: a
+    quantity equal to it term for term once expanded (a cheap exact test) is H written with the velocities,
+    by the Legendre transform that built H."""
     quantity = h.to_momenta(expression)
-    if _is_jacobi_integral(h, expression):
-        shown, same = h.expression, "symbolic"  # H is h with p put in, by the Legendre transform that built it
+    if sympy.expand(expression - energy) == 0:
+        shown, same = h.expression, "symbolic"
     else:
         shown, same = next(((s, st) for s in (h.expression, *h.momentum_symbols)
                             if (st := _status(quantity - s)) != "differ"), (None, ""))
@@ -418,15 +431,6 @@ def _bracket(h: Hamiltonian, name: str, expression: Any) -> Bracket:
     zero = sympy.Integer(0)
     return Bracket(name, shown if shown is not None else _shortest(quantity), zero if shown is not None else
                    tidy(bracket), tidy(partial_t), tidy(forces), zero, status)
-
-
-def _is_jacobi_integral(h: Hamiltonian, expression: Any) -> bool:
-    r"""``expression`` (in q, q̇) is the Jacobi integral :math:`\sum_i \dot q_i\,\partial L/\partial\dot q_i - L`
-    of the L that H was built from, term for term once expanded (a cheap exact test, no simplification):
-    then it is H written with the velocities, exactly."""
-    L = h.lagrangian
-    jacobi = sum((v * sympy.diff(L, v) for v in h.velocities), sympy.Integer(0)) - L
-    return sympy.expand(expression - jacobi) == 0
 
 
 def claimed_rate(h: Hamiltonian, expression: Any, substitution: Any = None) -> tuple[Any, str]:
