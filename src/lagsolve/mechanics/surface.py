@@ -140,7 +140,7 @@ def newton(residual: Callable[[list[Any]], Iterable[Any]], jacobian: Callable[[l
     x = list(start)
     for _ in range(iterations):
         try:
-            psi = [float(v) if isinstance(v, float) else v for v in residual(x)]
+            psi = list(residual(x))
             if not all(_finite(v) for v in psi):
                 return x, False
             if max((abs(v) for v in psi), default=0.0) < tolerance:
