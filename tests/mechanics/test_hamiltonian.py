@@ -28,7 +28,24 @@ potential: "-q*B0*(x*y_dot - y*x_dot)/2"
 """
 
 
+#: a triple pendulum hung from a support driven sideways: p = A q_dot + b with b != 0 and a dense 3×3 A whose
+#: inverse is long, so H and Hamilton's equations come from the fraction-free inverse (no sum of squares)
+DRIVEN_TRIPLE = """
+name: Triple pendulum on a driven support
+parameters: {m: mass, g: gravity, l: length, a: amplitude, w: angular frequency}
+coordinates: [th1, th2, th3]
+particles:
+  p1: {mass: m, position: [a*cos(w*t) + l*sin(th1), -l*cos(th1)]}
+  p2: {mass: m, position: [a*cos(w*t) + l*sin(th1) + l*sin(th2), -l*cos(th1) - l*cos(th2)]}
+  p3: {mass: m, position: [a*cos(w*t) + l*sin(th1) + l*sin(th2) + l*sin(th3), -l*cos(th1) - l*cos(th2) - l*cos(th3)]}
+gravity: [0, -g]
+"""
+INLINE = {"driven_triple": DRIVEN_TRIPLE}
+
+
 def _derived(name: str):
+    if name in INLINE:
+        return derive(load_text(INLINE[name], f"{name}.yaml"))
     return derive(load_problem(PROBLEMS / f"{name}.yaml"))
 
 
@@ -120,7 +137,8 @@ def test_spherical_pendulum():
 
 
 CASES = ["hole_table", "heavy_top", "bead_on_rotating_hoop", "spherical_pendulum", "double_pendulum",
-         "spring_damper", "driven_oscillator", "moving_support", "wedge", "cone", "atwood", "bowl"]
+         "spring_damper", "driven_oscillator", "moving_support", "wedge", "cone", "atwood", "bowl",
+         "triple_pendulum", "driven_triple"]
 
 
 def _values(symbols, rng):
@@ -169,7 +187,7 @@ def _concrete(expr):
 
 
 @pytest.mark.parametrize("name", ["double_pendulum", "triple_pendulum", "bowl", "heavy_top", "block_two_pendulums",
-                                  "bead", "moving_support"])
+                                  "bead", "moving_support", "driven_triple"])
 def test_hamilton_equations_are_the_numerical_derivatives_of_h(name):
     """Another route than Lagrange's: at random points, q̇ and ṗ equal ∂H/∂p and −∂H/∂q taken by numerical
     differentiation (mpmath, 30 digits) of H itself."""
@@ -189,6 +207,19 @@ def test_hamilton_equations_are_the_numerical_derivatives_of_h(name):
                     numeric = sign * mpmath.diff(along, mpmath.mpf(point.get(x, 1)))  # a cyclic q is not in H
                     value = sympy.N(shown.xreplace(point), 30)
                     assert abs(complex(value) - complex(numeric)) < 1e-12 * max(1, abs(complex(numeric)))
+
+
+@pytest.mark.parametrize(("name", "compact"), [("triple_pendulum", True), ("block_two_pendulums", True),
+                                               ("driven_triple", True), ("double_pendulum", False),
+                                               ("heavy_top", False)])
+def test_a_long_inverse_is_given_in_matrix_form(name, compact):
+    """A dense block of three coordinates with a long inverse: no sum of squares, the reports give the matrix
+    form (the JSON the full forms, checked above); the short ones are written out as squares."""
+    h = _derived(name).hamiltonian
+    assert h.compact is compact
+    if compact:  # H = ½ (p − b)ᵀ q̇(q, p) + U, one term per momentum, not squares of sums
+        assert not any(isinstance(term, sympy.Pow) and term.exp == 2 for term in sympy.Add.make_args(h.expression)
+                       if term.free_symbols & set(h.momentum_symbols))
 
 
 def test_nonholonomic_constraint_makes_it_not_applicable():

@@ -51,7 +51,7 @@ import sympy
 
 from lagsolve.mechanics.energy import jacobi_integral
 from lagsolve.mechanics.identities import Zero, numerically_zero, proved_zero, zero_status
-from lagsolve.mechanics.linsolve import SIZE_LIMIT
+from lagsolve.mechanics.linsolve import SIZE_LIMIT, blocks, solve_structured
 from lagsolve.mechanics.model import Model, time_derivative
 from lagsolve.mechanics.simplify import factor_terms, measure, smallest, tidy, tidy_sum
 from lagsolve.mechanics.stages import Stages, StageSkipped
@@ -114,6 +114,8 @@ class Hamiltonian:
     ``rates`` the right sides of :math:`\dot q = \partial H/\partial p` and ``momentum_rates`` of
     :math:`\dot p = -\partial H/\partial q + Q - \partial\mathcal R/\partial\dot q`.
     ``routhian`` (or ``routhian_note`` why none) and ``brackets`` as in the module docstring.
+    ``compact`` says that H, q̇(q, p) and Hamilton's equations are too long to write out in a report, which then
+    gives them in matrix form (:func:`hamiltonian`); they are still here in full.
     """
 
     time: Any
@@ -137,6 +139,7 @@ class Hamiltonian:
     brackets: tuple[Bracket, ...]
     time_dependent: bool
     remainder: Any = sympy.Integer(0)  # -L(q, 0, t), the part of H free of the momenta
+    compact: bool = False
 
     def to_momenta(self, expr: Any) -> Any:
         """``expr`` (in q, q̇, t) written in (q, p, t): each velocity replaced by :math:`\\dot q(q, p)`."""
@@ -195,14 +198,21 @@ def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonia
     A = sympy.Matrix(n, n, lambda i, j: tidy(sympy.diff(L, qd[i], qd[j])))
     b = sympy.Matrix([tidy(sympy.diff(L, v).xreplace(zero)) for v in qd])
     L0 = L.xreplace(zero)
+    w = sympy.Matrix(P) - b
     try:
-        squares = complete_squares(A, sympy.Matrix(P) - b)
+        long_inverse = _long_inverse(A, w)
+        squares = None if long_inverse is not None else complete_squares(A, w)
     except ValueError:
         return None, ("the matrix A of p = A q_dot + b is singular (a coordinate without inertia): the momenta "
                       "cannot be solved for the velocities")
-    velocities = squares.solution
     remainder = _shortest(-L0)
-    H = sympy.Add(*squares.terms, remainder)
+    if squares is not None:
+        velocities = squares.solution
+        H = sympy.Add(*squares.terms, remainder)
+    else:
+        assert long_inverse is not None
+        velocities = long_inverse
+        H = sympy.Add(*(wi * v / 2 for wi, v in zip(w, velocities, strict=True)), remainder)
     momenta = tuple(tidy_sum(sympy.diff(L, v)) for v in qd)
     form, parts = _statement(model, qd)
     to_p = dict(zip(qd, velocities, strict=True))
@@ -212,18 +222,56 @@ def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonia
     damping = tuple(tidy(d.xreplace(to_p)) for d in raw_dissipation)
     # dq/dt = dH/dp = A^-1 (p - b): the velocities just solved for, in the same form
     rates = tuple(velocities)
-    momentum_rates = tuple(sympy.Add(*(_square_rate(top, bottom, c, P) for top, bottom in squares.pairs),
-                                     _termwise(remainder, c, -1)) for c in q)
+    if squares is not None:
+        momentum_rates = tuple(sympy.Add(*(_square_rate(top, bottom, c, P) for top, bottom in squares.pairs),
+                                         _termwise(remainder, c, -1)) for c in q)
+    else:
+        # -dH/dq at constant p is dL/dq at constant q_dot, with q_dot(q, p) put in (dH = q_dot dp - dL/dq dq
+        # - dL/dt dt): the long inverse is substituted once, not differentiated
+        momentum_rates = tuple(sympy.factor_terms(sympy.diff(L, c)).xreplace(to_p) for c in q)
+    compact = squares is None or _too_long(H, velocities, momentum_rates)
     result = Hamiltonian(
         time=t, coordinates=q, velocities=qd, momentum_symbols=P, momenta=momenta, mass=sympy.ImmutableMatrix(A),
         offset=sympy.ImmutableMatrix(b), inverse=velocities, lagrangian=reduced.lagrangian, expression=H,
         form=form, kinetic_parts=parts, forces=forces, dissipation=damping, rates=rates,
         momentum_rates=momentum_rates, routhian=None, routhian_note="", brackets=(),
-        time_dependent=not proved_zero(sympy.diff(H, t)), remainder=remainder)
+        time_dependent=not proved_zero(sympy.diff(H, t)), remainder=remainder, compact=compact)
     routhian, note = routh(model, reduced.generalized_forces, analysis)
     energy = jacobi_integral(model)
     brackets = tuple(_bracket(result, c.name, c.expression, energy) for c in analysis.conservation.quantities)
     return dataclasses.replace(result, routhian=routhian, routhian_note=note, brackets=brackets), ""
+
+
+#: past this many operations H or q̇(q, p) (twice as many for ṗ) is too long to write out in a report, which then
+#: gives H and Hamilton's equations in matrix form (:attr:`Hamiltonian.compact`)
+COMPACT_LIMIT = 45
+#: an inverse A⁻¹(p − b), solved fraction-free, longer than this (operations in one entry) is not written as a
+#: sum of squares: the reports give the matrix form, and completing the squares would cost far more than
+#: the whole rest of the derivation (the triple pendulum's has 74, the heavy top's, shown, 46)
+INVERSE_LIMIT = 60
+
+
+def _too_long(H: Any, velocities: tuple[Any, ...], momentum_rates: tuple[Any, ...]) -> bool:
+    """H, q̇(q, p) or ṗ is past what a report writes out (:data:`COMPACT_LIMIT`)."""
+    return (max(sympy.count_ops(e) for e in (H, *velocities)) > COMPACT_LIMIT
+            or max(sympy.count_ops(e) for e in momentum_rates) > 2 * COMPACT_LIMIT)
+
+
+def _long_inverse(A: sympy.Matrix, w: sympy.Matrix) -> tuple[Any, ...] | None:
+    """:math:`A^{-1}w` solved fraction-free (:func:`~lagsolve.mechanics.linsolve.solve_structured`) when A has
+    a dense block of three or more coordinates and the solution is longer than :data:`INVERSE_LIMIT`; None
+    when the sum of squares is worth completing (every block of A smaller, or the inverse short).
+    ``ValueError`` when A is singular; :class:`StageSkipped` when the inverse is too large to give at all."""
+    if max(len(group) for group in blocks(A)) < 3:
+        return None
+    try:
+        solution, _ = solve_structured(A, w, sympy.zeros(0, A.rows), sympy.zeros(0, 1), SIZE_LIMIT)
+    except StageSkipped as exc:
+        raise StageSkipped(f"too large: inverting p = A q_dot + b grows past {SIZE_LIMIT} operations per "
+                           "expression") from exc
+    if max(sympy.count_ops(e) for e in solution) <= INVERSE_LIMIT:
+        return None
+    return tuple(sympy.factor_terms(e) for e in solution)
 
 
 @dataclass(frozen=True)

@@ -20,9 +20,6 @@ if TYPE_CHECKING:
 
 Expr = Any
 
-#: past this many operations H, q̇(q, p) and Hamilton's equations are shown in matrix form (in full in the JSON)
-COMPACT_LIMIT = 45
-
 
 @dataclass(frozen=True)
 class Canonical:
@@ -148,11 +145,9 @@ def _parts(h: Hamiltonian) -> HamiltonianParts:
                 "H" if b.quantity == h.expression else ("momentum" if b.quantity in h.momentum_symbols
                                                         and b.name == b.quantity.name else ""))
         for b in h.brackets)
-    sizes = [sympy.count_ops(e) for e in (h.expression, *h.inverse, *h.rates)]
-    compact = max(sizes) > COMPACT_LIMIT or max(sympy.count_ops(e) for e in h.momentum_rates) > 2 * COMPACT_LIMIT
     return HamiltonianParts(
         canonical=canonical, lagrangian=h.lagrangian, mass=h.mass,
         offset=h.offset if any(not b.is_zero for b in h.offset) else None,
         expression=h.expression, form=h.form, magnetic=h.form == T2_T0_V0, kinetic_parts=h.kinetic_parts,
-        time_dependent=h.time_dependent, remainder=h.remainder, compact=compact, routhian=routhian,
+        time_dependent=h.time_dependent, remainder=h.remainder, compact=h.compact, routhian=routhian,
         routhian_note=h.routhian_note, brackets=brackets)
