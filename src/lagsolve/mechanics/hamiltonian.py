@@ -466,9 +466,14 @@ def _bracket(h: Hamiltonian, name: str, expression: Any, energy: Any) -> Bracket
     else:
         shown, same = next(((s, st) for s in (h.expression, *h.momentum_symbols)
                             if (st := _status(quantity - s)) != "differ"), (None, ""))
-    # C = H (the energy): {H, H} = 0 exactly, so the rate is ∂H/∂t + Σ ∂H/∂p Q, taken from H itself rather
-    # than proved 0 from C's longer written form (the triple pendulum's bracket cost more than the rest)
-    bracket, partial_t, forces = h._pieces(h.expression if shown is h.expression else quantity)
+    # C = H (the energy): {H, H} = 0 identically, so the rate is ∂H/∂t + Σ ∂H/∂p Q with ∂H/∂p = q̇(q, p), the
+    # rates already solved, rather than proved 0 from C's longer written form or H differentiated again
+    if shown is h.expression:
+        bracket, partial_t = sympy.Integer(0), sympy.diff(h.expression, h.time)
+        forces = sum((v * (f + d) for v, f, d in zip(h.rates, h.forces, h.dissipation, strict=True)),
+                     sympy.Integer(0))
+    else:
+        bracket, partial_t, forces = h._pieces(quantity)
     rate = bracket + partial_t + forces
     status = _status(rate)
     if status == "symbolic" and same == "numeric":
