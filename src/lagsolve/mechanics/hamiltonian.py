@@ -459,19 +459,28 @@ def _bracket(h: Hamiltonian, name: str, expression: Any, energy: Any) -> Bracket
     """The rate of one conserved quantity (in q, q̇), computed from it written in (q, p); shown as ``H``
     or ``p_<q>`` when it is that. ``energy`` is the Jacobi integral of the L that H was built from: a
     quantity equal to it term for term once expanded (a cheap exact test) is H written with the velocities,
-    by the Legendre transform that built H."""
+    by the Legendre transform that built H; one equal to a momentum ∂L/∂q̇ₖ is pₖ, since q̇(q, p) solves
+    p = ∂L/∂q̇ exactly."""
     quantity = h.to_momenta(expression)
+    momentum = next((p for p, value in zip(h.momentum_symbols, h.momenta, strict=True)
+                     if sympy.expand(expression - value) == 0), None)
     if sympy.expand(expression - energy) == 0:
         shown, same = h.expression, "symbolic"
+    elif momentum is not None:
+        shown, same = momentum, "symbolic"
     else:
         shown, same = next(((s, st) for s in (h.expression, *h.momentum_symbols)
                             if (st := _status(quantity - s)) != "differ"), (None, ""))
     # C = H (the energy): {H, H} = 0 identically, so the rate is ∂H/∂t + Σ ∂H/∂p Q with ∂H/∂p = q̇(q, p), the
-    # rates already solved, rather than proved 0 from C's longer written form or H differentiated again
+    # rates already solved, rather than proved 0 from C's longer written form or H differentiated again;
+    # C = pₖ: {pₖ, H} = −∂H/∂qₖ, the momentum's rate already derived, and ∂pₖ/∂p Q = Qₖ
     if shown is h.expression:
         bracket, partial_t = sympy.Integer(0), sympy.diff(h.expression, h.time)
         forces = sum((v * (f + d) for v, f, d in zip(h.rates, h.forces, h.dissipation, strict=True)),
                      sympy.Integer(0))
+    elif shown is not None and shown in h.momentum_symbols:
+        k = h.momentum_symbols.index(shown)
+        bracket, partial_t, forces = h.momentum_rates[k], sympy.Integer(0), h.forces[k] + h.dissipation[k]
     else:
         bracket, partial_t, forces = h._pieces(quantity)
     rate = bracket + partial_t + forces
