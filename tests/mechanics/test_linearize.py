@@ -41,6 +41,41 @@ def test_double_pendulum_other_equilibria_are_unstable():
     assert len(up) == 3 and all(m.stable is False for m in up)
 
 
+GENERAL_DOUBLE = """
+name: Double pendulum with unequal masses and lengths
+parameters: {m1: upper mass, m2: lower mass, l1: upper length, l2: lower length, g: gravity}
+coordinates: [a, b]
+particles:
+  p1: {mass: m1, position: [l1*sin(a), -l1*cos(a)]}
+  p2: {mass: m2, position: [l1*sin(a) + l2*sin(b), -l1*cos(a) - l2*cos(b)]}
+gravity: [0, -g]
+"""
+
+
+def test_general_double_pendulum_is_stable_hanging_down():
+    """ω² = g(S ∓ √R)/(2 m1 l1 l2) with S = (m1 + m2)(l1 + l2), R = (m1 + m2)(S(l1 + l2) − 4 m1 l1 l2)
+    (Taylor 11.4, numerically equal at random parameters): neither sign follows from the factors, yet both are
+    positive, since K is positive definite (Sylvester); every other equilibrium is unstable."""
+    import random
+
+    d = derived_text(GENERAL_DOUBLE)
+    s = names(d.problem)
+    m1, m2, l1, l2, g = (s[k] for k in ("m1", "m2", "l1", "l2", "g"))
+    S = (m1 + m2) * (l1 + l2)
+    R = (m1 + m2) * ((m1 + m2) * (l1 + l2) ** 2 - 4 * m1 * l1 * l2)
+    textbook = [g * (S - sympy.sqrt(R)) / (2 * m1 * l1 * l2), g * (S + sympy.sqrt(R)) / (2 * m1 * l1 * l2)]
+    modes = d.analysis.linearization.modes
+    down = next(m for m in modes if all(v == 0 for _, v in m.point))
+    assert down.stable is True and all(f is not None for f in down.frequencies)
+    rng = random.Random(5)
+    for _ in range(10):
+        at = {x: sympy.Float(rng.uniform(0.2, 4.0)) for x in (m1, m2, l1, l2, g)}
+        got = sorted(float(w.xreplace(at)) for w in down.squared_frequencies)
+        want = sorted(float(w.xreplace(at)) for w in textbook)
+        assert all(abs(a - b) < 1e-12 * b for a, b in zip(got, want, strict=True))
+    assert sorted(m.stable for m in modes) == [False, False, False, True]
+
+
 def test_damping_gives_d_and_no_modes():
     """With a damper the linearization carries D = diag(c, 0) and says the modes are not computed."""
     coupled = derived_text(COUPLED)

@@ -222,7 +222,15 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
             ordered = sorted((tidy(r) for r, k in roots.items() for _ in range(k)), key=sympy.default_sort_key)
             squares = tuple(ordered)
             signs = [sign_core(r)[0] for r in squares]
-            stable = False if any(x == -1 for x in signs) else (True if all(x == 1 for x in signs) else None)
+            if None in signs and -1 not in signs:
+                definite = _definiteness(M0, K)
+                if definite == 1:
+                    signs = [1] * len(signs)  # K positive definite: every ω² is positive
+                elif definite == -1:
+                    signs = [-1 if x is None else x for x in signs] if signs.count(None) == 1 else signs
+                    stable = False
+            if stable is None:
+                stable = False if -1 in signs else (True if all(x == 1 for x in signs) else None)
             frequencies = tuple(tidy(sympy.sqrt(r)) if x == 1 else None for r, x in zip(squares, signs, strict=True))
     if free:
         # along the continuum ω² = 0 is neutral: stable only in the other directions, so not decided here
@@ -230,6 +238,28 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
         note = _continuum_note(free, K.rows) + (f"; {note}" if note else "")
     return Mode(point, sympy.ImmutableMatrix(M0), sympy.ImmutableMatrix(G), sympy.ImmutableMatrix(D),
                 sympy.ImmutableMatrix(K), squares, frequencies, stable, note, free)
+
+
+def _definiteness(M0: Any, K: Any) -> int | None:
+    r"""+1 when every ω² of :math:`\det(K - \omega^2 M_0) = 0` is positive, -1 when one is negative, None when
+    that is not decided. With :math:`M_0` positive definite (its leading principal minors positive), the ω²
+    have the signs of K's eigenvalues (Sylvester's law of inertia): all positive when K's leading principal
+    minors are (Sylvester's criterion), one negative at least when a diagonal entry of K is negative
+    (:math:`e_i^T K e_i < 0`) or det K is (an odd number of negative eigenvalues). The general double
+    pendulum's ω² at rest, :math:`g(S \mp \sqrt{R})/(2 m_1 l_1 l_2)`, have no sign the factors alone
+    give; its K = diag(...) has."""
+    n = K.rows
+
+    def minors(matrix: Any) -> list[int | None]:
+        return [sign_core(sympy.factor(_determinant(matrix[:k, :k])))[0] for k in range(1, n + 1)]
+
+    if any(x != 1 for x in minors(M0)):
+        return None
+    if all(x == 1 for x in minors(K)):
+        return 1
+    if any(sign_core(K[i, i])[0] == -1 for i in range(n)) or sign_core(sympy.factor(_determinant(K)))[0] == -1:
+        return -1
+    return None
 
 
 def _exact(matrix: Any) -> Any:
