@@ -211,3 +211,25 @@ def test_agreement_sentence_is_written_once_for_markdown_and_latex(bead: Derivat
     phrase = changed.analysis.reduced.agreement_text[0]
     assert any(line.startswith("  minimal coordinates: ") and line.endswith(f"({phrase})")
                for line in sections_summary(changed).splitlines())
+
+
+def test_a_compact_hamiltonian_is_projected_in_matrix_form() -> None:
+    """With a long inverse (the triple pendulum) the reports and the terminal give H = ½ pᵀA⁻¹p + U: the long
+    q̇(q, p), H and ṗ are not printed for them (only the JSON carries them in full)."""
+    from pathlib import Path
+
+    from lagsolve.mechanics.derivation import derive
+    from lagsolve.problem.load import load_problem
+
+    derivation = derive(load_problem(Path(__file__).resolve().parents[2] / "problems" / "triple_pendulum.yaml"))
+    sections = build(derivation)
+    assert sections.hamiltonian.parts.compact
+    context = sections_context(sections)["hamiltonian"]
+    assert context["expression"] == "" and context["remainder"]
+    assert all(c["inverse"] == c["momentum_rate"] == "" and c["momentum_value"] for c in context["coordinates"])
+    summary = sections_summary(sections)
+    assert "H = 1/2 p^T A^-1 p + U (= T + V), U = " in summary and "ṗ" not in summary
+    data = sections_json(sections)["hamiltonian"]
+    assert set(data["equations"]) == {"theta1_dot", "theta2_dot", "theta3_dot", "p_theta1_dot", "p_theta2_dot",
+                                      "p_theta3_dot"}
+    assert "p_theta1" in data["H"]

@@ -22,12 +22,16 @@ def hamiltonian_context(section: HamiltonianSection, note: Notation, math: str =
     if h is None:
         return {"applies": False, "reason": section.note or "not derived"}
     tex, text = (note.mathml if math == "mathml" else note.latex), note.text
+    # in matrix form (compact) the templates show neither q̇(q, p), H nor Hamilton's equations written out: they
+    # are not printed at all (with a long inverse, printing them cost more than the whole derivation)
+    full = (lambda e: "") if h.compact else tex
+    full_text = (lambda e: "") if h.compact else text
     coordinates = [{
         "coordinate": tex(c.coordinate), "velocity": tex(c.velocity), "momentum": tex(c.momentum),
         "momentum_text": text(c.momentum), "rate_symbol": _dotted(tex(c.momentum), math),
-        "momentum_value": tex(c.momentum_value), "inverse": tex(c.inverse), "rate": tex(c.rate),
-        "momentum_rate": tex(c.momentum_rate), "momentum_rate_text": text(c.momentum_rate),
-        "rate_text": text(c.rate),
+        "momentum_value": tex(c.momentum_value), "inverse": full(c.inverse), "rate": full(c.rate),
+        "momentum_rate": full(c.momentum_rate), "momentum_rate_text": full_text(c.momentum_rate),
+        "rate_text": full_text(c.rate),
         "force": tex(c.force) if c.force != 0 else "",
         "dissipation": tex(c.dissipation) if c.dissipation != 0 else "",
     } for c in h.canonical]
@@ -41,7 +45,9 @@ def hamiltonian_context(section: HamiltonianSection, note: Notation, math: str =
         "coordinates": [tex(q) for q in r.coordinates],
         "single": len(r.coordinates) == 1,
     }
-    brackets = [{"name": b.name, "symbol": tex(b.symbol), "quantity": tex(b.quantity), "bracket": tex(b.bracket),
+    # a quantity that is H or a momentum is shown by that name alone
+    brackets = [{"name": b.name, "symbol": tex(b.symbol), "quantity": "" if b.same else tex(b.quantity),
+                 "bracket": tex(b.bracket),
                  "partial_t": tex(b.partial_t), "forces": tex(b.forces) if b.forces != 0 else "", "rate": tex(b.rate),
                  "status": b.status, "same": b.same} for b in h.brackets]
     return {
@@ -55,8 +61,8 @@ def hamiltonian_context(section: HamiltonianSection, note: Notation, math: str =
         "velocities": tex(sympy.Matrix([c.velocity for c in h.canonical])),
         "momenta_vector": tex(sympy.Matrix([c.momentum for c in h.canonical])),
         "diagonal": h.mass.is_diagonal(),
-        "expression": tex(h.expression),
-        "expression_text": text(h.expression),
+        "expression": full(h.expression),
+        "expression_text": full_text(h.expression),
         "form": h.form,
         "magnetic": h.magnetic,
         "kinetic_two": tex(T2), "kinetic_one": tex(T1) if T1 != 0 else "", "kinetic_zero": tex(T0) if T0 != 0 else "",
@@ -126,8 +132,13 @@ def hamiltonian_summary(section: HamiltonianSection, note: Notation) -> list[str
     text = note.text
     extra = {"T + V": " (= T + V)", "T2 - T0 + V": " (= T2 - T0 + V, not T + V)",
              "T2 - T0 + V0": " (= T2 - T0 + V0)"}.get(h.form, "")
-    lines = [f"  Hamiltonian: H = {text(h.expression)}{extra}"]
-    for c in h.canonical:
+    if h.compact:  # as the reports give it: the matrix form (the JSON has H and the equations in full)
+        w = "(p - b)" if h.offset is not None else "p"
+        lines = [f"  Hamiltonian: H = 1/2 {w}^T A^-1 {w} + U{extra}, U = {text(h.remainder)} (matrix form: the "
+                 "inverse is long; the JSON has H and Hamilton's equations in full)"]
+    else:
+        lines = [f"  Hamiltonian: H = {text(h.expression)}{extra}"]
+    for c in () if h.compact else h.canonical:
         lines.append(f"    {text(sympy.Symbol(c.coordinate.name + '_dot'))} = {text(c.rate)},  "
                      f"ṗ{text(c.momentum)[1:]} = {text(c.momentum_rate)}")
     if h.routhian is not None:
