@@ -461,14 +461,17 @@ def _bracket(h: Hamiltonian, name: str, expression: Any, energy: Any) -> Bracket
     quantity equal to it term for term once expanded (a cheap exact test) is H written with the velocities,
     by the Legendre transform that built H; one equal to a momentum ∂L/∂q̇ₖ is pₖ, since q̇(q, p) solves
     p = ∂L/∂q̇ exactly."""
-    quantity = h.to_momenta(expression)
-    momentum = next((p for p, value in zip(h.momentum_symbols, h.momenta, strict=True)
-                     if sympy.expand(expression - value) == 0), None)
-    if sympy.expand(expression - energy) == 0:
+    quantity = None  # C written in (q, p), only when it is neither H nor a momentum
+    is_energy = sympy.expand(expression - energy) == 0
+    momentum = None if is_energy else next(
+        (p for p, value in zip(h.momentum_symbols, h.momenta, strict=True) if sympy.expand(expression - value) == 0),
+        None)
+    if is_energy:
         shown, same = h.expression, "symbolic"
     elif momentum is not None:
         shown, same = momentum, "symbolic"
     else:
+        quantity = h.to_momenta(expression)
         shown, same = next(((s, st) for s in (h.expression, *h.momentum_symbols)
                             if (st := _status(quantity - s)) != "differ"), (None, ""))
     # C = H (the energy): {H, H} = 0 identically, so the rate is ∂H/∂t + Σ ∂H/∂p Q with ∂H/∂p = q̇(q, p), the
@@ -476,8 +479,8 @@ def _bracket(h: Hamiltonian, name: str, expression: Any, energy: Any) -> Bracket
     # C = pₖ: {pₖ, H} = −∂H/∂qₖ, the momentum's rate already derived, and ∂pₖ/∂p Q = Qₖ
     if shown is h.expression:
         bracket, partial_t = sympy.Integer(0), sympy.diff(h.expression, h.time)
-        forces = sum((v * (f + d) for v, f, d in zip(h.rates, h.forces, h.dissipation, strict=True)),
-                     sympy.Integer(0))
+        forces = sum((v * (f + d) for v, f, d in zip(h.rates, h.forces, h.dissipation, strict=True)
+                      if f + d != 0), sympy.Integer(0))
     elif shown is not None and shown in h.momentum_symbols:
         k = h.momentum_symbols.index(shown)
         bracket, partial_t, forces = h.momentum_rates[k], sympy.Integer(0), h.forces[k] + h.dissipation[k]

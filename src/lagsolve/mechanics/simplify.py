@@ -301,10 +301,20 @@ def tidy(expr: Any) -> Any:
     best = smallest(candidates)
     candidates += signs(best)  # v/|v| appears only once roots of squares became Abs: look at the best form
     best = smallest(candidates)
-    if ops(best) <= SIMPLIFY_LIMIT and not best.has(*_TRIG):
+    if ops(best) <= SIMPLIFY_LIMIT and not best.has(*_TRIG) and not _scaled_number(best):
         with contextlib.suppress(*_ERRORS):
             candidates.append(sympy.simplify(best))
     return smallest(candidates)
+
+
+def _scaled_number(expr: Any) -> bool:
+    """``expr`` is a number times powers of symbols, ``g*(2 + sqrt(2))/l`` or ``sqrt(g)*sqrt(2 - sqrt(2))/sqrt(l)``
+    (the squared frequencies of a double pendulum and their roots). SymPy's ``simplify`` leaves the number of such
+    a product as it is (it neither denests nor rationalises) and has nothing else to rewrite, while the other
+    rewritings of :func:`tidy` already take a common factor out of the number; it is not called for them (at two
+    degrees of freedom it was a fifth of the whole derivation, for no change)."""
+    return all(not f.free_symbols or f.is_Symbol or (f.is_Pow and f.base.is_Symbol and f.exp.is_Rational)
+               for f in sympy.Mul.make_args(expr))
 
 
 def _monomial(expr: Any) -> bool:
