@@ -251,13 +251,13 @@ def _definiteness(M0: Any, K: Any) -> int | None:
     n = K.rows
 
     def minors(matrix: Any) -> list[int | None]:
-        return [sign_core(sympy.factor(_determinant(matrix[:k, :k])))[0] for k in range(1, n + 1)]
+        return [sign_core(_determinant(matrix[:k, :k]))[0] for k in range(1, n + 1)]  # sign_core factors
 
     if any(x != 1 for x in minors(M0)):
         return None
     if all(x == 1 for x in minors(K)):
         return 1
-    if any(sign_core(K[i, i])[0] == -1 for i in range(n)) or sign_core(sympy.factor(_determinant(K)))[0] == -1:
+    if any(sign_core(K[i, i])[0] == -1 for i in range(n)) or sign_core(_determinant(K))[0] == -1:
         return -1
     return None
 
