@@ -33,6 +33,7 @@ from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.energy import jacobi_integral
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.model import Model
+from lagsolve.mechanics.partials import partial
 from lagsolve.mechanics.simplify import tidy, tidy_sum
 from lagsolve.mechanics.surface import on_surface
 from lagsolve.problem.names import momentum_name
@@ -170,9 +171,9 @@ def conserved_quantities(system: MotionSystem, *, friction: bool = False) -> Con
     for i, q in enumerate(model.coordinates):
         # only a_jk matters: dp_k/dt = dL/dq_k + Q_k + sum_j lambda_j a_jk (q_k may sit in other coefficients)
         involved = any(not proved_zero(c.coefficients[i]) for c in system.constraints)
-        if involved or not proved_zero(sympy.diff(L, q)) or not proved_zero(system.generalized_forces[i]):
+        if involved or not proved_zero(partial(L, q)) or not proved_zero(system.generalized_forces[i]):
             continue
-        momentum = sympy.diff(L, model.velocities[i])
+        momentum = partial(L, model.velocities[i])
         if momentum == 0:
             continue
         cyclic.append(q)
@@ -200,7 +201,7 @@ def _unverified(system: MotionSystem) -> str:
 def _jacobi(system: MotionSystem, friction: bool, notes: list[str]) -> Conserved | None:
     model = system.model
     L = model.lagrangian
-    if not proved_zero(sympy.diff(L, model.time)):
+    if not proved_zero(partial(L, model.time)):
         notes.append("energy: not conserved, L depends explicitly on the time")
         return None
     power = on_surface(sum((f * v for f, v in zip(system.generalized_forces, model.velocities, strict=True)),

@@ -13,9 +13,10 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.model import Model
+from lagsolve.mechanics.partials import partial
 
 
 def jacobi_integral(model: Model) -> Any:
     r""":math:`h = \sum_i \dot q_i\,\partial L/\partial\dot q_i - L` of ``model``'s Lagrangian (raw, unsimplified)."""
     L = model.lagrangian
-    return sum((v * sympy.diff(L, v) for v in model.velocities), sympy.Integer(0)) - L
+    return sum((v * partial(L, v) for v in model.velocities), sympy.Integer(0)) - L

@@ -53,6 +53,7 @@ from lagsolve.mechanics.energy import jacobi_integral
 from lagsolve.mechanics.identities import Zero, numerically_zero, proved_zero, zero_status
 from lagsolve.mechanics.linsolve import SIZE_LIMIT, blocks, solve_structured
 from lagsolve.mechanics.model import Model, time_derivative
+from lagsolve.mechanics.partials import partial
 from lagsolve.mechanics.simplify import factor_terms, measure, smallest, tidy, tidy_sum
 from lagsolve.mechanics.stages import Stages, StageSkipped
 from lagsolve.problem.names import momentum_symbol
@@ -189,14 +190,14 @@ def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonia
         return None, f"there are no minimal coordinates: {reason}"
     model = reduced.model
     L = model.lagrangian
-    if any(sympy.diff(L, v, 3) != 0 for v in model.velocities):
+    if any(partial(L, v, v, v) != 0 for v in model.velocities):
         return None, "L is not quadratic in the velocities, so p = dL/dq_dot cannot be inverted as a linear system"
     q, qd, t = model.coordinates, model.velocities, model.time
     n = len(q)
     P = tuple(momentum_symbol(c) for c in q)
     zero = {v: sympy.Integer(0) for v in qd}
-    A = sympy.Matrix(n, n, lambda i, j: tidy(sympy.diff(L, qd[i], qd[j])))
-    b = sympy.Matrix([tidy(sympy.diff(L, v).xreplace(zero)) for v in qd])
+    A = sympy.Matrix(n, n, lambda i, j: tidy(partial(L, qd[i], qd[j])))
+    b = sympy.Matrix([tidy(partial(L, v).xreplace(zero)) for v in qd])
     L0 = L.xreplace(zero)
     w = sympy.Matrix(P) - b
     try:
@@ -213,7 +214,7 @@ def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonia
         assert long_inverse is not None
         velocities = long_inverse
         H = sympy.Add(*(wi * v / 2 for wi, v in zip(w, velocities, strict=True)), remainder)
-    momenta = tuple(tidy_sum(sympy.diff(L, v)) for v in qd)
+    momenta = tuple(tidy_sum(partial(L, v)) for v in qd)
     form, parts = _statement(model, qd)
     to_p = dict(zip(qd, velocities, strict=True))
     raw_dissipation = _dissipation(reduced, dissipation)
@@ -228,7 +229,7 @@ def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonia
     else:
         # -dH/dq at constant p is dL/dq at constant q_dot, with q_dot(q, p) put in (dH = q_dot dp - dL/dq dq
         # - dL/dt dt): the long inverse is substituted once, not differentiated
-        momentum_rates = tuple(sympy.factor_terms(sympy.diff(L, c)).xreplace(to_p) for c in q)
+        momentum_rates = tuple(sympy.factor_terms(partial(L, c)).xreplace(to_p) for c in q)
     compact = squares is None or _too_long(H, velocities, momentum_rates)
     result = Hamiltonian(
         time=t, coordinates=q, velocities=qd, momentum_symbols=P, momenta=momenta, mass=sympy.ImmutableMatrix(A),
