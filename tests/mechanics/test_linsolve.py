@@ -75,3 +75,24 @@ def test_solve_linear_with_several_right_hand_sides() -> None:
     system = sympy.Matrix([[a, 1], [1, b]])
     rhs = sympy.Matrix([[1, 0], [0, 1]])
     assert sympy.simplify(solve_linear(system, rhs) - system.inv()) == sympy.zeros(2, 2)
+
+
+def test_ring_solution_is_written_as_sympy_cancel_writes_it() -> None:
+    """Entries of a fraction-free solve (sines, cosines, a declared function's derivative and symbols whose
+    names sort in several ways) come out in sympy.cancel's own form, tree for tree, and equal an
+    independent solve (Cramer's rule, cancelled by SymPy)."""
+    a, b, m, l, z = sympy.symbols("a b m l z_1")
+    f = sympy.Function("f")
+    c, s = sympy.cos(a - b), sympy.sin(b)
+    system = sympy.Matrix([[2 * m * l**2, -m * l**2 * c, 0], [-m * l**2 * c, m * l**2, z * s],
+                           [0, z * s, 3 + f(a).diff(a)]])
+    rhs = sympy.Matrix([[-m * sympy.sin(a), 1], [l * z * s * c, -2], [b * m - 1, 7 * c]])
+    solution = solve_linear(system, rhs)
+    determinant = system.det()
+    for j in range(rhs.cols):
+        for i in range(system.rows):
+            replaced = system.copy()
+            replaced[:, i] = rhs[:, j]
+            expected = sympy.cancel(replaced.det() / determinant)
+            assert sympy.srepr(solution[i, j]) == sympy.srepr(sympy.cancel(solution[i, j]))
+            assert sympy.expand(solution[i, j] - expected) == 0 or sympy.cancel(solution[i, j] - expected) == 0
