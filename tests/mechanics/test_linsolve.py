@@ -81,7 +81,7 @@ def test_ring_solution_is_written_as_sympy_cancel_writes_it() -> None:
     """Entries of a fraction-free solve (sines, cosines, a declared function's derivative and symbols whose
     names sort in several ways) come out in sympy.cancel's own form, tree for tree, and equal an
     independent solve (Cramer's rule, cancelled by SymPy)."""
-    a, b, m, l, z = sympy.symbols("a b m l z_1")
+    a, b, m, l, z = sympy.symbols("a b m l z_1")  # noqa: E741 - the rod length
     f = sympy.Function("f")
     c, s = sympy.cos(a - b), sympy.sin(b)
     system = sympy.Matrix([[2 * m * l**2, -m * l**2 * c, 0], [-m * l**2 * c, m * l**2, z * s],

@@ -7,7 +7,7 @@ import sympy
 
 from lagsolve.mechanics.partials import _engine, partial
 
-m, l, g, k = sympy.symbols("m l g k", positive=True)
+m, l, g, k = sympy.symbols("m l g k", positive=True)  # noqa: E741 - the rod length
 a, b, t = sympy.symbols("th1 th2 t", real=True)
 ad, bd = sympy.symbols("th1_dot th2_dot", real=True)
 

@@ -176,3 +176,23 @@ def test_factor_terms_leaves_other_shapes_to_sympy():
     odd = sympy.exp(-(_p + 2)) * _q + sympy.sqrt(_p) * _q + sympy.sin(_p / 2 + _q / 2)
     assert _plain_factor_terms(odd) is None
     assert factor_terms(odd) == sympy.factor_terms(odd)
+
+
+@pytest.mark.parametrize(("expr", "expected"), [
+    ("g*(2 - sqrt(2))/l", "g*(2 - sqrt(2))/l"),
+    ("g*(-2 - sqrt(2))/l", "-g*(sqrt(2) + 2)/l"),
+    ("g*(6 - 2*sqrt(3))/(4*l)", "g*(3 - sqrt(3))/(2*l)"),
+    ("g*(sqrt(2) + 2)**2/l", "g*(4*sqrt(2) + 6)/l"),
+    ("sqrt(g)*sqrt(2 - sqrt(2))/sqrt(l)", "sqrt(g)*sqrt(2 - sqrt(2))/sqrt(l)"),
+    ("2**(1/4)*sqrt(g)/sqrt(l)", "2**(1/4)*sqrt(g)/sqrt(l)"),
+])
+def test_tidy_of_a_number_times_powers_of_symbols(expr, expected):
+    """A squared frequency (a number times a monomial) keeps its radicals, its number's common factor out, or
+    expanded when that is shorter; equal to the input at every point (checked by SymPy's own rewriting)."""
+    g, l = sympy.symbols("g l", positive=True)  # noqa: E741 - the rod length
+    names = {"g": g, "l": l}
+    value = sympy.sympify(expr, locals=names)  # test data, not a problem file
+    result = tidy(value)
+    assert sympy.sstr(result) == expected
+    assert sympy.nsimplify(sympy.expand(result - value)) == 0
+    assert measure(result) <= measure(value)

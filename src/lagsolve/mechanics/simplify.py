@@ -280,6 +280,8 @@ def tidy(expr: Any) -> Any:
     if ops(expr) > TIDY_LIMIT:
         # a governor: factor and cancel on a large expression cost far more than they gain
         return smallest([expr, factor_terms(expr)])
+    if _scaled_number(expr):
+        return _tidy_scaled(expr)
     candidates: list[Any] = [expr]
     for step in (cancel, factor_terms, lambda e: factor(cancel(e))):
         try:
@@ -315,6 +317,16 @@ def _scaled_number(expr: Any) -> bool:
     degrees of freedom it was a fifth of the whole derivation, for no change)."""
     return all(not f.free_symbols or f.is_Symbol or (f.is_Pow and f.base.is_Symbol and f.exp.is_Rational)
                for f in sympy.Mul.make_args(expr))
+
+
+def _tidy_scaled(expr: Any) -> Any:
+    """:func:`tidy` of a number times powers of symbols (:func:`_scaled_number`): the number with its common factor
+    taken out, or expanded and then so (``(2 + sqrt(2))**2`` → ``2*(3 + 2*sqrt(2))``), whichever is shorter. The
+    symbols' part is a monomial already; ``cancel`` and ``factor`` would only write the number as a polynomial in
+    its radicals (the frequencies of a chain of pendulums, ``g*(2 - sqrt(2))/l``: 2 ms each, for nothing)."""
+    number, rest = expr.as_independent(*expr.free_symbols, as_Add=False)
+    expanded = sympy.expand(number) * rest
+    return smallest(list(dict.fromkeys([expr, factor_terms(expr), expanded, factor_terms(expanded)])))
 
 
 def _monomial(expr: Any) -> bool:
