@@ -3,6 +3,8 @@ and the chosen forms are the short textbook ones."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import pytest
 import sympy
 
@@ -196,3 +198,53 @@ def test_tidy_of_a_number_times_powers_of_symbols(expr, expected):
     assert sympy.sstr(result) == expected
     assert sympy.nsimplify(sympy.expand(result - value)) == 0
     assert measure(result) <= measure(value)
+
+
+FACTOR_SAMPLES = [
+    "(x**2 - 1)/(x + 1)", "(2*x + 2)/(4*g)", "sin(th)**2 - 1", "sqrt(x**2 - g**2)", "-x - g", "2*x",
+    "sqrt(2)*x + 2*x", "(x + 1)**2/(-x - 1)**3", "exp(x)*x + x", "I*x + x", "(x**2 - g**2)**(3/2)/(x - g)",
+    "m*g*sin(th)*cos(th) + m*x*sin(th)**2*cos(th)", "-(g*sin(th) - x*cos(th))/(m*(cos(th)**2 - 2))",
+    "(-2*g*sin(th)*cos(x - th) + 2*g*sin(x) - 2*m*x**2*sin(x - th))/(m*cos(x - th)**2 - 2*m)",
+    "x**3*g - x*g**3", "6*x**2*g + 4*x*g**2", "(x + g)**2*(x - g)", "pi*x + pi", "0", "m", "3/4",
+]
+
+
+@pytest.mark.parametrize("text", FACTOR_SAMPLES)
+def test_factor_is_sympys_factor(text):
+    """simplify.factor, which remembers each polynomial's factorization, gives SymPy's factor tree for tree."""
+    from lagsolve.mechanics.simplify import factor
+
+    expr = sympy.sympify(text, locals={"x": x, "g": g, "m": m, "th": th})  # test data, not a problem file
+    assert sympy.srepr(factor(expr)) == sympy.srepr(sympy.factor(expr))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["double_pendulum", "wedge", "heavy_top", "rotating_tube"])
+def test_factor_is_sympys_factor_on_every_expression_a_derivation_factors(name, monkeypatch):
+    """Every expression the derivation of a shipped problem factors (fractions of trigonometric polynomials,
+    momenta, frequencies) is factored as SymPy's own factor does, tree for tree."""
+    import functools
+    from pathlib import Path
+
+    from lagsolve.mechanics import simplify
+    from lagsolve.mechanics.derivation import derive
+    from lagsolve.problem.load import load_problem
+
+    inner = simplify.factor.__wrapped__
+    checked: list[Any] = []
+
+    def compare(expr):
+        result = inner(expr)
+        assert sympy.srepr(result) == sympy.srepr(sympy.factor(expr)), expr
+        checked.append(expr)
+        return result
+
+    monkeypatch.setattr(simplify, "factor", functools.lru_cache(maxsize=None)(compare))
+    simplify.tidy.cache_clear()
+    simplify.tidy_sum.cache_clear()
+    try:
+        derive(load_problem(Path(__file__).resolve().parents[2] / "problems" / f"{name}.yaml"))
+    finally:
+        simplify.tidy.cache_clear()
+        simplify.tidy_sum.cache_clear()
+    assert len(checked) >= 5

@@ -203,8 +203,96 @@ def known_cancelled(expr: Any) -> Any:
 
 @functools.lru_cache(maxsize=8192, typed=True)
 def factor(expr: Any) -> Any:
-    """``sympy.factor(expr)``, remembered."""
-    return sympy.factor(expr)
+    """``sympy.factor(expr)``, remembered, with each polynomial in it factored once (:func:`_factor_list`).
+
+    SymPy factors a fraction by factoring its numerator and denominator, each a polynomial in the generators it
+    finds; :func:`tidy` factors a fraction and then, in :func:`pythagoras`, its numerator on its own (and a
+    numerator is shared by the forms with sin² or cos² reduced), so the same polynomial used to be factored two or
+    three times over, the dearest step of the display. The steps of SymPy 1.14's ``factor`` (``_symbolic_factor``
+    and ``_symbolic_factor_list``) are taken here as they are there, with the factorization of each polynomial
+    remembered: the result is the same expression, tree for tree (a test holds them equal on every expression the
+    shipped problems factor). Anything else (no polynomial in it, a non-commutative or unusual expression) goes
+    to ``sympy.factor`` itself."""
+    if not isinstance(expr, sympy.Expr) or hasattr(expr, "_eval_factor") or not expr.is_commutative:
+        return sympy.factor(expr)
+    from sympy.polys.polytools import _factors_product, _keep_coeff
+
+    coeff, factors = _symbolic_factor_list(sympy.together(expr, fraction=True))
+    return _keep_coeff(coeff, _factors_product(factors))
+
+
+def _symbolic_factor_list(expr: Any) -> tuple[Any, list[tuple[Any, Any]]]:
+    """SymPy 1.14's ``_symbolic_factor_list(expr, opt, "factor")`` for the options of a plain ``factor(expr)``,
+    step for step, with :func:`_factor_list` for each polynomial base."""
+    from collections import defaultdict
+
+    from sympy.core.numbers import pure_complex
+
+    coeff, factors = sympy.S.One, []
+    args = [a._eval_factor() if hasattr(a, "_eval_factor") else a for a in sympy.Mul.make_args(expr)]
+    for arg in args:
+        if arg.is_Number or (isinstance(arg, sympy.Expr) and pure_complex(arg)):
+            coeff *= arg
+            continue
+        if arg.is_Pow and arg.base != sympy.S.Exp1:
+            base, exp = arg.args
+            if base.is_Number and exp.is_Number:
+                coeff *= arg
+                continue
+            if base.is_Number:
+                factors.append((base, exp))
+                continue
+        else:
+            base, exp = arg, sympy.S.One
+        found = _factor_list(base)
+        if found[0] is None:
+            factors.append((found[1], exp))
+            continue
+        _coeff, _factors = found[0], list(found[1])
+        if _coeff is not sympy.S.One:
+            if exp.is_Integer:
+                coeff *= _coeff**exp
+            elif _coeff.is_positive:
+                factors.append((_coeff, exp))
+            else:
+                _factors.append((_coeff, sympy.S.One))
+        if exp is sympy.S.One:
+            factors.extend(_factors)
+        elif exp.is_integer:
+            factors.extend([(f, k * exp) for f, k in _factors])
+        else:
+            from sympy.polys.polytools import _factors_product
+
+            other = []
+            for f, k in _factors:
+                if f.as_expr().is_positive:
+                    factors.append((f, k * exp))
+                else:
+                    other.append((f, k))
+            factors.append((_factors_product(other), exp))
+    collected: dict[Any, Any] = defaultdict(int)
+    for k, v in factors:
+        collected[k] += v
+    return coeff, list(collected.items())
+
+
+@functools.lru_cache(maxsize=8192, typed=True)
+def _factor_list(base: Any) -> tuple[Any, Any]:
+    """``Poly(base).factor_list()`` as SymPy's ``factor`` makes it (the generators ``base`` has, its own domain),
+    remembered: (coefficient, tuple of (Poly, multiplicity)); (None, the expression) where ``base`` is no
+    polynomial (SymPy then keeps it as a factor of its own)."""
+    from sympy.polys import polyoptions
+    from sympy.polys.polyerrors import PolificationFailed
+    from sympy.polys.polytools import _poly_from_expr
+
+    options = polyoptions.build_options((), {})
+    options["fraction"] = True
+    try:
+        poly, _ = _poly_from_expr(base, options)
+    except PolificationFailed as failure:
+        return None, failure.expr
+    coefficient, found = poly.factor_list()
+    return coefficient, tuple(found)
 
 
 @functools.lru_cache(maxsize=8192)
