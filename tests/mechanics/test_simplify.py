@@ -248,3 +248,53 @@ def test_factor_is_sympys_factor_on_every_expression_a_derivation_factors(name, 
         simplify.tidy.cache_clear()
         simplify.tidy_sum.cache_clear()
     assert len(checked) >= 5
+
+
+COUNT_SAMPLES = [
+    "x", "-x", "1/x", "-1/x", "x - g", "-x - g", "-x + g", "2*x/3", "-2*x/(3*g)", "exp(x)", "E", "E**2*x",
+    "exp(-x)/g", "sqrt(x + 1)", "1/(x + g)", "Max(x, g, m)", "Derivative(f(x), x)", "Integral(x, x)",
+    "sin(th)**2 - cos(g)/x", "-1/3", "-4", "2.5*x", "3*I*x", "x**(-2)", "(x - 1)/(2*(g - 3))",
+    "-(x - g)/(m*(x + 1))", "Abs(x - g)/sign(m)", "-(-2*g*sin(th) + g*cos(x - th))/(m*(cos(x - th)**2 - 2))",
+]
+
+
+@pytest.mark.parametrize("text", COUNT_SAMPLES)
+def test_count_ops_is_sympys(text):
+    """simplify.count_ops counts as sympy.count_ops does (the measure that picks every display form)."""
+    from lagsolve.mechanics.simplify import count_ops
+
+    expr = sympy.sympify(text, locals={"x": x, "g": g, "m": m, "th": th, "f": sympy.Function("f")})  # test data
+    assert count_ops(expr) == sympy.count_ops(expr)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["double_pendulum", "wedge", "rolling_disc", "ladder_rough_floor"])
+def test_count_ops_is_sympys_on_every_expression_a_derivation_measures(name, monkeypatch):
+    """Every expression a derivation of a shipped problem measures has SymPy's count of operations."""
+    import functools
+    from pathlib import Path
+
+    from lagsolve.mechanics import simplify
+    from lagsolve.mechanics.derivation import derive
+    from lagsolve.problem.load import load_problem
+
+    inner = simplify.ops.__wrapped__
+    checked: list[Any] = []
+
+    def compare(expr):
+        result = inner(expr)
+        assert result == sympy.count_ops(expr), expr
+        checked.append(expr)
+        return result
+
+    monkeypatch.setattr(simplify, "ops", functools.lru_cache(maxsize=None)(compare))
+    simplify.tidy.cache_clear()
+    simplify.tidy_sum.cache_clear()
+    simplify._weight.cache_clear()
+    try:
+        derive(load_problem(Path(__file__).resolve().parents[2] / "problems" / f"{name}.yaml"))
+    finally:
+        simplify.tidy.cache_clear()
+        simplify.tidy_sum.cache_clear()
+        simplify._weight.cache_clear()
+    assert len(checked) >= 20

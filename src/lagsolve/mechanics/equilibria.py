@@ -41,7 +41,7 @@ import sympy
 from lagsolve.mechanics.conserved import Conservation, MotionSystem
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.signs import relation, sign_core
-from lagsolve.mechanics.simplify import tidy, tidy_sum
+from lagsolve.mechanics.simplify import ops, tidy, tidy_sum
 from lagsolve.problem.names import momentum_symbol
 
 #: factors of V_eff' larger than this are not handed to ``sympy.solve``
@@ -161,7 +161,7 @@ def effective_potential(system: MotionSystem, conservation: Conservation,
 
 def _display(expr: Any) -> Any:
     """``tidy`` for small expressions; a sum over common denominators for large ones (cheaper)."""
-    return tidy(expr) if sympy.count_ops(expr) <= COMPACT_LIMIT else _by_denominator(sympy.expand(expr))
+    return tidy(expr) if ops(expr) <= COMPACT_LIMIT else _by_denominator(sympy.expand(expr))
 
 
 def _drop_constants(expr: Any, q: Any) -> Any:
@@ -171,18 +171,18 @@ def _drop_constants(expr: Any, q: Any) -> Any:
         return sympy.Add(*[t for t in sympy.Add.make_args(e) if t.has(q)])
 
     def size(e: Any) -> tuple[int, int, str]:
-        return (sympy.count_ops(e), len(str(e)), str(e))
+        return (ops(e), len(str(e)), str(e))
 
     # grouped twice (merged groups may share a denominator); constants dropped before and after
     expanded = sympy.expand(expr)
     forms = [sympy.expand(tidy_sum(expr))]
-    if sympy.count_ops(expanded) <= GROUP_LIMIT:  # grouping a long raw sum costs seconds
+    if ops(expanded) <= GROUP_LIMIT:  # grouping a long raw sum costs seconds
         forms.append(expanded)
     terms = min((varying(_by_denominator(_by_denominator(varying(form)))) for form in forms), key=size)
-    if sympy.count_ops(terms) > COMPACT_LIMIT:
+    if ops(terms) > COMPACT_LIMIT:
         return terms
     compact = tidy(terms)
-    return compact if 2 * sympy.count_ops(compact) < sympy.count_ops(terms) else terms
+    return compact if 2 * ops(compact) < ops(terms) else terms
 
 
 def _by_denominator(expr: Any) -> Any:
@@ -254,7 +254,7 @@ def _condition(factor: Any, q: Any) -> Any:
         return sympy.Eq(part, tidy(-without / coefficient), evaluate=False)
     left = sympy.Add(*[t for t in terms if not t.could_extract_minus_sign()])
     right = sympy.Add(*[-t for t in terms if t.could_extract_minus_sign()])
-    if sympy.count_ops(factor) <= COMPACT_LIMIT:
+    if ops(factor) <= COMPACT_LIMIT:
         left, right = tidy(left), tidy(right)
     return sympy.Eq(left, right, evaluate=False)
 
@@ -269,7 +269,7 @@ def _generators(expr: Any, q: Any) -> set[Any]:
 
 def _solve(factor: Any, q: Any) -> list[Any] | None:
     """Real solutions of ``factor = 0`` for ``q`` when the factor is simple, else None."""
-    if sympy.count_ops(factor) > SOLVE_LIMIT:
+    if ops(factor) > SOLVE_LIMIT:
         return None
     generators = _generators(factor, q)
     if len(generators) != 1:
@@ -294,7 +294,7 @@ def _solve(factor: Any, q: Any) -> list[Any] | None:
     for v in found:
         if v.has(sympy.I) or v.is_real is False or (q.is_positive and v.is_positive is False):
             continue
-        if v.has(sympy.pi) and sympy.count_ops(v - 2 * sympy.pi) < sympy.count_ops(v):
+        if v.has(sympy.pi) and ops(v - 2 * sympy.pi) < ops(v):
             v = v - 2 * sympy.pi
         values.append(tidy(v))
     return values
@@ -331,7 +331,7 @@ def _frequency(curvature: Any, mass: Any, stable: bool | None) -> tuple[Any, Any
         return None, None
     square = tidy(curvature / mass)
     root = sympy.sqrt(square)
-    return min((root, tidy(root)), key=lambda e: (sympy.count_ops(e), len(str(e)))), square
+    return min((root, tidy(root)), key=lambda e: (ops(e), len(str(e)))), square
 
 
 def _at_value(value: Any, condition: Any, curvature: Any, mass: Any, q: Any,

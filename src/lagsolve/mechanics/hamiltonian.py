@@ -54,7 +54,7 @@ from lagsolve.mechanics.identities import Zero, numerically_zero, proved_zero, z
 from lagsolve.mechanics.linsolve import SIZE_LIMIT, blocks, solve_structured
 from lagsolve.mechanics.model import Model, time_derivative
 from lagsolve.mechanics.partials import partial
-from lagsolve.mechanics.simplify import factor_terms, measure, smallest, tidy, tidy_sum
+from lagsolve.mechanics.simplify import factor_terms, measure, ops, smallest, tidy, tidy_sum
 from lagsolve.mechanics.stages import Stages, StageSkipped
 from lagsolve.problem.names import momentum_symbol
 
@@ -254,8 +254,8 @@ INVERSE_LIMIT = 60
 
 def _too_long(H: Any, velocities: tuple[Any, ...], momentum_rates: tuple[Any, ...]) -> bool:
     """H, q̇(q, p) or ṗ is past what a report writes out (:data:`COMPACT_LIMIT`)."""
-    return (max(sympy.count_ops(e) for e in (H, *velocities)) > COMPACT_LIMIT
-            or max(sympy.count_ops(e) for e in momentum_rates) > 2 * COMPACT_LIMIT)
+    return (max(ops(e) for e in (H, *velocities)) > COMPACT_LIMIT
+            or max(ops(e) for e in momentum_rates) > 2 * COMPACT_LIMIT)
 
 
 def _long_inverse(A: sympy.Matrix, w: sympy.Matrix) -> tuple[Any, ...] | None:
@@ -270,7 +270,7 @@ def _long_inverse(A: sympy.Matrix, w: sympy.Matrix) -> tuple[Any, ...] | None:
     except StageSkipped as exc:
         raise StageSkipped(f"too large: inverting p = A q_dot + b grows past {SIZE_LIMIT} operations per "
                            "expression") from exc
-    if max(sympy.count_ops(e) for e in solution) <= INVERSE_LIMIT:
+    if max(ops(e) for e in solution) <= INVERSE_LIMIT:
         return None
     return tuple(sympy.factor_terms(e) for e in solution)
 
@@ -348,7 +348,7 @@ def _square_term(pair: tuple[Any, Any]) -> Any:
 
 
 def _guard(exprs: tuple[Any, ...], limit: int) -> None:
-    largest = max((int(sympy.count_ops(e)) for e in exprs if isinstance(e, sympy.Basic)), default=0)
+    largest = max((int(ops(e)) for e in exprs if isinstance(e, sympy.Basic)), default=0)
     if largest > limit:
         raise StageSkipped(f"too large: inverting p = A q_dot + b grows past {limit} operations per expression")
 
@@ -388,7 +388,7 @@ def _by_momenta(expr: Any, momenta: tuple[Any, ...]) -> Any:
     """``expr``, linear in the ``momenta``, as a sum of momenta times simplified coefficients, with any
     common factor taken out."""
     expanded = sympy.expand(expr)
-    if sympy.count_ops(expanded) > SHOW_LIMIT:
+    if ops(expanded) > SHOW_LIMIT:
         return factor_terms(expr)  # expanding only made it longer: left as derived
     parts = sympy.collect(expanded, momenta, evaluate=False)
     return factor_terms(sympy.Add(*(_coefficient(c) * p for p, c in parts.items())))
@@ -401,7 +401,7 @@ COEFFICIENT_LIMIT = 100
 def _coefficient(expr: Any) -> Any:
     """One coefficient of a momentum (a function of q): :func:`tidy` (trigonometric identities, cancelled
     fractions) when it is short enough, else its common factors taken out."""
-    return tidy(expr) if sympy.count_ops(expr) <= COEFFICIENT_LIMIT else factor_terms(expr)
+    return tidy(expr) if ops(expr) <= COEFFICIENT_LIMIT else factor_terms(expr)
 
 
 def _termwise(expr: Any, x: Any, sign: int) -> Any:
@@ -418,7 +418,7 @@ TIDY_SHOW = 40
 def _shortest(expr: Any) -> Any:
     """The shorter of :func:`tidy_sum` (a sum of terms) and :func:`tidy` (factored); a large expression is left
     as derived (expanding it would only make it longer)."""
-    size = sympy.count_ops(expr)
+    size = ops(expr)
     if size > SHOW_LIMIT:
         return expr
     if size > TIDY_SHOW:
@@ -518,7 +518,7 @@ def _status(expr: Any) -> str:
     """``"symbolic"`` when ``expr`` is proved 0, ``"numeric"`` when it is 0 at random points, else ``"differ"``."""
     if expr == 0:
         return "symbolic"
-    if sympy.count_ops(expr) > PROOF_LIMIT:
+    if ops(expr) > PROOF_LIMIT:
         zero = _fast_zero(expr) if not expr.atoms(sympy.core.function.AppliedUndef) else numerically_zero(expr)
         return "numeric" if zero else "differ"
     return {Zero.PROVED: "symbolic", Zero.UNDECIDED: "numeric", Zero.NONZERO: "differ"}[zero_status(expr)]

@@ -33,7 +33,7 @@ from lagsolve.mechanics.conserved import MotionSystem
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.lagrange import lagrange_terms
 from lagsolve.mechanics.signs import sign_core
-from lagsolve.mechanics.simplify import tidy
+from lagsolve.mechanics.simplify import ops, tidy
 
 #: equations F(q, 0) larger than this (operations) are not solved
 SOLVE_LIMIT = 60
@@ -108,7 +108,7 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
     terms = lagrange_terms(model, (), system.generalized_forces, engine="symengine")
     rest = {v: 0 for v in model.velocities}
     static = [tidy(f.xreplace(rest)) for f in terms.forcing]
-    if any(sympy.count_ops(f) > SOLVE_LIMIT for f in static):
+    if any(ops(f) > SOLVE_LIMIT for f in static):
         return None, "the equilibrium equations are too large to solve symbolically"
     coordinates = list(model.coordinates)
     if all(f == 0 for f in static):
@@ -188,7 +188,7 @@ def _continuum_note(free: tuple[Any, ...], n: int) -> str:
 
 def _principal(value: Any) -> Any:
     """An angle-like value moved into (-π, π] when that makes it shorter (``2*pi - a`` → ``-a``)."""
-    if value.has(sympy.pi) and sympy.count_ops(value - 2 * sympy.pi) < sympy.count_ops(value):
+    if value.has(sympy.pi) and ops(value - 2 * sympy.pi) < ops(value):
         return value - 2 * sympy.pi
     return value
 

@@ -30,7 +30,7 @@ from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.simplify import known_cancelled
+from lagsolve.mechanics.simplify import known_cancelled, ops
 from lagsolve.mechanics.stages import StageSkipped
 
 #: an explicit result (or an intermediate of the elimination) with more operations than this is not produced
@@ -38,7 +38,7 @@ SIZE_LIMIT = 1500
 
 
 def _size(expr: Any) -> int:
-    return int(sympy.count_ops(expr)) if isinstance(expr, sympy.Basic) else 0
+    return int(ops(expr)) if isinstance(expr, sympy.Basic) else 0
 
 
 def _guard(exprs: list[Any], limit: int | None) -> None:

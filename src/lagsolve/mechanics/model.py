@@ -13,7 +13,7 @@ from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.simplify import tidy_sum
+from lagsolve.mechanics.simplify import ops, tidy_sum
 from lagsolve.problem.schema import Problem
 
 
@@ -104,6 +104,6 @@ def build_model(problem: Problem, *, tidy: bool | None = True) -> Model:
         potential += problem.potential
     # Simplify the energies once, here: every later expression is built from them,
     # so a compact L keeps the whole derivation small (an identity, not an approximation).
-    if tidy or (tidy is None and sympy.count_ops(kinetic) + sympy.count_ops(potential) <= TIDY_ENERGY_LIMIT):
+    if tidy or (tidy is None and ops(kinetic) + ops(potential) <= TIDY_ENERGY_LIMIT):
         kinetic, potential = tidy_sum(kinetic), tidy_sum(potential)
     return Model(problem.time, q, qd, qdd, kinetic, potential, kinetic - potential)

@@ -297,8 +297,75 @@ def _factor_list(base: Any) -> tuple[Any, Any]:
 
 @functools.lru_cache(maxsize=8192)
 def ops(expr: Any) -> int:
-    """``sympy.count_ops(expr)``, remembered."""
+    """``sympy.count_ops(expr)``, remembered (counted by :func:`count_ops` for an expression)."""
+    if isinstance(expr, sympy.Expr) and not expr.is_Relational:
+        return count_ops(expr)
     return int(sympy.count_ops(expr))
+
+
+def count_ops(expr: Any) -> int:
+    """``sympy.count_ops(expr)`` of an expression (not a relation), walked as SymPy 1.14 walks it, with the
+    operations counted as integers instead of collected as a sum of symbols (``ADD + 2*MUL + SIN``) whose
+    coefficients are added at the end: the same number, at a fraction of the cost (counting was a tenth of a
+    small derivation). A test holds the two equal on every expression the shipped problems measure."""
+    from sympy.core.function import _coeff_isneg
+    from sympy.core.operations import LatticeOp
+
+    count = 0
+    args = [expr]
+    while args:
+        a = args.pop()
+        if a.is_Rational:
+            if a is not sympy.S.One:
+                count += (a.p < 0) + (a.q != 1)  # -1/3 = NEG + DIV
+                continue
+        elif a.is_Mul:
+            if _coeff_isneg(a):
+                count += 1  # NEG
+                a = a.as_two_terms()[1] if a.args[0] is sympy.S.NegativeOne else -a
+            n, d = sympy.fraction(a)
+            if n.is_Integer:
+                count += 1 + bool(n < 0)  # DIV, NEG
+                args.append(d)
+                continue
+            if d is not sympy.S.One:
+                if not d.is_Integer:
+                    args.append(d)
+                count += 1  # DIV
+                args.append(n)
+                continue
+        elif a.is_Add:
+            terms = a.args
+            negative = 0
+            for i, term in enumerate(terms):
+                if _coeff_isneg(term):
+                    negative += 1
+                    args.append(-term)
+                else:
+                    args.append(term)
+                count += i > 0  # ADD or SUB
+            if negative == len(terms):
+                count += 1  # -x - y = NEG + SUB
+            # -x + y is SUB where ADD was counted: the same number
+            continue
+        if a.is_Pow and a.exp is sympy.S.NegativeOne:
+            count += 1  # DIV
+            args.append(a.base)
+            continue
+        if a == sympy.S.Exp1:
+            count += 1  # EXP
+            continue
+        if a.is_Pow and a.base == sympy.S.Exp1:
+            count += 1  # EXP
+            args.append(a.exp)
+            continue
+        if a.is_Mul or isinstance(a, LatticeOp):
+            count += len(a.args) - 1
+        elif a.args and (a.is_Pow or a.is_Function or isinstance(a, sympy.Derivative | sympy.Integral | sympy.Sum)):
+            count += 1
+        if not a.is_Symbol:
+            args.extend(a.args)
+    return count
 
 
 #: above this many operations SymPy's general ``simplify`` and ``trigsimp`` are skipped
