@@ -298,3 +298,16 @@ def test_count_ops_is_sympys_on_every_expression_a_derivation_measures(name, mon
         simplify.tidy_sum.cache_clear()
         simplify._weight.cache_clear()
     assert len(checked) >= 20
+
+
+def test_tidy_gives_a_product_of_sines_and_cosines_back_as_it_is():
+    """A number times powers of symbols, sines and cosines of single or compound angles is its own tidy form,
+    the one the full search of rewritings picks too; a sum of such products is still rewritten."""
+    from lagsolve.mechanics.simplify import _search
+
+    a, b, l = sympy.symbols("a b l", positive=True)  # noqa: E741 - the rod length
+    for expr in (2 * l**2 * m * sympy.sin(a - b) * sympy.cos(a - b), -4 * m * sympy.sin(a) ** 3,
+                 m * g * sympy.cos(a) ** 2 * sympy.sin(b) / l):
+        assert tidy(expr) == expr
+        assert _search(expr) == expr
+    assert tidy(m * (sympy.sin(a) ** 2 + sympy.cos(a) ** 2)) == m
