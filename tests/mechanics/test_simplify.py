@@ -311,3 +311,32 @@ def test_tidy_gives_a_product_of_sines_and_cosines_back_as_it_is():
         assert tidy(expr) == expr
         assert _search(expr) == expr
     assert tidy(m * (sympy.sin(a) ** 2 + sympy.cos(a) ** 2)) == m
+
+
+EXPAND_SAMPLES = [
+    "m*((l*x*sin(th) + l*g*cos(th))**2 + (l*x*cos(th))**2)/2", "(x + g)**3*(m - 1)/4", "-(sin(x - th) - 2*cos(x))**2",
+    "g*m*(-l*cos(th) - l*cos(x)) - g*l*m*cos(th)", "(2*x - 3*g)*(x + g)*sin(th + x)**2", "x", "3", "m*(x + 1)",
+]
+
+
+@pytest.mark.parametrize("text", EXPAND_SAMPLES)
+def test_expand_by_symengine_is_sympys_expand(text):
+    """simplify.expand, by SymEngine for polynomials in symbols, sines and cosines, is SymPy's expand tree for tree,
+    with the expression's own symbols (their assumptions kept); other expressions go to SymPy."""
+    from lagsolve.mechanics.simplify import _engine_polynomial, expand
+
+    names = {"x": x, "g": g, "m": m, "th": th, "l": sympy.Symbol("l", positive=True)}
+    expr = sympy.sympify(text, locals=names)  # test data, not a problem file
+    assert _engine_polynomial(expr)
+    assert sympy.srepr(expand(expr)) == sympy.srepr(sympy.expand(expr))
+    assert expand(expr).free_symbols <= expr.free_symbols
+
+
+def test_expand_leaves_other_expressions_to_sympy():
+    from lagsolve.mechanics.simplify import _engine_polynomial, expand
+
+    d = sympy.Dummy("d")
+    for expr in ((x + g) ** -2, sympy.sqrt(x * g + 1) * (x + 1), sympy.exp(x) * (x + g), 2.5 * (x + g) ** 2,
+                 sympy.sin(2 * (x + g)) * (x + 1), (d + x) ** 2, sympy.pi * (x + 1)):
+        assert not _engine_polynomial(expr)
+        assert expand(expr) == sympy.expand(expr)

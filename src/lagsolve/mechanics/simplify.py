@@ -295,6 +295,49 @@ def _factor_list(base: Any) -> tuple[Any, Any]:
     return coefficient, tuple(found)
 
 
+@functools.lru_cache(maxsize=8192, typed=True)
+def expand(expr: Any) -> Any:
+    """``sympy.expand(expr)``, remembered, and done by SymEngine for a polynomial (non-negative integer powers) in
+    symbols and in sines and cosines of a symbol or a sum of symbols, a rational number at most in each term
+    (energies, numerators of accelerations): there the expanded form is one sum of monomials, SymEngine multiplies
+    it out many times faster, and SymPy builds it back into the same tree (a test holds the two equal on every
+    expression the shipped problems expand). Anything else is expanded by SymPy."""
+    if not isinstance(expr, sympy.Basic) or not _engine_polynomial(expr):
+        return sympy.expand(expr)
+    try:
+        from symengine.lib.symengine_wrapper import sympy2symengine
+
+        back = sympy2symengine(expr).expand()._sympy_()  # a SymEngine object, never text
+    except (ImportError, RuntimeError, TypeError, ValueError, NotImplementedError, AttributeError):
+        return sympy.expand(expr)
+    own = {s.name: s for s in expr.free_symbols}
+    if {s.name for s in back.free_symbols} - own.keys():
+        return sympy.expand(expr)
+    return back.xreplace({s: own[s.name] for s in back.free_symbols})
+
+
+def _engine_polynomial(expr: Any) -> bool:
+    """``expr`` is what :func:`expand` gives SymEngine: sums, products and non-negative integer powers of symbols
+    (not Dummies, which come back as new ones; each name once), rational numbers, and sines and cosines of a symbol
+    or of a sum of symbols with coefficients ±1."""
+    names: dict[str, Any] = {}
+    for node in sympy.preorder_traversal(expr):
+        if node.is_Symbol:
+            if isinstance(node, sympy.Dummy) or names.setdefault(node.name, node) != node:
+                return False
+        elif node.is_Add or node.is_Mul or node.is_Rational:
+            continue
+        elif node.is_Pow:
+            if not (node.exp.is_Integer and node.exp >= 0):
+                return False
+        elif isinstance(node, sympy.sin | sympy.cos):
+            if not _plain_base(node):
+                return False
+        else:
+            return False
+    return True
+
+
 @functools.lru_cache(maxsize=8192)
 def ops(expr: Any) -> int:
     """``sympy.count_ops(expr)``, remembered (counted by :func:`count_ops` for an expression)."""
@@ -388,7 +431,7 @@ def _reduce_squares(expr: Any, of: Any, to: Any) -> Any:
         angle = power.base.args[0]
         return of(angle) ** (k % 2) * (1 - to(angle) ** 2) ** (k // 2)
 
-    return sympy.expand(expr.replace(
+    return expand(expr.replace(
         lambda e: e.is_Pow and isinstance(e.base, of) and e.exp.is_Integer and e.exp >= 2, rewrite))
 
 
@@ -451,7 +494,7 @@ def _search(expr: Any) -> Any:
     if expr.has(*_TRIG):
         candidates += pythagoras(expr)
         numerator, denominator = sympy.fraction(candidates[1])
-        contracted = compound_angles(sympy.expand(numerator)) / compound_angles(sympy.expand(denominator))
+        contracted = compound_angles(expand(numerator)) / compound_angles(expand(denominator))
         candidates += [contracted, factor_terms(contracted)]
         if ops(expr) <= TRIGSIMP_LIMIT:
             reduced = sympy.trigsimp(candidates[1])
@@ -519,7 +562,7 @@ def tidy_sum(expr: Any) -> Any:
     single angles, with a common factor pulled out when there is one."""
     if not isinstance(expr, sympy.Basic):
         return _number(expr)
-    expanded = sympy.expand(expr)
+    expanded = expand(expr)
     candidates = [expanded]
     if expanded.has(*_TRIG):
         candidates += [_reduce_squares(expanded, sympy.cos, sympy.sin),
@@ -543,7 +586,7 @@ def tidy_sum_light(expr: Any) -> Any:
     (one rewriting each instead of a search over candidates)."""
     if not isinstance(expr, sympy.Basic):
         return _number(expr)
-    return factor_terms(compound_angles(sympy.expand(expr)))
+    return factor_terms(compound_angles(expand(expr)))
 
 
 @functools.lru_cache(maxsize=8192, typed=True)
@@ -559,7 +602,7 @@ def compound_angles(expr: Any) -> Any:
     if not isinstance(expr, sympy.Basic) or not expr.has(sympy.sin, sympy.cos):
         return expr
     try:
-        return _contract(sympy.expand(expr))
+        return _contract(expand(expr))
     except _ERRORS:
         return expr
 
