@@ -340,3 +340,37 @@ def test_expand_leaves_other_expressions_to_sympy():
                  sympy.sin(2 * (x + g)) * (x + 1), (d + x) ** 2, sympy.pi * (x + 1)):
         assert not _engine_polynomial(expr)
         assert expand(expr) == sympy.expand(expr)
+
+
+def test_linear_factor_list_is_sympys_factor_list():
+    """Where a polynomial is linear in a generator with coprime coefficients, the shortcut's factorization (content,
+    monomials, the polynomial) is SymPy's factor_list exactly; reducible ones (products, common factors) are left to
+    SymPy. Random polynomials in two to four generators, a third of them products."""
+    import random
+
+    from lagsolve.mechanics.simplify import _linear_factor_list
+
+    gens_all = sympy.symbols("x y z w")
+    rng = random.Random(7)
+    used = declined = 0
+    for _ in range(600):
+        gens = gens_all[:rng.randint(2, 4)]
+
+        def polynomial(gens=gens):
+            return sum(rng.randint(-3, 3) * sympy.Mul(*[v ** rng.randint(0, 2) for v in gens])
+                       for _ in range(rng.randint(1, 4)))
+
+        expr = sympy.expand(polynomial() * (polynomial() if rng.random() < 0.35 else 1) * gens[0] ** rng.randint(0, 2))
+        if expr.is_number:
+            continue
+        poly = sympy.Poly(expr, *gens)
+        found = _linear_factor_list(poly)
+        if found is None:
+            declined += 1
+            continue
+        used += 1
+        assert found == poly.factor_list(), expr
+        assert len([f for f, _ in found[1] if f.total_degree() > 1 or len(f.terms()) > 1]) == 1
+    assert used > 100 and declined > 100
+    u = sympy.Poly(gens_all[0] ** 2 + 1, gens_all[0])
+    assert _linear_factor_list(u) is None  # one generator: SymPy's own univariate route

@@ -291,8 +291,49 @@ def _factor_list(base: Any) -> tuple[Any, Any]:
         poly, _ = _poly_from_expr(base, options)
     except PolificationFailed as failure:
         return None, failure.expr
-    coefficient, found = poly.factor_list()
+    coefficient, found = _linear_factor_list(poly) or poly.factor_list()
     return coefficient, tuple(found)
+
+
+def _linear_factor_list(poly: Any) -> tuple[Any, list[tuple[Any, int]]] | None:
+    """``poly.factor_list()`` for a polynomial over the integers in several generators that, its monomial and
+    integer content taken out, is linear in one generator x with coprime coefficients, a x + b with gcd(a, b) = 1:
+    such a polynomial is irreducible (a factorization would leave one factor free of x, dividing a and b), so its
+    factorization is that content and itself, found with one gcd instead of SymPy's search (a square-free part and
+    Wang's algorithm, the dearest step of the display: the numerator of a pendulum's acceleration, linear in g, is
+    such a polynomial). The steps of SymPy 1.14's ``dmp_factor_list`` and ``dmp_zz_factor`` for that case are taken
+    as they are there, so the result is the same (a test holds it equal to ``factor_list`` on every polynomial the
+    shipped problems factor). None when the case does not apply (SymPy then factors)."""
+    from sympy.polys.densearith import dmp_neg
+    from sympy.polys.densebasic import dmp_from_dict, dmp_ground_LC, dmp_terms_gcd, dmp_to_dict
+    from sympy.polys.densetools import dmp_ground_primitive
+    from sympy.polys.euclidtools import dmp_gcd
+    from sympy.polys.polyutils import _sort_factors
+
+    rep = poly.rep
+    ring, u = rep.dom, rep.lev
+    if not ring.is_ZZ or u == 0:
+        return None
+    exponents, f = dmp_terms_gcd(rep.to_list(), u, ring)
+    content, f = dmp_ground_primitive(f, u, ring)
+    if ring.is_negative(dmp_ground_LC(f, u, ring)):
+        content, f = -content, dmp_neg(f, u, ring)
+    terms = dmp_to_dict(f, u, ring)
+    for j in range(u + 1):
+        if {m[j] for m in terms} != {0, 1}:
+            continue
+        a = dmp_from_dict({m[:j] + (0,) + m[j + 1:]: c for m, c in terms.items() if m[j] == 1}, u, ring)
+        b = dmp_from_dict({m: c for m, c in terms.items() if m[j] == 0}, u, ring)
+        if any(dmp_to_dict(dmp_gcd(a, b, u, ring), u, ring).keys() - {(0,) * (u + 1)}):
+            return None  # a common factor of a and b divides the polynomial
+        break
+    else:
+        return None
+    factors = [(f, 1)]
+    for i, k in enumerate(reversed(exponents)):
+        if k:
+            factors.insert(0, (dmp_from_dict({(0,) * (u - i) + (1,) + (0,) * i: ring.one}, u, ring), k))
+    return ring.to_sympy(content), [(poly.per(rep.per(g)), k) for g, k in _sort_factors(factors)]
 
 
 @functools.lru_cache(maxsize=8192, typed=True)
