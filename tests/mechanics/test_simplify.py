@@ -206,6 +206,8 @@ FACTOR_SAMPLES = [
     "m*g*sin(th)*cos(th) + m*x*sin(th)**2*cos(th)", "-(g*sin(th) - x*cos(th))/(m*(cos(th)**2 - 2))",
     "(-2*g*sin(th)*cos(x - th) + 2*g*sin(x) - 2*m*x**2*sin(x - th))/(m*cos(x - th)**2 - 2*m)",
     "x**3*g - x*g**3", "6*x**2*g + 4*x*g**2", "(x + g)**2*(x - g)", "pi*x + pi", "0", "m", "3/4",
+    "(2*x + 2*g)/(4*m*x + 4*m)", "x/2 + g/2", "(x*g + x)/(x**2*m)", "-2*x - 2*g", "-(6*x*sin(th) - 4*g)/(2*m - 2*x)",
+    "(x**2*sin(th)**2 - g**2)/(x*sin(th) + g)**2", "3*x*g/(2*(x + 1)) + x/(x + 1)", "(x + 1/x)*(g - 2)",
 ]
 
 
