@@ -376,3 +376,16 @@ def test_linear_factor_list_is_sympys_factor_list():
     assert used > 100 and declined > 100
     u = sympy.Poly(gens_all[0] ** 2 + 1, gens_all[0])
     assert _linear_factor_list(u) is None  # one generator: SymPy's own univariate route
+
+
+def test_cancel_results_are_known_to_be_cancelled():
+    """What simplify.cancel returns is its own cancel (SymPy's cancel is idempotent on it), and is then not searched
+    again; a fraction that is not cancelled still is."""
+    from lagsolve.mechanics import simplify
+
+    expr = (m * x**2 - m) / (x + 1) + g * sympy.sin(th) ** 2 / (g * sympy.cos(th))
+    once = simplify.cancel(expr)
+    assert sympy.srepr(sympy.cancel(once)) == sympy.srepr(once)
+    assert once in simplify._CANCELLED
+    assert simplify.cancel(once) is once
+    assert simplify.cancel((x**2 - 1) / (x - 1)) == x + 1

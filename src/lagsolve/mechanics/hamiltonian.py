@@ -54,7 +54,7 @@ from lagsolve.mechanics.identities import Zero, numerically_zero, proved_zero, z
 from lagsolve.mechanics.linsolve import SIZE_LIMIT, blocks, solve_structured
 from lagsolve.mechanics.model import Model, time_derivative
 from lagsolve.mechanics.partials import partial
-from lagsolve.mechanics.simplify import factor_terms, measure, ops, smallest, tidy, tidy_sum
+from lagsolve.mechanics.simplify import cancel, factor_terms, measure, ops, smallest, tidy, tidy_sum
 from lagsolve.mechanics.stages import Stages, StageSkipped
 from lagsolve.problem.names import momentum_symbol
 
@@ -319,7 +319,7 @@ def complete_squares(A: sympy.Matrix, w: sympy.Matrix, limit: int = SIZE_LIMIT) 
                 continue
             y[i] = sympy.expand(y[i] - f * y[k])
             for j in remaining:
-                M[i][j] = sympy.cancel(M[i][j] - f * M[k][j])
+                M[i][j] = cancel(M[i][j] - f * M[k][j])
             _guard((y[i], *M[i]), limit)
     pairs = tuple(_square(y[k], pivots[k]) for k in order if y[k] != 0)
     solution: dict[int, Any] = {}

@@ -87,7 +87,8 @@ def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix, limit: int | None = No
     if size == 1:
         if not _nonzero(system[0, 0]):
             raise ValueError("no pivot in column 1")
-        out = sympy.Matrix(1, columns, [sympy.cancel(rhs[0, j] / system[0, 0]) for j in range(columns)])
+        out = sympy.Matrix(1, columns, [known_cancelled(sympy.cancel(rhs[0, j] / system[0, 0]))
+                                        for j in range(columns)])
         _guard(list(out), limit)
         return out
     work = [list(system.row(i)) + list(rhs.row(i)) for i in range(size)]
@@ -111,7 +112,7 @@ def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix, limit: int | None = No
     for r in reversed(range(size)):
         for j in range(columns):
             acc = work[r][size + j] - sum((work[r][k] * solution[k][j] for k in range(r + 1, size)), sympy.Integer(0))
-            solution[r][j] = sympy.cancel(acc / work[r][r])
+            solution[r][j] = known_cancelled(sympy.cancel(acc / work[r][r]))
         _guard(solution[r], limit)
     return sympy.Matrix(solution)
 
@@ -164,7 +165,7 @@ def _solve_in_ring(system: sympy.Matrix, rhs: sympy.Matrix) -> sympy.Matrix | No
         element = reduced[i, size + j].element
         if integral:
             return cancelled(element.numer.as_expr().xreplace(back), element.denom.as_expr().xreplace(back))
-        return sympy.cancel(to_sympy(element).xreplace(back))
+        return known_cancelled(sympy.cancel(to_sympy(element).xreplace(back)))
 
     return sympy.Matrix(size, rhs.cols, entry)
 
