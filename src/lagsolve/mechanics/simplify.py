@@ -685,6 +685,8 @@ def signs(expr: Any) -> list[Any]:
     >>> signs((a*v - b*sympy.Abs(v))/sympy.Abs(v))
     [a*sign(v) - b]
     """
+    if not expr.has(sympy.Abs):
+        return []
     outside = expr.xreplace({a: sympy.Integer(1) for a in expr.atoms(sympy.Abs)}).free_symbols
     denominator = sympy.fraction(sympy.together(expr))[1]
     # only a |v| that divides (v/|v|, the direction of a velocity): elsewhere |v| is already the short form
