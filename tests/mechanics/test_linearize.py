@@ -197,3 +197,21 @@ def test_splits_agrees_with_factor_list():
         polynomial = sympy.Poly(expr, s)
         expected = all(f.degree() <= 2 for f, _ in sympy.factor_list(polynomial)[1])
         assert _splits(polynomial, s) is expected
+
+
+def test_determinants_over_a_shared_integer_ring_equal_sympys():
+    """K - s M0 over the integer polynomials in its symbols (the ring built once) has SymPy's determinant, and a
+    matrix with fractions, roots or functions in it takes SymPy's own construction."""
+    from lagsolve.mechanics.linearize import _determinant, _over_integers
+
+    g, l, m, s, k = sympy.symbols("g l m s k", positive=True)  # noqa: E741 - the rod length
+    K = sympy.Matrix([[3 * g * l * m, 0, -k], [0, 2 * g * l * m, k], [-k, k, g * l * m]])
+    M0 = sympy.Matrix([[3 * l**2 * m, 2 * l**2 * m, l**2 * m], [2 * l**2 * m, 2 * l**2 * m, -l**2 * m],
+                       [l**2 * m, -l**2 * m, l**2 * m]])
+    matrix = K - s * M0
+    assert _over_integers(matrix) is not None
+    assert sympy.expand(_determinant(matrix) - matrix.det(method="berkowitz")) == 0
+    for other in (matrix + sympy.eye(3) * sympy.Rational(1, 2), matrix + sympy.eye(3) * sympy.sqrt(2),
+                  matrix + sympy.eye(3) * sympy.cos(g), sympy.eye(3) * 2):
+        assert _over_integers(other) is None
+        assert sympy.expand(_determinant(other) - other.det(method="berkowitz")) == 0
