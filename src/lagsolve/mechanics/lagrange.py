@@ -20,6 +20,7 @@ gives the accelerations and the multipliers.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from typing import Any
 
@@ -86,9 +87,11 @@ def lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...],
                          sympy.ImmutableMatrix(A), sympy.ImmutableMatrix(beta))
 
 
+@functools.lru_cache(maxsize=64)
 def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
     """Momenta, their rates, gradients, M and the velocity part of the rates, differentiated with SymEngine
-    and converted back to SymPy (with the model's own symbols); None where SymEngine cannot be used."""
+    and converted back to SymPy (with the model's own symbols); None where SymEngine cannot be used.
+    Remembered: the minimal coordinates and the equilibria ask for those of the same model."""
     L = model.lagrangian
     if L.atoms(sympy.core.function.AppliedUndef) or L.has(sympy.Derivative):
         return None
@@ -118,7 +121,8 @@ def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
         drift_back = [back(d) for d in drift]
         rates = tuple(d + sum((mass_back[i, k] * a for k, a in enumerate(model.accelerations)), sympy.Integer(0))
                       for i, d in enumerate(drift_back))
-        return momenta_back, rates, tuple(back(g) for g in gradients), mass_back, drift_back
+        return (momenta_back, rates, tuple(back(g) for g in gradients), sympy.ImmutableMatrix(mass_back),
+                tuple(drift_back))
     except (RuntimeError, TypeError, ValueError, NotImplementedError, AttributeError, KeyError):
         return None
 
