@@ -61,8 +61,8 @@ def lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...],
 
     ``engine="symengine"`` takes the derivatives with SymEngine (tens of times faster on a large
     Lagrangian) and converts them back; the results are the same expressions up to SymPy's
-    automatic ordering, but not in the tidy shape a report wants. Where SymEngine is missing or
-    cannot express the Lagrangian (declared functions), SymPy is used.
+    automatic ordering (the reports show them tidied, which writes both alike). Where SymEngine is
+    missing or cannot express the Lagrangian (declared functions), SymPy is used.
     """
     q, qd, qdd = model.coordinates, model.velocities, model.accelerations
     parts = _symengine_parts(model) if engine == "symengine" else None

@@ -48,10 +48,10 @@ class MatrixForm:
 def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
     """Build the matrix form of ``problem``'s equations of motion (no solve, no display simplification).
 
+    The derivatives are taken with SymEngine (see :func:`~lagsolve.mechanics.lagrange.lagrange_terms`); the
+    reports show them through the display simplification, which writes them as it would SymPy's.
     ``display=False`` is the core of a derivation and what the numeric stage compiles: the energies are
-    tidied only when they are small, and the derivatives are taken with SymEngine (see
-    :func:`~lagsolve.mechanics.lagrange.lagrange_terms`). The equations are the same; only their
-    written shape differs.
+    tidied only when they are small. The equations are the same; only their written shape differs.
     """
     check_dimensions(problem)  # with units: wrong dimensions refused before anything is derived
     check_masses(problem)  # negative masses: refused with a fix
@@ -63,7 +63,7 @@ def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
     n = len(model.coordinates)
     terms: tuple[ForceTerm | FrictionTerm, ...] = (*loads, *frictions)
     q_forces = tuple(sum((t.generalized[i] for t in terms), sympy.Integer(0)) for i in range(n))
-    lagrange = lagrange_terms(model, constraints, q_forces, engine="sympy" if display else "symengine")
+    lagrange = lagrange_terms(model, constraints, q_forces, engine="symengine")
     check_inertia(problem, model.coordinates, lagrange.mass_matrix, constraints)  # undetermined coordinates
     reactions = {c.name: reaction(problem, model, c) for c in constraints}
     return MatrixForm(problem, model, constraints, loads, frictions, q_forces, lagrange, reactions)
