@@ -389,3 +389,43 @@ def test_cancel_results_are_known_to_be_cancelled():
     assert once in simplify._CANCELLED
     assert simplify.cancel(once) is once
     assert simplify.cancel((x**2 - 1) / (x - 1)) == x + 1
+
+
+CANCEL_SAMPLES = [
+    "(x**2 - 1)/(x + 1)", "(x**2 - 1)/(1 - x)", "(2*x + 2*g)/(4*m*x + 4*m)", "x/2 + g/3", "-(x - g)/(g - x)**2",
+    "(m*sin(th)**2 - m)/(g*cos(th)**2)", "(exp(2*x) - 1)/(exp(x) + 1)", "1/(x + 1) + 1/(x - 1)", "(-x - g)/(-m)",
+    "(2*g*sin(th) - g*sin(x)*cos(th - x))/(m*cos(th - x)**2 - 2*m)", "x", "m*g", "3*x/(6*g)", "Derivative(f(x), x)/x",
+]
+
+
+@pytest.mark.parametrize("text", CANCEL_SAMPLES)
+def test_ring_cancel_is_sympys_cancel(text):
+    """simplify's cancel of a quotient of integer polynomials (in symbols and functions) is sympy.cancel, tree for
+    tree; expressions with roots, floats or Piecewise go to sympy.cancel itself."""
+    from lagsolve.mechanics.simplify import _ring_cancel
+
+    expr = sympy.sympify(text, locals={"x": x, "g": g, "m": m, "th": th, "f": sympy.Function("f")})  # test data
+    assert sympy.srepr(_ring_cancel(expr)) == sympy.srepr(sympy.cancel(expr))
+    for other in (expr + sympy.sqrt(2) * x, expr * 1.5, expr + sympy.Piecewise((x, x > 0), (0, True))):
+        assert sympy.srepr(_ring_cancel(other)) == sympy.srepr(sympy.cancel(other))
+
+
+def test_ring_cancel_of_random_quotients_is_sympys():
+    import random
+
+    from lagsolve.mechanics.simplify import _ring_cancel
+
+    rng = random.Random(11)
+    atoms = [x, g, m, sympy.sin(th), sympy.cos(th)]
+
+    def polynomial():
+        return sum(rng.randint(-4, 4) * sympy.Mul(*[a ** rng.randint(0, 2) for a in rng.sample(atoms, 2)])
+                   for _ in range(rng.randint(1, 3)))
+
+    for _ in range(150):
+        common = polynomial() if rng.random() < 0.5 else 1
+        numerator, denominator = polynomial() * common, polynomial() * common
+        if denominator == 0:
+            continue
+        expr = numerator / denominator
+        assert sympy.srepr(_ring_cancel(expr)) == sympy.srepr(sympy.cancel(expr)), expr

@@ -186,7 +186,31 @@ def cancel(expr: Any) -> Any:
 @functools.lru_cache(maxsize=8192, typed=True)
 def _cancel(expr: Any) -> Any:
     # cancel's form is its own cancel (so on all 1 161 expressions the shipped problems cancel): not searched again
-    return known_cancelled(sympy.cancel(expr))
+    return known_cancelled(_ring_cancel(expr))
+
+
+def _ring_cancel(expr: Any) -> Any:
+    """``sympy.cancel(expr)``. For a quotient of polynomials with integer coefficients in symbols and function
+    applications (integer powers only, no float, no ``Piecewise``) it is found as SymPy finds it, in the ring of
+    those generators (``P, Q = F.cancel(G)``, then ``P/Q``), without SymPy's preparation of the expression
+    (``signsimp``, ``factor_terms``), which only writes the same quotient another way: in that ring the cancelled
+    quotient is unique (coprime, the denominator's leading coefficient positive), so the result is the same tree
+    (a test holds it equal to ``sympy.cancel`` on every expression the shipped problems cancel), at about half the
+    cost. Any other expression goes to ``sympy.cancel``."""
+    from sympy.polys.rings import sring
+
+    if (not isinstance(expr, sympy.Expr) or expr.is_Number or not expr.is_commutative or expr.has(sympy.Piecewise)
+            or any(not p.exp.is_Integer for p in expr.atoms(sympy.Pow)) or expr.atoms(sympy.Float)):
+        return sympy.cancel(expr)
+    numerator, denominator = expr.as_numer_denom()
+    try:
+        ring, (F, G) = sring((numerator, denominator))
+    except (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):
+        return sympy.cancel(expr)
+    if not ring.ngens or not ring.domain.is_ZZ or not G:
+        return sympy.cancel(expr)
+    P, Q = F.cancel(G)
+    return P.as_expr() / Q.as_expr()
 
 
 #: expressions already in ``sympy.cancel``'s form P/Q (see :func:`known_cancelled`)
