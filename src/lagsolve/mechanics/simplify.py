@@ -749,16 +749,23 @@ def _contract(expanded: Any) -> Any:
     holds a sine or cosine (then ``TR10i`` leaves every term itself alone); otherwise the whole sum
     goes to ``TR10i`` at once.
     """
-    from sympy.simplify.fu import TR10i
-
     if not expanded.is_Add or any(a.has(sympy.sin, sympy.cos) for t in expanded.args for a in t.atoms(sympy.Add)):
-        return TR10i(expanded)
+        return _tr10i(expanded)
     classes: dict[Any, list[Any]] = {}
     for term in expanded.args:
         classes.setdefault(_pairing_key(term), []).append(term)
     if len(classes) == 1:
-        return TR10i(expanded)
-    return sympy.Add(*[TR10i(sympy.Add(*terms)) if len(terms) > 1 else terms[0] for terms in classes.values()])
+        return _tr10i(expanded)
+    return sympy.Add(*[_tr10i(sympy.Add(*terms)) if len(terms) > 1 else terms[0] for terms in classes.values()])
+
+
+@functools.lru_cache(maxsize=8192, typed=True)
+def _tr10i(expr: Any) -> Any:
+    """SymPy's ``TR10i(expr)``, remembered: the forms of a sum with sin² or cos² reduced share most classes of
+    terms (the cross terms of a chain's kinetic energy), which are contracted once."""
+    from sympy.simplify.fu import TR10i
+
+    return TR10i(expr)
 
 
 def _pairing_key(term: Any) -> Any:
