@@ -32,3 +32,14 @@ def test_declared_functions_get_concrete_bodies():
     """Numeric probes replace f by concrete functions, so f(x) - f(x)**1 is zero and f'(x) is not."""
     assert numerically_zero(f(x) - f(x) ** 1)
     assert not numerically_zero(sympy.Derivative(f(x), x))
+
+
+def test_probes_evaluate_unevaluated_objects():
+    """An unevaluated derivative or integral is evaluated before a probe (its value, not the object, is compared),
+    and a plain expression is probed as it is."""
+    y = sympy.Symbol("y", real=True)
+    assert numerically_zero(sympy.Derivative(x**2, x, evaluate=False) - 2 * x)
+    assert not numerically_zero(sympy.Derivative(x**2, x, evaluate=False) - 3 * x)
+    assert numerically_zero(sympy.Integral(2 * y, (y, 0, x)) - x**2)
+    assert numerically_zero(sympy.sin(x - y) - sympy.sin(x) * sympy.cos(y) + sympy.cos(x) * sympy.sin(y))
+    assert not numerically_zero(sympy.sin(x - y) - sympy.sin(x) * sympy.cos(y))

@@ -95,6 +95,13 @@ def numerically_zero(expr: Any, *, samples: int = 6, seed: int = 3, tol: float =
     rng = random.Random(seed)
     symbols = sorted(expr.free_symbols, key=sympy.default_sort_key)
     terms = sympy.Add.make_args(expr)
+    # doit evaluates derivatives (of the probes put in for declared functions) and other unevaluated objects; a
+    # plain expression has none, and doit would only rebuild it (half the cost of a probe)
+    unevaluated = bool(kinds) or expr.has(sympy.Derivative, sympy.Integral, sympy.Sum, sympy.Product, sympy.Subs)
+
+    def settle(e: Any) -> Any:
+        return e.doit() if unevaluated else e
+
     for k in range(samples):
         concrete = expr
         scale_terms = list(terms)
@@ -106,8 +113,8 @@ def numerically_zero(expr: Any, *, samples: int = 6, seed: int = 3, tol: float =
         point = {s: sympy.Rational(rng.randint(5, 20) if s.is_positive else rng.randint(-20, 20), 10) or
                  sympy.Rational(7, 10) for s in symbols}
         try:
-            value = complex(sympy.N(concrete.doit().xreplace(point), 30))
-            scale = sum(abs(complex(sympy.N(t.doit().xreplace(point), 30))) for t in scale_terms)
+            value = complex(sympy.N(settle(concrete).xreplace(point), 30))
+            scale = sum(abs(complex(sympy.N(settle(t).xreplace(point), 30))) for t in scale_terms)
         except (TypeError, ValueError, ZeroDivisionError):
             continue
         if value != value:  # NaN: a singular point, try another
