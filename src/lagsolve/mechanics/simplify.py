@@ -430,6 +430,17 @@ def _engine_polynomial(expr: Any) -> bool:
     return True
 
 
+def _divides(factor: Any) -> bool:
+    """``sympy.fraction`` puts (part of) this factor of a product in the denominator: a fraction, or a power (or
+    ``exp``) whose exponent is negative or a product not known to be positive."""
+    if factor.is_Rational:
+        return not factor.is_Integer
+    if factor.is_commutative and (factor.is_Pow or isinstance(factor, sympy.exp)):
+        exponent = factor.as_base_exp()[1]
+        return bool(exponent.is_negative) or (not exponent.is_positive and exponent.is_Mul)
+    return False
+
+
 @functools.lru_cache(maxsize=8192)
 def ops(expr: Any) -> int:
     """``sympy.count_ops(expr)``, remembered (counted by :func:`count_ops` for an expression)."""
@@ -458,17 +469,18 @@ def count_ops(expr: Any) -> int:
             if _coeff_isneg(a):
                 count += 1  # NEG
                 a = a.as_two_terms()[1] if a.args[0] is sympy.S.NegativeOne else -a
-            n, d = sympy.fraction(a)
-            if n.is_Integer:
-                count += 1 + bool(n < 0)  # DIV, NEG
-                args.append(d)
-                continue
-            if d is not sympy.S.One:
-                if not d.is_Integer:
+            if any(_divides(f) for f in a.args):  # else fraction(a) is (a, 1): nothing to count here
+                n, d = sympy.fraction(a)
+                if n.is_Integer:
+                    count += 1 + bool(n < 0)  # DIV, NEG
                     args.append(d)
-                count += 1  # DIV
-                args.append(n)
-                continue
+                    continue
+                if d is not sympy.S.One:
+                    if not d.is_Integer:
+                        args.append(d)
+                    count += 1  # DIV
+                    args.append(n)
+                    continue
         elif a.is_Add:
             terms = a.args
             negative = 0
