@@ -370,16 +370,21 @@ def _linear_factor_list(poly: Any) -> tuple[Any, list[tuple[Any, int]]] | None:
     if ring.is_negative(dmp_ground_LC(f, u, ring)):
         content, f = -content, dmp_neg(f, u, ring)
     terms = dmp_to_dict(f, u, ring)
+    splits = []
     for j in range(u + 1):
-        if {m[j] for m in terms} != {0, 1}:
-            continue
-        a = dmp_from_dict({m[:j] + (0,) + m[j + 1:]: c for m, c in terms.items() if m[j] == 1}, u, ring)
-        b = dmp_from_dict({m: c for m, c in terms.items() if m[j] == 0}, u, ring)
-        if any(dmp_to_dict(dmp_gcd(a, b, u, ring), u, ring).keys() - {(0,) * (u + 1)}):
-            return None  # a common factor of a and b divides the polynomial
-        break
-    else:
+        if {m[j] for m in terms} == {0, 1}:
+            a = {m[:j] + (0,) + m[j + 1:]: c for m, c in terms.items() if m[j] == 1}
+            b = {m: c for m, c in terms.items() if m[j] == 0}
+            splits.append((min(len(a), len(b)), j, a, b))
+    if not splits:
         return None
+    fewest, _, a, b = min(splits, key=lambda split: split[:2])
+    # a monomial a or b has no common factor with the other but a monomial or an integer, which would divide every
+    # term of the polynomial: none is left after its monomial and integer content, so no gcd is needed
+    if fewest > 1:
+        gcd = dmp_gcd(dmp_from_dict(a, u, ring), dmp_from_dict(b, u, ring), u, ring)
+        if any(dmp_to_dict(gcd, u, ring).keys() - {(0,) * (u + 1)}):
+            return None  # a common factor of a and b divides the polynomial
     factors = [(f, 1)]
     for i, k in enumerate(reversed(exponents)):
         if k:
