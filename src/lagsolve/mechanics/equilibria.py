@@ -38,10 +38,11 @@ from typing import Any
 
 import sympy
 
+from lagsolve.mechanics.algebra import ops
 from lagsolve.mechanics.conserved import Conservation, MotionSystem
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.signs import relation, sign_core
-from lagsolve.mechanics.simplify import ops, tidy, tidy_sum
+from lagsolve.mechanics.simplify import tidy, tidy_sum
 from lagsolve.problem.names import momentum_symbol
 
 #: factors of V_eff' larger than this are not handed to ``sympy.solve``

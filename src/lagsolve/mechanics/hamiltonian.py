@@ -49,12 +49,13 @@ from typing import TYPE_CHECKING, Any
 
 import sympy
 
+from lagsolve.mechanics.algebra import cancel, factor_terms, ops
 from lagsolve.mechanics.energy import jacobi_integral
 from lagsolve.mechanics.identities import Zero, numerically_zero, proved_zero, zero_status
 from lagsolve.mechanics.linsolve import SIZE_LIMIT, blocks, solve_structured
 from lagsolve.mechanics.model import Model, time_derivative
 from lagsolve.mechanics.partials import partial
-from lagsolve.mechanics.simplify import cancel, factor_terms, measure, ops, smallest, tidy, tidy_sum
+from lagsolve.mechanics.simplify import measure, smallest, tidy, tidy_sum
 from lagsolve.mechanics.stages import Stages, StageSkipped
 from lagsolve.problem.names import momentum_symbol
 

@@ -30,11 +30,12 @@ from typing import Any
 
 import sympy
 
+from lagsolve.mechanics.algebra import ops
 from lagsolve.mechanics.conserved import MotionSystem
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.lagrange import lagrange_terms
 from lagsolve.mechanics.signs import sign_core
-from lagsolve.mechanics.simplify import ops, tidy
+from lagsolve.mechanics.simplify import tidy
 
 #: equations F(q, 0) larger than this (operations) are not solved
 SOLVE_LIMIT = 60

@@ -30,7 +30,7 @@ from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.simplify import known_cancelled, ops
+from lagsolve.mechanics.algebra import known_cancelled, ops
 from lagsolve.mechanics.stages import StageSkipped
 
 #: an explicit result (or an intermediate of the elimination) with more operations than this is not produced

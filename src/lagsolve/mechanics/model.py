@@ -13,7 +13,8 @@ from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.simplify import ops, tidy_sum
+from lagsolve.mechanics.algebra import ops
+from lagsolve.mechanics.simplify import tidy_sum
 from lagsolve.problem.schema import Problem
 
 
