@@ -63,11 +63,10 @@ def test_factor_is_sympys_factor(text):
     assert sympy.srepr(factor(expr)) == sympy.srepr(sympy.factor(expr))
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("name", ["double_pendulum", "wedge", "heavy_top", "rotating_tube"])
-def test_factor_is_sympys_factor_on_every_expression_a_derivation_factors(name, monkeypatch):
-    """Every expression the derivation of a shipped problem factors (fractions of trigonometric polynomials,
-    momenta, frequencies) is factored as SymPy's own factor does, tree for tree."""
+def _derive_comparing(name: str, attribute: str, same: Any, monkeypatch: Any) -> list[Any]:
+    """Derive ``problems/<name>.yaml`` with ``simplify.<attribute>`` (the cheaper route the display simplification
+    calls) checked against SymPy's on every expression it is given: ``same(expr, result)`` must hold. The
+    expressions checked are returned."""
     import functools
     from pathlib import Path
 
@@ -75,24 +74,48 @@ def test_factor_is_sympys_factor_on_every_expression_a_derivation_factors(name, 
     from lagsolve.mechanics.derivation import derive
     from lagsolve.problem.load import load_problem
 
-    inner = simplify.factor.__wrapped__
+    original = getattr(simplify, attribute)
+    inner = getattr(original, "__wrapped__", original)
     checked: list[Any] = []
 
-    def compare(expr):
+    def compare(expr: Any) -> Any:
         result = inner(expr)
-        assert sympy.srepr(result) == sympy.srepr(sympy.factor(expr)), expr
+        assert same(expr, result), expr
         checked.append(expr)
         return result
 
-    monkeypatch.setattr(simplify, "factor", functools.lru_cache(maxsize=None)(compare))
-    simplify.tidy.cache_clear()
-    simplify.tidy_sum.cache_clear()
+    caches = (simplify.tidy, simplify.tidy_sum, simplify._weight, simplify.compound_angles)
+    monkeypatch.setattr(simplify, attribute, functools.lru_cache(maxsize=None)(compare))
+    for cache in caches:
+        cache.cache_clear()
     try:
         derive(load_problem(Path(__file__).resolve().parents[2] / "problems" / f"{name}.yaml"))
     finally:
-        simplify.tidy.cache_clear()
-        simplify.tidy_sum.cache_clear()
+        for cache in caches:
+            cache.cache_clear()
+    return checked
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["double_pendulum", "wedge", "heavy_top", "rotating_tube"])
+def test_factor_is_sympys_factor_on_every_expression_a_derivation_factors(name, monkeypatch):
+    """Every expression the derivation of a shipped problem factors (fractions of trigonometric polynomials,
+    momenta, frequencies) is factored as SymPy's own factor does, tree for tree."""
+    checked = _derive_comparing(name, "factor", lambda e, r: sympy.srepr(r) == sympy.srepr(sympy.factor(e)),
+                                monkeypatch)
     assert len(checked) >= 5
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["double_pendulum", "wedge", "cone", "incline_pulley"])
+def test_cancel_and_expand_are_sympys_on_every_expression_a_derivation_passes(name, monkeypatch):
+    """Every quotient a derivation cancels and every expression it expands comes out as SymPy's cancel and
+    expand write it, tree for tree."""
+    cancelled = _derive_comparing(name, "cancel", lambda e, r: sympy.srepr(r) == sympy.srepr(sympy.cancel(e)),
+                                  monkeypatch)
+    expanded = _derive_comparing(name, "expand", lambda e, r: sympy.srepr(r) == sympy.srepr(sympy.expand(e)),
+                                 monkeypatch)
+    assert cancelled and len(expanded) >= 5
 
 
 COUNT_SAMPLES = [
@@ -116,32 +139,7 @@ def test_count_ops_is_sympys(text):
 @pytest.mark.parametrize("name", ["double_pendulum", "wedge", "rolling_disc", "ladder_rough_floor"])
 def test_count_ops_is_sympys_on_every_expression_a_derivation_measures(name, monkeypatch):
     """Every expression a derivation of a shipped problem measures has SymPy's count of operations."""
-    import functools
-    from pathlib import Path
-
-    from lagsolve.mechanics import simplify
-    from lagsolve.mechanics.derivation import derive
-    from lagsolve.problem.load import load_problem
-
-    inner = simplify.ops.__wrapped__
-    checked: list[Any] = []
-
-    def compare(expr):
-        result = inner(expr)
-        assert result == sympy.count_ops(expr), expr
-        checked.append(expr)
-        return result
-
-    monkeypatch.setattr(simplify, "ops", functools.lru_cache(maxsize=None)(compare))
-    simplify.tidy.cache_clear()
-    simplify.tidy_sum.cache_clear()
-    simplify._weight.cache_clear()
-    try:
-        derive(load_problem(Path(__file__).resolve().parents[2] / "problems" / f"{name}.yaml"))
-    finally:
-        simplify.tidy.cache_clear()
-        simplify.tidy_sum.cache_clear()
-        simplify._weight.cache_clear()
+    checked = _derive_comparing(name, "ops", lambda e, r: r == sympy.count_ops(e), monkeypatch)
     assert len(checked) >= 20
 
 
