@@ -349,16 +349,15 @@ def expand(expr: Any) -> Any:
     expression the shipped problems expand). Anything else is expanded by SymPy."""
     if not isinstance(expr, sympy.Basic) or not _engine_polynomial(expr):
         return sympy.expand(expr)
+    from lagsolve.mechanics.partials import from_engine
+
     try:
         from symengine.lib.symengine_wrapper import sympy2symengine
 
-        back = sympy2symengine(expr).expand()._sympy_()  # a SymEngine object, never text
+        back = from_engine(sympy2symengine(expr).expand(), {s.name: s for s in expr.free_symbols})
     except (ImportError, RuntimeError, TypeError, ValueError, NotImplementedError, AttributeError):
         return sympy.expand(expr)
-    own = {s.name: s for s in expr.free_symbols}
-    if {s.name for s in back.free_symbols} - own.keys():
-        return sympy.expand(expr)
-    return back.xreplace({s: own[s.name] for s in back.free_symbols})
+    return sympy.expand(expr) if back is None else back
 
 
 def _engine_polynomial(expr: Any) -> bool:

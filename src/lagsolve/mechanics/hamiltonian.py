@@ -349,7 +349,7 @@ def _square_term(pair: tuple[Any, Any]) -> Any:
 
 
 def _guard(exprs: tuple[Any, ...], limit: int) -> None:
-    largest = max((int(ops(e)) for e in exprs if isinstance(e, sympy.Basic)), default=0)
+    largest = max((ops(e) for e in exprs if isinstance(e, sympy.Basic)), default=0)
     if largest > limit:
         raise StageSkipped(f"too large: inverting p = A q_dot + b grows past {limit} operations per expression")
 

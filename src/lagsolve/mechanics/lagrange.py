@@ -31,6 +31,7 @@ from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.linsolve import solve_linear as linear_solve
 from lagsolve.mechanics.linsolve import solve_structured
 from lagsolve.mechanics.model import Model
+from lagsolve.mechanics.partials import from_engine
 
 
 @dataclass(frozen=True)
@@ -113,8 +114,10 @@ def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
                                                     *model.accelerations}}
 
         def back(expr: Any) -> Any:
-            value = expr._sympy_()  # a SymEngine object, never text
-            return value.xreplace({s: own[s.name] for s in value.free_symbols})
+            value = from_engine(expr, own)
+            if value is None:  # an unevaluated derivative (of an Abs, say): SymPy differentiates the whole L
+                raise KeyError("not expressible")
+            return value
 
         momenta_back = tuple(back(p) for p in momenta)
         mass_back = sympy.Matrix([[back(e) for e in row] for row in mass])

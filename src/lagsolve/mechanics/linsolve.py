@@ -30,7 +30,7 @@ from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.algebra import known_cancelled, ops
+from lagsolve.mechanics.algebra import cancel, known_cancelled, ops
 from lagsolve.mechanics.stages import StageSkipped
 
 #: an explicit result (or an intermediate of the elimination) with more operations than this is not produced
@@ -38,7 +38,7 @@ SIZE_LIMIT = 1500
 
 
 def _size(expr: Any) -> int:
-    return int(ops(expr)) if isinstance(expr, sympy.Basic) else 0
+    return ops(expr) if isinstance(expr, sympy.Basic) else 0
 
 
 def _guard(exprs: list[Any], limit: int | None) -> None:
@@ -87,8 +87,7 @@ def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix, limit: int | None = No
     if size == 1:
         if not _nonzero(system[0, 0]):
             raise ValueError("no pivot in column 1")
-        out = sympy.Matrix(1, columns, [known_cancelled(sympy.cancel(rhs[0, j] / system[0, 0]))
-                                        for j in range(columns)])
+        out = sympy.Matrix(1, columns, [cancel(rhs[0, j] / system[0, 0]) for j in range(columns)])
         _guard(list(out), limit)
         return out
     work = [list(system.row(i)) + list(rhs.row(i)) for i in range(size)]
@@ -112,7 +111,7 @@ def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix, limit: int | None = No
     for r in reversed(range(size)):
         for j in range(columns):
             acc = work[r][size + j] - sum((work[r][k] * solution[k][j] for k in range(r + 1, size)), sympy.Integer(0))
-            solution[r][j] = known_cancelled(sympy.cancel(acc / work[r][r]))
+            solution[r][j] = cancel(acc / work[r][r])
         _guard(solution[r], limit)
     return sympy.Matrix(solution)
 
@@ -165,7 +164,7 @@ def _solve_in_ring(system: sympy.Matrix, rhs: sympy.Matrix) -> sympy.Matrix | No
         element = reduced[i, size + j].element
         if integral:
             return cancelled(element.numer.as_expr().xreplace(back), element.denom.as_expr().xreplace(back))
-        return known_cancelled(sympy.cancel(to_sympy(element).xreplace(back)))
+        return cancel(to_sympy(element).xreplace(back))
 
     return sympy.Matrix(size, rhs.cols, entry)
 

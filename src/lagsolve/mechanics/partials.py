@@ -40,11 +40,19 @@ def _partial(expr: Any, wrt: tuple[Any, ...]) -> Any:
         value = form
         for symbol in wrt:
             value = value.diff(sympy2symengine(symbol))
-        back = value._sympy_()  # a SymEngine object, never text
+        back = from_engine(value, own)
     except (RuntimeError, TypeError, ValueError, NotImplementedError, AttributeError, KeyError):
         return sympy.diff(expr, *wrt)
-    if back.has(sympy.Derivative, sympy.Subs) or not back.free_symbols <= {sympy.Symbol(n) for n in own}:
-        return sympy.diff(expr, *wrt)
+    return sympy.diff(expr, *wrt) if back is None else back
+
+
+def from_engine(value: Any, own: dict[str, Any]) -> Any | None:
+    """A SymEngine result (never text) as a SymPy expression in the symbols ``own`` (by name: SymEngine keeps no
+    assumptions, so its symbols come back plain and are put back), or None when it holds a symbol ``own`` lacks or
+    an unevaluated derivative (the caller then takes SymPy's own route)."""
+    back = value._sympy_()
+    if back.has(sympy.Derivative, sympy.Subs) or {s.name for s in back.free_symbols} - own.keys():
+        return None
     return back.xreplace({s: own[s.name] for s in back.free_symbols})
 
 
