@@ -22,7 +22,7 @@ from lagsolve.problem.readers.base import (
     kind_of,
 )
 from lagsolve.problem.readers.bodies import BodiesReader
-from lagsolve.problem.readers.constraints import ConstraintsReader
+from lagsolve.problem.readers.friction import FrictionReader
 from lagsolve.problem.readers.simulation import SimulationReader
 from lagsolve.problem.schema import (
     Coordinate,
@@ -71,7 +71,7 @@ def load_text(raw: bytes | str, source: str = "<text>") -> Problem:
     document = read_document(raw, source)
     return _Loader(document, source).problem()
 
-class _Loader(BodiesReader, ConstraintsReader, AnswersReader, SimulationReader):
+class _Loader(BodiesReader, FrictionReader, AnswersReader, SimulationReader):
     """The whole file: the top level and the declarations here, each other section by its reader
     (:mod:`lagsolve.problem.readers`)."""
 
@@ -120,6 +120,7 @@ class _Loader(BodiesReader, ConstraintsReader, AnswersReader, SimulationReader):
         # is not reported a second time as "unknown particle"
         self.declared_particles = [n for n in raw_particles if isinstance(n, str)]
         particles = self.particles(raw_particles, positions)
+        self.loaded_particles = {p.name: p for p in particles}
         bodies = self.bodies(data.get("bodies") or {}, positions, base)
         gravity = self.vector(("gravity",), data["gravity"], constants) if "gravity" in data else None
         self.check_dimensions(particles, bodies, gravity)
@@ -135,7 +136,8 @@ class _Loader(BodiesReader, ConstraintsReader, AnswersReader, SimulationReader):
         particle_names = self.declared_particles
         forces = self.forces(data.get("forces", []), base, particles, coordinates)
         constraints = self.constraints(data.get("constraints", {}), base, particle_names, bodies, positions)
-        friction = self.friction(data.get("friction", {}), base, particle_names, constraints, coordinates)
+        friction, constraints = self.friction(data.get("friction", {}), base, positions, bodies, constraints,
+                                              coordinates)
         expected = self.expected(data.get("expected", {}), constraints)
         simulation = self.simulation(data["simulation"], parameters, coordinates) if "simulation" in data else None
         independent = self.independent(data["independent"], coordinates) if "independent" in data else ()

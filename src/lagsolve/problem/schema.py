@@ -90,7 +90,9 @@ class Constraint:
     on: tuple[str, ...]  # particles it acts on (or the one body, with ``at``); empty when unknown
     line: int
     unilateral: bool = False  # holds only while its force pushes (lambda >= 0); see docs/format.md
-    at: tuple[Expr, ...] | None = None  # the point of the body ``on[0]`` where it acts (problem coordinates)
+    # the point of ``on[0]`` where it acts (problem coordinates). Given, the constraint is a *contact*: with a
+    # second name in ``on`` that member gets the opposite force at the same point (Newton's third law)
+    at: tuple[Expr, ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -104,12 +106,19 @@ class Force:
 
 @dataclass(frozen=True)
 class Friction:
+    """A Coulomb friction contact between ``on`` (the particle or planar body that slides) and ``against``
+    (the particle or planar body that carries the surface; None: the fixed surroundings), acting at the
+    point ``at`` of ``on`` (a particle's own position). ``normal`` names the constraints whose combined
+    force on ``on`` is the normal force; ``sliding`` the coordinates whose rates make the sliding velocity."""
+
     name: str
     coefficient: Expr
     static: Expr | None
     on: str
     normal: tuple[str, ...]
     sliding: tuple[str, ...]
+    against: str | None = None
+    at: tuple[Expr, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -15,6 +15,7 @@ from typing import Any
 from lagsolve.errors import ExpressionError, Issue
 from lagsolve.problem import expr as gateway
 from lagsolve.problem import units
+from lagsolve.problem.schema import Particle
 from lagsolve.problem.yamlread import Document, dotted, kind_of
 
 #: longest free text, in characters: the name (a title, drawn on every figure), the problem's
@@ -38,6 +39,7 @@ class Reader:
         self.functions: dict[str, Any] = {}
         self.velocity_names: dict[str, Any] = {}
         self.declared_particles: list[str] = []
+        self.loaded_particles: dict[str, Particle] = {}  # the particles read so far, by name
         self.particles_readable = True  # False: references to particles cannot be checked
         self.acceleration_names: dict[str, Any] = {}
         self.texts: dict[str, str] = {}  # dotted field -> expression text as written (for messages)

@@ -1,4 +1,4 @@
-"""The problem file's constraints and friction contacts."""
+"""The problem file's constraints."""
 
 from __future__ import annotations
 
@@ -12,13 +12,12 @@ from lagsolve.problem.schema import (
     Body,
     Constraint,
     ConstraintKind,
-    Coordinate,
-    Friction,
+    Particle,
 )
 
 
 class ConstraintsReader(Reader):
-    """Reads ``constraints`` and ``friction``."""
+    """Reads ``constraints``."""
 
     def constraints(self, value: Any, names: gateway.Namespace, particles: list[str], bodies: list[Body],
                     points: gateway.Namespace) -> list[Constraint]:
@@ -47,13 +46,13 @@ class ConstraintsReader(Reader):
             kind = kinds[0]
             raw_on = spec.get("on")
             first = raw_on[0] if isinstance(raw_on, list) and raw_on else raw_on
-            body = next((b for b in bodies if first == b.name), None)
+            member = self.member(first, bodies)
             at = None
-            if body is not None or "at" in spec:
-                at = self.contact_point(path, spec, body, points)
+            if isinstance(member, Body) or "at" in spec:
+                at = self.contact_point(path, spec, member, points)
                 if at is None:
                     continue
-                on: tuple[str, ...] | None = self.contact_pair(path, raw_on, body, particles, bodies)
+                on: tuple[str, ...] | None = self.contact_pair(path, raw_on, member, particles, bodies)
             else:
                 on = self.constraint_on(path, spec, particles)
             if on is None:
@@ -86,46 +85,66 @@ class ConstraintsReader(Reader):
             out.append(Constraint(cname, kind, psi, on, self.line((*path, kind)), unilateral, at))
         return out
 
-    def contact_point(self, path: tuple, spec: dict, body: Body | None,
+    def member(self, name: Any, bodies: list[Body]) -> Body | Particle | None:
+        """The body or particle called ``name`` (None: neither, or not a name)."""
+        if not isinstance(name, str):
+            return None
+        return next((b for b in bodies if b.name == name), None) or self.loaded_particles.get(name)
+
+    def contact_point(self, path: tuple, spec: dict, member: Body | Particle | None,
                       positions: gateway.Namespace) -> tuple[Any, ...] | None:
-        """``on: disk`` with ``at: [X, Y - R]``: the point of a planar body where a constraint acts."""
-        if body is None:
+        """``on: disk`` with ``at: [X, Y - R]``: the point of a planar body (or the position of a particle) where a
+        constraint or a friction contact acts."""
+        if member is None:
             self.issue((*path, "on"),
-                       "'at:' names a point of a body; 'on:' must name that body (first, when it names two)",
-                       known_names("bodies", [n for n in (self.data.get("bodies") or {}) if isinstance(n, str)]))
+                       "'at:' names the point of a body or particle where it acts; 'on:' must name that body or "
+                       "particle (first, when it names two)",
+                       known_names("bodies and particles", [n for n in [
+                           *(self.data.get("bodies") or {}), *self.declared_particles] if isinstance(n, str)]))
             return None
+        if isinstance(member, Particle):
+            if "at" not in spec:
+                return member.position
+            point = self.vector((*path, "at"), spec["at"], positions)
+            if point is not None and (len(point) != len(member.position) or any(
+                    sympy.expand(a - b) != 0 for a, b in zip(point, member.position, strict=False))):
+                self.issue((*path, "at"), f"{member.name!r} is a particle, a point: a force on it acts at its "
+                           f"position {[str(c) for c in member.position]}",
+                           f"write at: {_listed(member.position)}, or name a body if the contact is elsewhere")
+                return None
+            return point
         if "at" not in spec:
-            self.issue((*path, "on"), f"a constraint on the body {body.name!r} needs the point where it acts",
-                       f"add 'at: [x, y]', the contact point in the problem's coordinates (the centre of "
-                       f"{body.name!r} is {[str(c) for c in body.position]})")
+            self.issue((*path, "on"), f"a constraint or contact on the body {member.name!r} needs the point where it "
+                       "acts", f"add 'at: [x, y]', the contact point in the problem's coordinates (the centre of "
+                       f"{member.name!r} is {[str(c) for c in member.position]})")
             return None
-        if not body.planar:
-            self.issue((*path, "at"), f"{body.name!r} is a 3-D body; 'at:' is supported for planar bodies",
+        if not member.planar:
+            self.issue((*path, "at"), f"{member.name!r} is a 3-D body; 'at:' is supported for planar bodies",
                        "leave 'on:' and 'at:' out: the generalized forces of constraint are then reported")
             return None
         point = self.vector((*path, "at"), spec["at"], positions)
-        if point is not None and len(point) != len(body.position):
-            self.issue((*path, "at"), f"the point has {len(point)} components but {body.name!r} has "
-                       f"{len(body.position)}", "give it as many components as the body's position")
+        if point is not None and len(point) != len(member.position):
+            self.issue((*path, "at"), f"the point has {len(point)} components but {member.name!r} has "
+                       f"{len(member.position)}", "give it as many components as the body's position")
             return None
         return point
 
-    def contact_pair(self, path: tuple, raw: Any, body: Body | None, particles: list[str],
+    def contact_pair(self, path: tuple, raw: Any, member: Body | Particle | None, particles: list[str],
                      bodies: list[Body]) -> tuple[str, ...] | None:
-        """``on: disk`` or ``on: [disk, other]``: the body the point belongs to, and the particle or planar body
-        it presses on (which gets the opposite force at the same point: a surface that moves)."""
-        if body is None:
+        """``on: disk`` or ``on: [disk, other]``: the body or particle the point belongs to, and the particle or
+        planar body it presses on (which gets the opposite force at the same point: a surface that moves)."""
+        if member is None:
             return None
         if not isinstance(raw, list) or len(raw) == 1:
-            return (body.name,)
+            return (member.name,)
         planar = [b.name for b in bodies if b.planar]
-        if len(raw) != 2 or not isinstance(raw[1], str) or raw[1] == body.name or raw[1] not in [*particles, *planar]:
-            self.issue((*path, "on"), f"with 'at:', 'on:' names the body {body.name!r} and at most one particle or "
+        if len(raw) != 2 or not isinstance(raw[1], str) or raw[1] == member.name or raw[1] not in [*particles, *planar]:
+            self.issue((*path, "on"), f"with 'at:', 'on:' names {member.name!r} and at most one particle or "
                        f"planar body it presses on (found {', '.join(shown(x) for x in raw[:4])})",
-                       "write on: [" + body.name + ", OTHER] with OTHER one of: "
-                       + (", ".join(n for n in [*particles, *planar] if n != body.name) or "(none)"))
+                       "write on: [" + member.name + ", OTHER] with OTHER one of: "
+                       + (", ".join(n for n in [*particles, *planar] if n != member.name) or "(none)"))
             return None
-        return (body.name, raw[1])
+        return (member.name, raw[1])
 
     def constraint_on(self, path: tuple, spec: dict, particles: list[str]) -> tuple[str, ...] | None:
         if "on" not in spec:
@@ -141,38 +160,6 @@ class ConstraintsReader(Reader):
                 return None
         return tuple(items)
 
-    def friction(self, value: Any, names: gateway.Namespace, particles: list[str],
-                 constraints: list[Constraint], coordinates: list[Coordinate]) -> list[Friction]:
-        out: list[Friction] = []
-        value = self.mapping(("friction",), value, "a mapping name: contact")
-        if value is None:
-            return out
-        constraint_names = [c.name for c in constraints]
-        coordinate_names = [c.name for c in coordinates]
-        for fname, spec in value.items():
-            path = ("friction", fname)
-            spec = self.mapping(path, spec)
-            if spec is None or not self.keys(path, spec, ("coefficient", "static", "on", "normal", "sliding"),
-                                             ("coefficient", "normal")):
-                continue
-            coefficient = self.expression((*path, "coefficient"), spec["coefficient"], names)
-            static = self.expression((*path, "static"), spec["static"], names) if "static" in spec else None
-            on = spec.get("on", particles[0] if len(particles) == 1 else None)
-            if not isinstance(on, str) or on not in particles:
-                if isinstance(on, str) and not self.particles_readable:
-                    continue
-                self.issue((*path, "on"),
-                           f"unknown particle {shown(on)}" if on else "say which particle slides",
-                           known_names("particles", particles))
-                continue
-            normal = self.name_refs((*path, "normal"), spec["normal"], constraint_names, "constraint")
-            sliding = (self.name_refs((*path, "sliding"), spec["sliding"], coordinate_names, "coordinate")
-                       if "sliding" in spec else tuple(coordinate_names))
-            if coefficient is None or normal is None or sliding is None or ("static" in spec and static is None):
-                continue
-            out.append(Friction(fname, coefficient, static, on, normal, sliding))
-        return out
-
     def name_refs(self, path: tuple, value: Any, known: list[str], what: str) -> tuple[str, ...] | None:
         items = value if isinstance(value, list) else [value]
         for i, item in enumerate(items):
@@ -184,3 +171,8 @@ class ConstraintsReader(Reader):
             self.issue(path, f"name at least one {what}")
             return None
         return tuple(items)
+
+
+def _listed(vector: tuple[Any, ...]) -> str:
+    """A vector as a file writes it: ``[x, y - R]``."""
+    return "[" + ", ".join(str(c) for c in vector) + "]"
