@@ -16,6 +16,7 @@ from typing import Any
 import sympy
 
 from lagsolve.errors import DerivationError
+from lagsolve.mechanics.algebra import ops
 from lagsolve.mechanics.analysis import with_analysis
 from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.elimination import Elimination, eliminate
@@ -29,13 +30,24 @@ from lagsolve.mechanics.matrix_form import MatrixForm, matrix_form
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.normal import NormalForce, normal_forces
 from lagsolve.mechanics.reactions import Reaction
-from lagsolve.mechanics.results import ConstraintForce, Derivation, FrictionResult
-from lagsolve.mechanics.simplify import compound_angles, measure, norm, reproducible, tidy, tidy_sum, tidy_sum_light
+from lagsolve.mechanics.results import ConstraintForce, ContactForce, Derivation, FrictionResult
+from lagsolve.mechanics.simplify import (
+    compound_angles,
+    measure,
+    norm,
+    reproducible,
+    tidy,
+    tidy_sum,
+    tidy_sum_light,
+)
 from lagsolve.mechanics.stages import DEFAULT_BUDGET, StageNote, Stages, StageTimeout, cpu_limit
 from lagsolve.problem.schema import Problem
 
 #: above this many coordinates the equation pieces get the light display simplification
 LARGE_SYSTEM = 4
+
+#: above this many operations the magnitude of a contact's force is not simplified
+CONTACT_LIMIT = 60
 
 
 def derive(problem: Problem, *, budget: float | None = None, analysis: bool = True,
@@ -112,6 +124,13 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
             c.name: _closed_in(_constraint_force(reactions[c.name], multipliers[c.name], c, elimination), closed)
             for c in constraints})
     friction = tuple(_friction_result(f, found.get(f.name), substituted, elimination) for f in frictions)
+    if not frictions:
+        stages.skip("contact forces", "no friction acts", "n/a")
+    elif forces is None:
+        stages.skip("contact forces", "needs the forces of constraint, which were not found (see above)")
+    else:
+        known = forces
+        friction = stages.run("contact forces", lambda: tuple(_contact_forces(r, known) for r in friction)) or friction
     derivation = Derivation(
         problem=problem, model=model, constraints=shown["constraints"], force_terms=shown["force_terms"],
         lagrange=lagrange, elimination=elimination, raw_accelerations=raw_acc, raw_multipliers=raw_lam,
@@ -174,6 +193,31 @@ def _friction_result(term: FrictionTerm, found: NormalForce | None, substituted:
     force = tuple(_shown_normal(v.xreplace(substituted), elimination) for v in term.force)
     generalized = tuple(_shown_normal(v.xreplace(substituted), elimination) for v in term.generalized)
     return FrictionResult(term, value, found.case, found.valid_while, found.system, force, generalized)
+
+
+def _contact_forces(result: FrictionResult, forces: dict[str, ConstraintForce]) -> FrictionResult:
+    """``result`` with the force of the contact on each member: on the one that slides, the combined force of the
+    normal constraints plus the friction force; on the one carrying the surface, the opposite."""
+    term = result.term
+    if result.force is None:
+        return result
+    parts = [vec for c in term.constraints for p, vec, _ in forces[c].particles if p == term.particle]
+    if len(parts) != len(term.constraints):
+        return result
+
+    def shown(expr: Any) -> Any:  # a large sum (a coupled normal force written out) stays as it is
+        return tidy(expr) if ops(expr) <= CONTACT_LIMIT else expr
+
+    normal = parts[0] if len(parts) == 1 else tuple(shown(sum(c, sympy.Integer(0))) for c in zip(*parts, strict=True))
+    friction = tuple(result.force)
+    total = tuple(shown(a + b) for a, b in zip(normal, friction, strict=True))
+    # the normal part has length N and the friction, orthogonal to it, μ N while it slides
+    magnitude = shown(result.normal_force * sympy.sqrt(1 + term.coefficient**2))
+    members = [ContactForce(term.particle, normal, friction, total, magnitude)]
+    if term.against is not None:
+        members.append(ContactForce(term.against, tuple(-c for c in normal), tuple(-c for c in friction),
+                                    tuple(-c for c in total), magnitude))
+    return dataclasses.replace(result, members=tuple(members))
 
 
 def _shown_normal(value: Any, elimination: Elimination) -> Any:

@@ -1,15 +1,31 @@
-r"""Coulomb friction, decided once: the kinetic friction force of a contact, its sliding coordinate,
-its static coefficient, and its normal force evaluated at a numeric state.
+r"""Coulomb friction, decided once: the kinetic friction force of a contact between two members, its sliding
+direction and rate, its static coefficient, and its normal force evaluated at a numeric state.
 
-The symbolic side (:func:`friction_term`) gives the force with the normal force a symbol
-:math:`N`; :mod:`lagsolve.mechanics.normal` finds :math:`N` in closed form where it can. The numeric
-side (:func:`contact_directions`, :func:`normal_forces_at`) gives the numeric stage what it compiles
-and the same equation :math:`N = |\mathbf a + B N|` solved at one state, so a simulation follows
-exactly the physics the derivation states.
+A contact acts at a point :math:`P` of the member that slides (a particle, or a planar body at ``at:``) against
+the member that carries the surface (a particle or planar body; none: the surroundings). Its sliding velocity
+is the velocity of :math:`P` relative to the surface, :math:`\mathbf v = \sum_{i\in\text{sliding}}
+J_{rel,i}\,\dot q_i` (:mod:`lagsolve.mechanics.pair`), taken in the tangent space of the contact (orthogonal to
+the forces of its normal constraints). The friction force is :math:`-\mu N\,\mathbf v/|\mathbf v|` on the first
+member at :math:`P` and the opposite on the second, so its generalized forces are
+:math:`Q_i = \mathbf F\cdot J_{rel,i}` (Newton's third law: a block on a wedge on a smooth floor gives the
+floor direction no net force).
+
+Where the tangent is one line (a contact in a plane; in space, two normal constraints, or one sliding
+coordinate), the sliding is one signed rate :math:`\sigma = \mathbf t\cdot\mathbf v = \sum_i w_i\dot q_i` along
+a unit tangent :math:`\mathbf t`, the force is :math:`-\mu N\,\mathrm{sign}(\sigma)\,\mathbf t`, as textbooks
+write it, and the contact can stick (:math:`\sigma = 0` held by a tangential force :math:`\Phi\mathbf t` while
+:math:`|\Phi| \le \mu_s N`).
+
+The symbolic side (:func:`friction_term`) gives the force with the normal force a symbol :math:`N`;
+:mod:`lagsolve.mechanics.normal` finds :math:`N` in closed form where it can. The numeric side
+(:func:`contact_directions`, :func:`normal_forces_at`) gives the numeric stage what it compiles and the same
+equation :math:`N = |\mathbf a + B N|` solved at one state, so a simulation follows exactly the physics the
+derivation states.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -17,14 +33,16 @@ import numpy as np
 import sympy
 
 from lagsolve.errors import Issue, SimulationError, SpecError
-from lagsolve.mechanics.forces import position_jacobian
 from lagsolve.mechanics.model import Model
-from lagsolve.mechanics.simplify import norm
+from lagsolve.mechanics.pair import point_jacobian, relative_jacobian
+from lagsolve.mechanics.signs import sign_core
+from lagsolve.mechanics.simplify import common_factor, norm, plain_signs, tidy
 from lagsolve.problem.schema import Friction, Problem
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.constraints import ConstraintTerms
     from lagsolve.mechanics.reactions import Reaction
+
 
 def static_coefficient(friction: Friction) -> Any:
     """The coefficient of static friction: the file's ``static``, else the kinetic coefficient."""
@@ -35,11 +53,17 @@ def static_coefficient(friction: Friction) -> Any:
 class FrictionTerm:
     r"""Kinetic Coulomb friction of one contact, :math:`\mathbf F = -\mu N\,\mathbf v/|\mathbf v|`.
 
-    ``normal`` is the symbol :math:`N` (named ``N_<contact>``) that stands in the
-    equations for the magnitude of the combined force of the ``constraints`` on
-    ``particle``; ``sliding_velocity`` is :math:`\mathbf v = \sum_{i\in\text{sliding}}
-    (\partial\mathbf r_p/\partial q_i)\dot q_i`; ``force`` the friction force vector and
-    ``generalized`` its generalized forces :math:`Q_i = \mathbf F\cdot\partial\mathbf r_p/\partial q_i`.
+    ``particle`` is the member that slides (a particle or a planar body) and ``against`` the one that carries the
+    surface (None: the surroundings), touching at ``point``. ``normal`` is the symbol :math:`N` (named
+    ``N_<contact>``) that stands in the equations for the magnitude of the combined force of the ``constraints``
+    on the first member; ``sliding_velocity`` is :math:`\mathbf v`, the tangential velocity of the point relative
+    to the surface; ``force`` the friction force on the first member (the second gets its opposite) and
+    ``generalized`` the generalized forces of the pair, :math:`Q_i = \mathbf F\cdot J_{rel,i}`.
+
+    Where the sliding is along one line, ``tangent`` is the unit tangent :math:`\mathbf t`, ``rate`` the
+    coefficients :math:`w_i` of the sliding rate :math:`\sigma = \sum_i w_i\dot q_i` and ``unit_generalized`` the
+    generalized forces :math:`J_{rel}^T\mathbf t` of a unit tangential force (the force that holds a stuck
+    contact); otherwise all three are None (kinetic friction only).
 
     Notes
     -----
@@ -58,42 +82,147 @@ class FrictionTerm:
     force: tuple[Any, ...]
     generalized: tuple[Any, ...]
     valid_while: Any
-    #: the one coordinate whose rate is the sliding rate (stick–slip is followed on it), else None
-    slide: int | None = None
-    #: |∂r/∂q| of that coordinate (1 when there is none): the sliding speed is slide_length·|q̇|
-    slide_length: Any = 1
-    #: the static coefficient (the kinetic one when the file gives none)
-    static: Any = None
+    static: Any = None  # the static coefficient (the kinetic one when the file gives none)
+    against: str | None = None
+    point: tuple[Any, ...] = ()
+    tangent: tuple[Any, ...] | None = None
+    rate: tuple[Any, ...] | None = None
+    unit_generalized: tuple[Any, ...] | None = None
+    sliding_rate: Any = None  # σ = Σ w_i q̇_i, where it slides along one line
 
 
-def friction_term(friction: Friction, problem: Problem, model: Model) -> FrictionTerm:
-    """The friction force of one contact, with its normal force left as the symbol ``N_<name>``."""
-    particle = problem.particle(friction.on)
-    jac = position_jacobian(particle.position, model)
+def friction_term(friction: Friction, problem: Problem, model: Model, reactions: dict[str, Reaction],
+                  zero: Callable[[Any], bool]) -> FrictionTerm:
+    """The friction force of one contact, with its normal force left as the symbol ``N_<name>``.
+
+    ``zero`` tells whether an expression vanishes on the constraint surface.
+
+    Raises
+    ------
+    SpecError
+        The contact cannot be modelled: a normal constraint has no known force on the member that slides, the
+        normal constraints leave no direction to slide in, or the sliding coordinates do not move the point
+        along the surface.
+    """
+    J = relative_jacobian(problem, model, friction.on, friction.against, friction.at)
+    n = len(model.coordinates)
     index = {c.name: i for i, c in enumerate(problem.coordinates)}
-    sliding = [index[name] for name in friction.sliding]
-    velocity = sympy.zeros(jac.rows, 1)
-    for i in sliding:
-        velocity += jac[:, i] * model.velocities[i]
-    moving = [i for i in sliding if any(v != 0 for v in jac[:, i])]
-    slide, length = None, sympy.Integer(1)
-    if len(moving) == 1:
-        # one sliding rate: the direction is sign(q_dot) times a unit vector, as textbooks write it
-        i = slide = moving[0]
-        column = jac[:, i]
-        length = norm(list(column))
-        direction = column * sympy.sign(model.velocities[i]) / length
-        valid_while = sympy.Ne(model.velocities[i], 0)
-    else:
-        speed = norm(list(velocity))
-        direction = velocity / speed
-        valid_while = sympy.Ne(speed, 0)
+    # the sliding coordinates, those that move the member that slides first: the tangent points the way they move it
+    own = point_jacobian(problem, model, friction.on, friction.at)
+    sliding = sorted((index[name] for name in friction.sliding), key=lambda i: (own[:, i].is_zero_matrix, i))
+    normals = _normal_directions(friction, problem, reactions, zero)
+    tangent = _tangent(friction, problem, J, normals, sliding, zero)
     normal = sympy.Symbol(f"N_{friction.name}", nonnegative=True)
-    force = (-friction.coefficient * normal * direction).applyfunc(_clean)
-    generalized = tuple(_clean((force.T * jac[:, i])[0]) for i in range(len(model.coordinates)))
-    return FrictionTerm(friction.name, friction.on, friction.coefficient, friction.normal, normal,
-                        tuple(velocity), tuple(force), generalized, valid_while, slide, length,
-                        static_coefficient(friction))
+    mu = friction.coefficient
+    if tangent is not None:
+        t, w = tangent
+        rate = tidy(sum((w[i] * model.velocities[i] for i in range(n)), sympy.Integer(0)))
+        unit = tuple(tidy((t.T * J[:, i])[0]) for i in range(n))
+        _, core = sign_core(rate)  # the rate without its factors of known sign (it has the sign of core)
+        direction = plain_signs(sympy.sign(core))
+        force = tuple(-mu * normal * direction * c for c in t)
+        generalized = tuple(-mu * normal * direction * u for u in unit)
+        velocity = tuple(tidy(rate * c) for c in t)
+        return FrictionTerm(friction.name, friction.on, mu, friction.normal, normal, velocity, force, generalized,
+                            sympy.Ne(core, 0), static_coefficient(friction), friction.against, friction.at,
+                            tuple(t), tuple(w), unit, rate)
+    velocity = sympy.zeros(J.rows, 1)
+    for i in sliding:
+        velocity += J[:, i] * model.velocities[i]
+    velocity = _tangential(velocity, normals, zero)
+    speed = norm(list(velocity))
+    force = (-mu * normal * velocity / speed).applyfunc(_clean)
+    generalized = tuple(_clean((force.T * J[:, i])[0]) for i in range(n))
+    return FrictionTerm(friction.name, friction.on, mu, friction.normal, normal, tuple(velocity), tuple(force),
+                        generalized, sympy.Ne(speed, 0), static_coefficient(friction), friction.against,
+                        friction.at)
+
+
+def _refuse(problem: Problem, friction: Friction, field: str, message: str, fix: str) -> SpecError:
+    line = problem.lines.get(f"friction.{friction.name}.{field}", problem.lines.get(f"friction.{friction.name}", 0))
+    return SpecError([Issue(problem.source, line, f"friction.{friction.name}.{field}", message, fix)])
+
+
+def _normal_directions(friction: Friction, problem: Problem, reactions: dict[str, Reaction],
+                       zero: Callable[[Any], bool]) -> list[sympy.Matrix]:
+    """The direction of each normal constraint's force on the member that slides, the independent ones."""
+    out: list[sympy.Matrix] = []
+    for name in friction.normal:
+        pushes = [p for p in reactions[name].particles if p.particle == friction.on]
+        if not pushes:
+            raise _refuse(problem, friction, "normal",
+                          f"constraint {name!r} has no known force on {friction.on!r} "
+                          f"({reactions[name].note or 'it acts elsewhere'}), so the normal force cannot be found",
+                          "name constraints that act on it, with 'at:' the contact point of a body")
+        u = sympy.Matrix(pushes[0].direction)
+        if all(zero(c) for c in u):
+            continue
+        if not any(_parallel(u, v, zero) for v in out):
+            out.append(u)
+    if not out:
+        raise _refuse(problem, friction, "normal", f"the normal constraints {', '.join(friction.normal)} exert no "
+                      f"force on {friction.on!r}", "name the constraint that keeps it on the surface")
+    return out
+
+
+def _parallel(u: sympy.Matrix, v: sympy.Matrix, zero: Callable[[Any], bool]) -> bool:
+    """Whether two vectors (2 or 3 components) are parallel on the constraint surface."""
+    if u.rows == 2:
+        return zero(u[0] * v[1] - u[1] * v[0])
+    return all(zero(c) for c in u.cross(v))
+
+
+def _tangent(friction: Friction, problem: Problem, J: sympy.Matrix, normals: list[sympy.Matrix], sliding: list[int],
+             zero: Callable[[Any], bool]) -> tuple[sympy.Matrix, list[Any]] | None:
+    """The unit tangent t and the sliding rate's coefficients w (zero outside the sliding coordinates) where the
+    contact slides along one line; None where it slides in a plane. t points the way the first sliding
+    coordinate moves the point (``sliding`` is in that order).
+
+    Raises
+    ------
+    SpecError
+        The normal constraints leave no direction to slide in, or the sliding coordinates do not move the point.
+    """
+    dims = J.rows
+    if len(normals) >= dims:
+        raise _refuse(problem, friction, "normal", f"the normal constraints {', '.join(friction.normal)} hold the "
+                      f"contact point of {friction.on!r} in every direction, so nothing can slide",
+                      "name only the constraints that push it off the surface under 'normal:'")
+    U = sympy.Matrix.hstack(*normals)
+    gram = (U.T * U).applyfunc(tidy)
+
+    def along_surface(v: sympy.Matrix) -> sympy.Matrix:
+        off = U.T * v
+        if all(zero(c) for c in off):
+            return v  # tangent already, on the surface
+        return (v - U * gram.LUsolve(off)).applyfunc(tidy)
+
+    moving = [along_surface(J[:, i]) for i in sliding]
+    moving = [v for v in moving if not all(zero(c) for c in v)]
+    if not moving:
+        raise _refuse(problem, friction, "sliding", f"the sliding coordinates {', '.join(friction.sliding)} do not "
+                      f"move the contact point of {friction.on!r} along the surface",
+                      "list the coordinates whose motion makes it slide, or leave 'sliding:' out")
+    if dims - len(normals) > 1 and not all(_parallel(moving[0], v, zero) for v in moving[1:]):
+        return None  # it slides in a plane
+    # the direction without the factor its components share (cos(alpha) (cos(alpha), -sin(alpha)) points along
+    # (cos(alpha), -sin(alpha)), whatever the sign of cos(alpha)): the tangent's orientation is a convention
+    direction = [tidy(c) for c in moving[0]]
+    shared = common_factor(direction)
+    direction = [tidy(c / shared) for c in direction]
+    t = (sympy.Matrix(direction) / norm(direction)).applyfunc(tidy)
+    w: list[Any] = [tidy((t.T * J[:, i])[0]) if i in sliding else sympy.Integer(0) for i in range(J.cols)]
+    return t, w
+
+
+def _tangential(velocity: sympy.Matrix, normals: list[sympy.Matrix], zero: Callable[[Any], bool]) -> sympy.Matrix:
+    """The part of ``velocity`` in the tangent plane (unchanged where it is tangent on the surface already, as
+    for a surface that does not move with the time)."""
+    u = normals[0]
+    along = (u.T * velocity)[0]
+    if zero(along):
+        return velocity
+    return (velocity - u * along / sum((c**2 for c in u), sympy.Integer(0))).applyfunc(tidy)
 
 
 def _clean(expr: Any) -> Any:
@@ -105,13 +234,8 @@ def _clean(expr: Any) -> Any:
 def contact_directions(problem: Problem, frictions: tuple[FrictionTerm, ...], constraints: tuple[ConstraintTerms, ...],
                        reactions: dict[str, Reaction]) -> tuple[list[tuple[tuple[int, int, int], ...]], list[Any]]:
     r"""Per friction contact, the rows ``(constraint j, offset, dims)`` into the returned list of direction
-    components: each normal constraint's force direction :math:`\mathbf u_j` on the sliding particle.
-
-    Raises
-    ------
-    SpecError
-        A normal constraint has no known force on the contact's particle.
-    """
+    components: each normal constraint's force direction :math:`\mathbf u_j` on the member that slides (found by
+    :func:`friction_term`, which refuses a contact without one)."""
     contacts: list[tuple[tuple[int, int, int], ...]] = []
     directions: list[Any] = []
     offset = 0
@@ -119,15 +243,10 @@ def contact_directions(problem: Problem, frictions: tuple[FrictionTerm, ...], co
     for f in frictions:
         rows = []
         for name in f.constraints:
-            pushes = [p for p in reactions[name].particles if p.particle == f.particle]
-            if not pushes:
-                raise SpecError([Issue(problem.source, problem.lines.get(f"friction.{f.name}.normal", 0),
-                                       f"friction.{f.name}.normal",
-                                       f"constraint {name!r} has no known force on {f.particle!r}, so the "
-                                       "normal force cannot be computed", "name constraints that act on it")])
-            rows.append((index[name], offset, len(pushes[0].direction)))
-            directions += list(pushes[0].direction)
-            offset += len(pushes[0].direction)
+            push = next(p for p in reactions[name].particles if p.particle == f.particle)
+            rows.append((index[name], offset, len(push.direction)))
+            directions += list(push.direction)
+            offset += len(push.direction)
         contacts.append(tuple(rows))
     return contacts, directions
 

@@ -17,6 +17,7 @@ import sympy
 
 from lagsolve.mechanics.constraints import ConstraintTerms, constraint_terms
 from lagsolve.mechanics.dimensions import check_dimensions
+from lagsolve.mechanics.elimination import eliminate
 from lagsolve.mechanics.forces import ForceTerm, force_terms
 from lagsolve.mechanics.friction import FrictionTerm, friction_term
 from lagsolve.mechanics.inertia import check_inertia, check_masses
@@ -24,6 +25,7 @@ from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms
 from lagsolve.mechanics.model import Model, build_model
 from lagsolve.mechanics.reactions import Reaction, reaction
 from lagsolve.mechanics.regularity import check_constraints
+from lagsolve.mechanics.surface import Surface
 from lagsolve.problem.schema import Problem
 
 
@@ -59,11 +61,13 @@ def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
     constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
     check_constraints(problem, model, constraints)  # degenerate or redundant ones: refused with a fix
     loads = force_terms(problem, model)
-    frictions = tuple(friction_term(f, problem, model) for f in problem.friction)
+    # a force is claimed where it matches λ·a on the constraint surface, which is all the motion sees
+    zero = Surface(constraints, model, eliminate(constraints, model)).is_zero
+    reactions = {c.name: reaction(problem, model, c, zero) for c in constraints}
+    frictions = tuple(friction_term(f, problem, model, reactions, zero) for f in problem.friction)
     n = len(model.coordinates)
     terms: tuple[ForceTerm | FrictionTerm, ...] = (*loads, *frictions)
     q_forces = tuple(sum((t.generalized[i] for t in terms), sympy.Integer(0)) for i in range(n))
     lagrange = lagrange_terms(model, constraints, q_forces, engine="symengine")
     check_inertia(problem, model.coordinates, lagrange.mass_matrix, constraints)  # undetermined coordinates
-    reactions = {c.name: reaction(problem, model, c) for c in constraints}
     return MatrixForm(problem, model, constraints, loads, frictions, q_forces, lagrange, reactions)

@@ -44,6 +44,19 @@ class ConstraintForce:
 
 
 @dataclass(frozen=True)
+class ContactForce:
+    """The force of a friction contact on one of its members, at the contact point: the normal part (the
+    combined force of the normal constraints, of length N), the friction force, their sum and its magnitude.
+    The second member's is the first's with every vector reversed (Newton's third law)."""
+
+    member: str
+    normal: tuple[Any, ...]
+    friction: tuple[Any, ...]
+    total: tuple[Any, ...]
+    magnitude: Any
+
+
+@dataclass(frozen=True)
 class FrictionResult:
     """A friction contact (``term``, with the symbol N in its forces), the closed form of N (the
     symbol itself when only an implicit equation exists), which ``case`` applies and why, the
@@ -57,6 +70,9 @@ class FrictionResult:
     system: Any = None  # the equation N solves, Eq(N, |a + B N|)
     force: tuple[Any, ...] | None = None  # the friction force with N put in (None: as in ``term``)
     generalized: tuple[Any, ...] | None = None  # its generalized forces with N put in
+    # the force on each member (the one that slides, then the one carrying the surface, if any); empty when the
+    # forces of constraint are not known
+    members: tuple[ContactForce, ...] = ()
 
 
 @dataclass(frozen=True)

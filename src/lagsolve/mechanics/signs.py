@@ -34,16 +34,17 @@ def sign_core(expr: Any) -> tuple[int | None, Any]:
     sign = 1
     core = sympy.Integer(1)
     for factor in sympy.Mul.make_args(factored):
-        if factor.is_positive:
+        known = _real_valued(factor)
+        if known.is_positive:
             continue
-        if factor.is_negative:
+        if known.is_negative:
             sign = -sign
             continue
         base, exp = factor.as_base_exp()
         if exp.is_Integer and int(exp) % 2 == 0:
             continue
-        if exp.is_Rational and exp.p % 2 == 0:
-            continue  # an even root of a square: non-negative
+        if exp.is_Rational and (exp.p % 2 == 0 or exp.q % 2 == 0):
+            continue  # an even root of a square, or an even root: non-negative where it is real
         if base.is_nonnegative and exp.is_real:
             continue  # |p|**(2/3), sqrt(x**2 + 1): positive at a generic point
         if exp.is_Integer or (exp.is_Rational and exp.p % 2 == 1 and exp.q % 2 == 1):
@@ -64,6 +65,17 @@ def sign_core(expr: Any) -> tuple[int | None, Any]:
     return None, core
 
 
+def _real_valued(expr: Any) -> Any:
+    """``expr`` with each function of real arguments (``tan(alpha)``, ``f(x)``, a derivative) a real symbol: where
+    it is defined it is real, so ``tan(alpha)**2 + 1`` counts as positive."""
+    if expr.is_positive is not None or not expr.has(sympy.Function, sympy.Derivative):
+        return expr
+    atoms = sorted(expr.atoms(sympy.Function, sympy.Derivative), key=sympy.default_sort_key)
+    reals = {a: sympy.Dummy(real=True) for a in atoms
+             if all(arg.is_real for arg in a.args if not isinstance(arg, sympy.Tuple))}
+    return expr.xreplace(reals)
+
+
 def relation(core: Any, strict: bool = True) -> Any:
     """``core > 0`` (or ``>= 0``) written with the negative terms moved right: ``g - R*W**2 > 0``
     becomes ``g > R*W**2``."""
@@ -73,3 +85,4 @@ def relation(core: Any, strict: bool = True) -> Any:
     lhs = sympy.Add(*left) if left else sympy.Integer(0)
     rhs = sympy.Add(*right) if right else sympy.Integer(0)
     return sympy.StrictGreaterThan(lhs, rhs, evaluate=False) if strict else sympy.GreaterThan(lhs, rhs, evaluate=False)
+

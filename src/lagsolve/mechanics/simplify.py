@@ -16,6 +16,7 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.algebra import _plain_base, cancel, expand, factor, factor_terms, ops
+from lagsolve.mechanics.signs import sign_core
 
 
 def reproducible() -> None:
@@ -136,6 +137,8 @@ def tidy(expr: Any) -> Any:
     """
     if not isinstance(expr, sympy.Basic):
         return _number(expr)
+    if expr.has(sympy.sign):
+        expr = plain_signs(expr)  # sign((x_dot - X_dot)*sqrt(...)) is sign(x_dot - X_dot)
     if expr.is_Number or expr.is_Symbol or _monomial(expr) or _trig_monomial(expr):
         return expr  # every rewriting below gives a monomial back as it is, or a longer form
     if ops(expr) > TIDY_LIMIT:
@@ -455,3 +458,53 @@ def root_of_square(square: Any) -> Any:
         root = sympy.sqrt(form.xreplace(reals)).xreplace({v: k for k, v in reals.items()})
         candidates += [root, tidy_abs(root)]
     return smallest(candidates)
+
+
+def plain_signs(expr: Any) -> Any:
+    """Each ``sign(a)`` with the factors of ``a`` of known sign taken out where that does not lengthen ``a``, and
+    written with SymPy's sign convention for its argument, so that one sliding rate is written one way
+    everywhere (a friction force's ``sign((x_dot - X_dot)*sqrt(tan(alpha)**2 + 1))`` is
+    ``-sign(X_dot - x_dot)``).
+
+    >>> import sympy
+    >>> x, y = sympy.symbols("x_dot y_dot", real=True)
+    >>> m = sympy.Symbol("m", positive=True)
+    >>> plain_signs(sympy.sign(m*x - m*y) + sympy.sign(-2*m))
+    sign(x_dot - y_dot) - 1
+    """
+    def simpler(e: Any) -> Any:
+        argument = e.args[0]
+        for _ in range(2):  # tidied first (sin(x)**2 + cos(x)**2 is 1), then the factors of known sign out
+            known, core = sign_core(tidy(argument))
+            if known is not None:
+                return sympy.Integer(known)
+            if core == argument or sympy.count_ops(core) > sympy.count_ops(argument):
+                break
+            argument = core
+        return -sympy.sign(-argument) if argument.could_extract_minus_sign() else sympy.sign(argument)
+
+    if not expr.has(sympy.sign):
+        return expr
+    expr = expr.replace(lambda e: isinstance(e, sympy.sign) and not e.args[0].is_Symbol, simpler)
+    if expr.has(sympy.Abs):
+        expr = expr.replace(lambda e: e.is_Mul and e.has(sympy.Abs), _absorbed)
+    return expr
+
+
+def _absorbed(product: Any) -> Any:
+    """``|a| sign(a c)`` is ``a sign(c)``: a normal force ``|m g cos(alpha)|`` times the sign of a sliding rate
+    ``x_dot cos(alpha)`` is ``m g cos(alpha) sign(x_dot)``."""
+    factors = list(sympy.Mul.make_args(product))
+    for i, f in enumerate(factors):
+        if not isinstance(f, sympy.Abs):
+            continue
+        inner = f.args[0]
+        for j, g in enumerate(factors):
+            if not isinstance(g, sympy.sign):
+                continue
+            rest = sympy.cancel(g.args[0] / inner)
+            if rest == 0 or sympy.fraction(rest)[1] != 1 or rest.has(sympy.Abs):
+                continue
+            factors[i], factors[j] = inner, sympy.sign(rest)
+            return sympy.Mul(*factors)
+    return product

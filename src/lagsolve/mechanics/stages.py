@@ -38,6 +38,7 @@ STAGES: dict[str, float] = {
     "explicit solve": 3.0,
     "normal forces": 1.0,
     "forces of constraint": 1.0,
+    "contact forces": 0.5,
     "display simplification": 2.0,
     "constraint classification": 1.0,
     "minimal coordinates": 2.0,
