@@ -13,9 +13,10 @@ step at a time (the same solvers ``solve_ivp`` uses), which allows
 
   - *release*: a unilateral constraint holds while its multiplier is ≥ 0; where it
     reaches zero the run stops or continues without it;
-  - *stick*: a friction contact's sliding rate reaches zero and the force needed to
-    hold it, |λ_s|/|∂r/∂q|, is within μ_s N: the contact sticks (an extra row
-    q̇_slide = 0 replaces kinetic friction);
+  - *stick*: a friction contact's sliding rate σ = w·q̇ (the relative velocity of the
+    contact point along its tangent) reaches zero and the tangential force needed to
+    hold it, |Φ|, is within μ_s N: the contact sticks (an extra row σ = 0 replaces
+    kinetic friction);
   - *slip*: a sticking contact needs more than μ_s N: it slides again, in the
     direction the other forces push it;
   - a sliding rate that reaches zero without sticking reverses, and the kinetic
@@ -39,7 +40,7 @@ from scipy import integrate, optimize
 from lagsolve.enums import TextEnum
 from lagsolve.errors import SimulationError
 from lagsolve.numeric.minimal_state import NumericChart
-from lagsolve.numeric.system import NumericSystem
+from lagsolve.numeric.system import NumericSystem, rate_sign
 from lagsolve.problem.methods import DEFAULT, EXPLICIT, METHODS
 
 HOLD_TOLERANCE = 1e-12  # relative slack in |needed force| <= mu_s N when deciding to stick
@@ -188,11 +189,9 @@ class _Run:
         system, p, n = self.system, self.system.parameters, self.system.n
         a = system.velocity_jacobian(t, q, qd, p).reshape(system.m, n)[self.active] if system.m else np.zeros((0, n))
         b = system.velocity_offset(t, q, qd, p)[self.active] if system.m else np.zeros(0)
-        held = [s for c, s in enumerate(system.slides) if s is not None and self.stuck[c]]
+        held = [w for c, (w, _, _) in system.sliding_parts(t, q, qd).items() if self.stuck[c]]
         if held:
-            extra = np.zeros((len(held), n))
-            extra[np.arange(len(held)), held] = 1.0
-            a, b = np.vstack([a, extra]), np.concatenate([b, np.zeros(len(held))])
+            a, b = np.vstack([a, *held]), np.concatenate([b, np.zeros(len(held))])
         return a, b
 
     def residual(self, t: float, q: np.ndarray, qd: np.ndarray) -> float:
@@ -225,11 +224,14 @@ class _Run:
         return q, qd
 
     def holding_margin(self, t: float, y: np.ndarray, c: int) -> tuple[float, float]:
-        """For a stuck contact: (μ_s N − |force needed to hold it|, the needed generalized force)."""
+        """For a stuck contact: (μ_s N − |Φ|, Φ), Φ the tangential force needed to hold it."""
         _, _, normal, sticking = self.solve(t, y)
-        mu_s, length = self.system.contact_values(t, y[: self.system.n], y[self.system.n:], self.system.parameters)[
-            2 * c: 2 * c + 2]
-        return float(mu_s * normal[c] - abs(sticking[c]) / length), float(sticking[c])
+        mu_s = self.system.contact_values(t, y[: self.system.n], y[self.system.n:], self.system.parameters)[2 * c]
+        return float(mu_s * normal[c] - abs(sticking[c])), float(sticking[c])
+
+    def rate(self, t: float, y: np.ndarray, c: int) -> float:
+        """The sliding rate σ of contact ``c``."""
+        return self.system.sliding_rate(t, y[: self.system.n], y[self.system.n:], c)
 
 
 def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_end: float, *,
@@ -406,39 +408,53 @@ def _release(run: _Run, j: int) -> None:
 
 
 def _start_contacts(run: _Run, t: float, y: np.ndarray, events: list[Event]) -> None:
-    """At the start, a contact at rest sticks if it can; otherwise it slides the way it is pushed."""
-    system, n = run.system, run.system.n
-    for c, slide in enumerate(system.slides):
-        if slide is None:
+    """At the start, the contacts at rest stick if they can; otherwise they slide the way they are pushed.
+
+    Every contact at rest is held first; then, one at a time, the one whose holding force most exceeds
+    μ_s N is let go to slide (the others' forces change with it), until every contact still held holds.
+    """
+    system = run.system
+    resting = []
+    for c, sticks in enumerate(system.sticks):
+        if not sticks:
             continue
-        if y[n + slide] != 0.0:
-            run.direction[c] = np.sign(y[n + slide])
-            continue
-        run.stuck[c] = True
-        margin, needed = run.holding_margin(t, y, c)
-        if margin < -HOLD_TOLERANCE * max(1.0, abs(needed)):
-            run.stuck[c] = False
-            run.direction[c] = -np.sign(needed)
+        w = system.sliding_parts(t, y[: system.n], y[system.n:])[c][0]
+        sign = rate_sign(w, y[system.n:], 0.0)
+        if sign != 0.0:
+            run.direction[c] = sign
         else:
+            resting.append(c)
+            run.stuck[c] = True
+    for _ in range(len(resting)):
+        held = [c for c in resting if run.stuck[c]]
+        margins = {c: run.holding_margin(t, y, c) for c in held}
+        slipping = [c for c, (margin, needed) in margins.items() if margin < -HOLD_TOLERANCE * max(1.0, abs(needed))]
+        if not slipping:
+            break
+        worst = min(slipping, key=lambda c: margins[c][0] / max(1.0, abs(margins[c][1])))
+        run.stuck[worst] = False
+        run.direction[worst] = -np.sign(margins[worst][1])
+    for c in resting:
+        if run.stuck[c]:
             events.append(Event(float(t), EventKind.STICK, system.contact_names[c], _state(system, y), "stuck"))
 
 
 def _watch(run: _Run, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
     """The event functions at a state: each changes sign where its event happens."""
-    system, n = run.system, run.system.n
+    system = run.system
     values: dict[tuple[str, int], float] = {}
     if system.unilateral:
         lam = run.solve(t, y)[1]
         for j in system.unilateral:
             if run.active[j]:
                 values[(EventKind.RELEASE, j)] = float(lam[j])
-    for c, slide in enumerate(system.slides):
-        if slide is None:
+    for c, sticks in enumerate(system.sticks):
+        if not sticks:
             continue
         if run.stuck[c]:
             values[(EventKind.SLIP, c)] = run.holding_margin(t, y, c)[0]
         else:
-            values[(EventKind.STICK, c)] = float(run.direction[c] * y[n + slide])
+            values[(EventKind.STICK, c)] = float(run.direction[c] * run.rate(t, y, c))
     return values
 
 
@@ -471,7 +487,7 @@ def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_rele
     t, kind, index = event
     y = dense(t)
     if kind == EventKind.STICK:
-        y[n + system.slides[index]] = 0.0
+        run.stuck[index] = True  # the projection below then puts the sliding rate at zero
     q, qd = run.projected(t, y[:n], y[n:])
     y = np.concatenate([q, qd])
     if kind == EventKind.RELEASE:

@@ -47,7 +47,7 @@ class NumericSystem:
     ``holonomic`` indexes the constraints given at position level (projected onto);
     ``unilateral`` those that hold only while they push; ``contacts`` lists, per
     friction contact, the rows of ``directions`` holding each normal constraint's
-    force direction on the sliding particle.
+    force direction on the member that slides.
     """
 
     coordinates: tuple[str, ...]
@@ -59,9 +59,11 @@ class NumericSystem:
     matrices: StateFunction
     contacts: tuple[tuple[tuple[int, int, int], ...], ...]  # per contact: (constraint j, offset, dims)
     contact_names: tuple[str, ...]
-    slides: tuple[int | None, ...]  # per contact: the one sliding coordinate (stick–slip), else None
-    contact_values: StateFunction  # per contact: static coefficient, |dr/dq| of the sliding coordinate; then
-    # the kinetic coefficient of each contact
+    sticks: tuple[bool, ...]  # per contact: it slides along one line, so it can stick (stick–slip)
+    contact_values: StateFunction  # per contact: the static and the kinetic coefficient
+    # per contact that can stick: the sliding rate's coefficients w (n), the rate of change of w along the motion
+    # times the velocities (ẇ·q̇, 1), and the generalized forces of a unit tangential force g (n)
+    sliding: StateFunction
     directions: StateFunction
     scales: StateFunction
     position_residual: StateFunction
@@ -99,15 +101,15 @@ class NumericSystem:
     def solve_all(self, t: float, q: np.ndarray, qd: np.ndarray, active: np.ndarray | None = None,
                   stuck: np.ndarray | None = None,
                   direction: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Accelerations, multipliers, friction normal forces and sticking forces at a state.
+        r"""Accelerations, multipliers, friction normal forces and sticking forces at a state.
 
-        Solves :math:`\\begin{pmatrix}M & -A^T\\\\ A & 0\\end{pmatrix}
-        \\begin{pmatrix}\\ddot q\\\\ \\lambda\\end{pmatrix} = \\begin{pmatrix}F\\\\ \\beta\\end{pmatrix}`
+        Solves :math:`\begin{pmatrix}M & -A^T\\ A & 0\end{pmatrix}
+        \begin{pmatrix}\ddot q\\ \lambda\end{pmatrix} = \begin{pmatrix}F\\ \beta\end{pmatrix}`
         with the rows of inactive constraints removed, and the normal forces consistently.
-        A ``stuck`` contact holds its sliding rate at zero with an extra row instead of
-        kinetic friction; its multiplier (the generalized force needed to hold it) is
-        returned in the last array. ``direction`` gives the sliding direction (±1) where
-        the sliding rate is exactly zero (the start of a slip).
+        A ``stuck`` contact holds its sliding rate σ = w·q̇ at zero (a row w·q̈ = −ẇ·q̇) with a
+        tangential force Φ t at the contact (generalized forces Φ g) instead of kinetic friction;
+        Φ is returned in the last array. ``direction`` gives the sliding direction (±1) where
+        the sliding rate is zero (the start of a slip).
         """
         self.evaluations[0] += 1
         n, m, k = self.n, self.m, len(self.contacts)
@@ -134,45 +136,57 @@ class NumericSystem:
         mask = np.ones(m, dtype=bool) if active is None else active
         A, beta = A[mask], beta[mask]
         held = []
-        for c, slide in enumerate(self.slides):
-            if slide is None:
-                continue
+        for c, (w, drift, g) in self.sliding_parts(t, q, qd).items():
             if stuck is not None and stuck[c]:
                 F[:, c + 1] = 0.0
-                held.append((c, slide))
+                held.append((c, w, drift, g))
                 continue
-            sign = np.sign(qd[slide])
-            if sign == 0:
-                sign = direction[c] if direction is not None else 0.0
-            F[:, c + 1] *= sign
-        if held:
-            extra = np.zeros((len(held), n))
-            for r, (_, slide) in enumerate(held):
-                extra[r, slide] = 1.0
-            A = np.vstack([A, extra])
-            beta = np.concatenate([beta, np.zeros(len(held))])
-        rows = A.shape[0]
+            F[:, c + 1] *= rate_sign(w, qd, direction[c] if direction is not None else 0.0)
+        kept = A.shape[0]
+        rows = kept + len(held)
         if rows == 0:
             solution = _solve(M, F)
         else:
             system = np.zeros((n + rows, n + rows))
             system[:n, :n] = M
-            system[:n, n:] = -A.T
-            system[n:, :n] = A
+            system[:n, n: n + kept] = -A.T
+            system[n: n + kept, :n] = A
             rhs = np.zeros((n + rows, k + 1))
             rhs[:n] = F
-            rhs[n:, 0] = beta
+            rhs[n: n + kept, 0] = beta
+            for r, (_, w, drift, g) in enumerate(held):
+                system[:n, n + kept + r] = -g
+                system[n + kept + r, :n] = w
+                rhs[n + kept + r, 0] = -drift
             solution = _solve(system, rhs)
         lam_all = np.zeros((m, k + 1))
-        kept = int(mask.sum())
         lam_all[mask] = solution[n: n + kept]
         normal = self._normal_forces(t, q, qd, lam_all) if k else _EMPTY
         qdd = solution[:n, 0] + solution[:n, 1:] @ normal
         lam = lam_all[:, 0] + lam_all[:, 1:] @ normal
         sticking = np.zeros(k)
-        for r, (c, _) in enumerate(held):
+        for r, (c, *_) in enumerate(held):
             sticking[c] = solution[n + kept + r, 0] + solution[n + kept + r, 1:] @ normal
         return qdd, lam, normal, sticking
+
+    def sliding_parts(self, t: float, q: np.ndarray, qd: np.ndarray) -> dict[int, tuple[np.ndarray, float, np.ndarray]]:
+        """Per contact that can stick: its sliding rate's coefficients w, the drift ẇ·q̇ and the generalized
+        forces g of a unit tangential force."""
+        if not any(self.sticks):
+            return {}
+        n = self.n
+        values = self.sliding(t, q, qd, self.parameters)
+        out = {}
+        at = 0
+        for c, sticks in enumerate(self.sticks):
+            if sticks:
+                out[c] = (values[at: at + n], float(values[at + n]), values[at + n + 1: at + 2 * n + 1])
+                at += 2 * n + 1
+        return out
+
+    def sliding_rate(self, t: float, q: np.ndarray, qd: np.ndarray, c: int) -> float:
+        """σ = w·q̇ of contact ``c`` (which can stick)."""
+        return float(self.sliding_parts(t, q, qd)[c][0] @ qd)
 
     def _normal_forces(self, t: float, q: np.ndarray, qd: np.ndarray, lam: np.ndarray) -> np.ndarray:
         return normal_forces_at(t, self.contacts, self.directions(t, q, qd, self.parameters), lam)
@@ -181,32 +195,25 @@ class NumericSystem:
                         sticking: np.ndarray, direction: np.ndarray) -> np.ndarray:
         r"""The friction force of each contact at a state, shape (contacts,).
 
-        With one sliding coordinate s: the force's component along the unit vector ∂r/∂s / |∂r/∂s|
-        (signed), from the generalized force it exerts, :math:`Q_s / |\partial\mathbf r/\partial s|`,
-        which is :math:`-\mu N\,\mathrm{sign}(\dot s)` while it slides and the force that holds it,
-        the sticking multiplier over :math:`|\partial\mathbf r/\partial s|`, while it sticks. With
-        several sliding coordinates: the magnitude μ N of the kinetic friction (it opposes the sliding
+        Where the contact slides along one line: the force's component along its unit tangent t (signed),
+        :math:`-\mu N\,\mathrm{sign}(\sigma)` while it slides and the force Φ that holds it while it sticks.
+        Where it slides in a plane: the magnitude μ N of the kinetic friction (it opposes the sliding
         velocity).
         """
         k = len(self.contacts)
         if k == 0:
             return _EMPTY
-        n, p = self.n, self.parameters
-        values = self.contact_values(t, q, qd, p)
+        values = self.contact_values(t, q, qd, self.parameters)
+        parts = self.sliding_parts(t, q, qd)
         out = np.zeros(k)
-        columns = None
-        for c, slide in enumerate(self.slides):
-            if slide is None:
-                out[c] = values[2 * k + c] * normal[c]
-                continue
-            length = values[2 * c + 1]
-            if stuck[c]:
-                out[c] = sticking[c] / length
-                continue
-            if columns is None:
-                columns = self.matrices(t, q, qd, p)[n * n: n * n + n * (k + 1)].reshape(n, k + 1)
-            sign = np.sign(qd[slide]) or direction[c]
-            out[c] = columns[slide, c + 1] * sign * normal[c] / length
+        for c in range(k):
+            kinetic = values[2 * c + 1]
+            if c not in parts:
+                out[c] = kinetic * normal[c]
+            elif stuck[c]:
+                out[c] = sticking[c]
+            else:
+                out[c] = -kinetic * normal[c] * rate_sign(parts[c][0], qd, direction[c])
         return out
 
     def magnitudes(self, t: float, q: np.ndarray, qd: np.ndarray, lam: np.ndarray) -> np.ndarray:
@@ -215,6 +222,17 @@ class NumericSystem:
 
 
 _EMPTY = np.zeros(0)
+
+#: a sliding rate this small against |w|·|q̇| counts as zero (rounding after a projection onto σ = 0)
+RATE_TOLERANCE = 1e-12
+
+
+def rate_sign(w: np.ndarray, qd: np.ndarray, fallback: float) -> float:
+    """The sign of the sliding rate w·q̇, or ``fallback`` (the direction a slip starts in) where it is zero."""
+    rate = float(w @ qd)
+    if abs(rate) <= RATE_TOLERANCE * float(np.abs(w) @ np.abs(qd)) or rate == 0.0:
+        return float(fallback)
+    return 1.0 if rate > 0 else -1.0
 
 
 def _solve(matrix: np.ndarray, rhs: np.ndarray) -> np.ndarray:
@@ -280,15 +298,19 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
     normals = [f.normal for f in form.frictions]
     forcing = lagrange.forcing
     zero = {N: 0 for N in normals}
-    slides = [f.slide for f in form.frictions]
     columns = [forcing.xreplace(zero)]
-    for f, slide in zip(form.frictions, slides, strict=True):
-        column = forcing.diff(f.normal)
-        if slide is not None:  # written as sign(q_dot) times a fixed direction: keep the direction only
-            column = column.xreplace({sympy.sign(model.velocities[slide]): 1})
-        columns.append(column)
-    contact_values = [value for f in form.frictions for value in (f.static, f.slide_length)]
-    contact_values += [f.coefficient for f in form.frictions]  # then the kinetic coefficients, in contact order
+    sliding: list[Any] = []
+    for f in form.frictions:
+        if f.unit_generalized is None:
+            columns.append(forcing.diff(f.normal))
+            continue
+        # sliding along one line: -mu sign(sigma) g per unit N; the sign is applied at each state
+        columns.append(sympy.Matrix([-f.coefficient * g for g in f.unit_generalized]))
+        assert f.rate is not None
+        rate_change = [model.time_derivative(w) for w in f.rate]
+        drift = sum((c * v for c, v in zip(rate_change, model.velocities, strict=True)), sympy.Integer(0))
+        sliding += [*f.rate, drift, *f.unit_generalized]
+    contact_values = [value for f in form.frictions for value in (f.static, f.coefficient)]
     forcing_columns = [columns[c][i] for i in range(len(model.coordinates)) for c in range(len(columns))]
     matrices = [*lagrange.mass_matrix, *forcing_columns, *lagrange.constraint_jacobian, *lagrange.constraint_rhs]
     contacts, directions = contact_directions(problem, form.frictions, form.constraints, form.reactions)
@@ -303,7 +325,7 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
         "offsets": [c.offset for c in form.constraints], "energy": [energy],
         "positions": [r for p in problem.particles for r in p.position],
         "conserved": list((conserved or {}).values()),
-        "contact_values": contact_values,
+        "contact_values": contact_values, "sliding": sliding,
     }
     prepared = {key: [prepare(e) for e in group] for key, group in groups.items()}
     parameter_symbols = [p.symbol for p in problem.parameters]
@@ -346,8 +368,9 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
             matrices=compile_group("matrices"),
             contacts=tuple(contacts),
             contact_names=tuple(f.name for f in form.frictions),
-            slides=tuple(slides),
+            sticks=tuple(f.rate is not None for f in form.frictions),
             contact_values=compile_group("contact_values"),
+            sliding=compile_group("sliding"),
             directions=compile_group("directions"),
             scales=compile_group("scales"),
             position_residual=compile_group("psi"),
