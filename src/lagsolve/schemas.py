@@ -79,11 +79,15 @@ def input_schema() -> dict[str, Any]:
         "constraints": _by_name({
             **_closed({"holonomic": expr, "nonholonomic": expr, "on": _one_or_many({"$ref": "#/$defs/name"}),
                        "unilateral": {"type": "boolean"},
-                       "at": {**vector, "description": "the point of the body named in 'on' where it acts"}}),
+                       "at": {**vector, "description": "the point of the body or particle named first in 'on' "
+                                              "where it acts: a contact, the second name gets the opposite force"}}),
             "oneOf": [{"required": ["holonomic"]}, {"required": ["nonholonomic"]}],
         }),
         "friction": _by_name(_closed({
-            "coefficient": expr, "static": expr, "on": {"$ref": "#/$defs/name"},
+            "coefficient": expr, "static": expr,
+            "on": {**_one_or_many({"$ref": "#/$defs/name"}),
+                   "description": "what slides, or [what slides, what carries the surface]"},
+            "at": {**vector, "description": "the contact point of a body (default: its normal constraint's)"},
             "normal": _one_or_many({"$ref": "#/$defs/name"}), "sliding": _one_or_many({"$ref": "#/$defs/name"}),
         }, ("coefficient", "normal"))),
         "expected": _closed({
@@ -164,7 +168,14 @@ def output_schema() -> dict[str, Any]:
         "friction": _by_name({"type": "object", "properties": {
             "normal_force": text, "force": texts, "generalized": by_name, "valid_while": text, "case": text,
             "normal_force_valid_while": {"type": ["string", "null"]},
-            "normal_force_equation": {"type": ["string", "null"]}}, "required": ["normal_force"]}),
+            "normal_force_equation": {"type": ["string", "null"]},
+            "on": text, "against": {"type": ["string", "null"]},
+            "point": {"anyOf": [{"type": "null"}, texts]},
+            "sliding_rate": {"type": ["string", "null"]},
+            "tangent": {"anyOf": [{"type": "null"}, texts]},
+            "members": {"type": "object", "additionalProperties": {"type": "object", "properties": {
+                "normal": texts, "friction": texts, "total": texts, "magnitude": text},
+                "required": ["normal", "friction", "total", "magnitude"]}}}, "required": ["normal_force"]}),
         "reduced": {"anyOf": [{"type": "null"}, {"type": "object", "properties": {
             "independent": texts, "accelerations": by_name}, "required": ["independent", "accelerations"]}]},
         "conserved": {"anyOf": [{"type": "null"}, by_name]},

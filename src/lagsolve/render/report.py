@@ -86,11 +86,17 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
                         for q, v in f.generalized if v != 0],
     } for f in core.forces]
     friction = [
-        {"name": f.name, "particle": f.particle, "coefficient": tex(f.coefficient),
+        {"name": f.name, "particle": f.particle, "against": f.against or "",
+         "point": [tex(c) for c in f.point] if f.point is not None else None,
+         "rate": tex(f.rate) if f.rate is not None else "",
+         "tangent": [tex(c) for c in f.tangent] if f.tangent is not None else None,
+         "coefficient": tex(f.coefficient),
          "normal": tex(f.normal), "normal_text": text(f.normal), "constraints": list(f.constraints),
          "force": [tex(v) for v in f.term_force], "generalized": by_coordinate(f.term_generalized),
          "valid_while": tex(f.valid_while), "normal_force": both(f.normal_shown),
-         "case": f.case, "condition": tex(f.condition) if f.condition is not None else "", "static": tex(f.static)}
+         "case": f.case, "condition": tex(f.condition) if f.condition is not None else "", "static": tex(f.static),
+         "members": [{"name": m.name, "normal": [tex(v) for v in m.normal], "friction": [tex(v) for v in m.friction],
+                      "total": [tex(v) for v in m.total], "magnitude": both(m.magnitude)} for m in f.members]}
         for f in core.friction
     ]
     matrix = core.matrix
@@ -292,6 +298,15 @@ def sections_json(sections: Sections) -> dict[str, Any]:
                 "case": f.case,
                 "normal_force_valid_while": to_json(f.condition) if f.condition is not None else None,
                 "normal_force_equation": to_json(f.system) if f.system is not None else None,
+                "on": f.particle,
+                "against": f.against,
+                "point": [to_json(c) for c in f.point] if f.point is not None else None,
+                "sliding_rate": to_json(f.rate) if f.rate is not None else None,
+                "tangent": [to_json(c) for c in f.tangent] if f.tangent is not None else None,
+                "members": {m.name: {"normal": [to_json(v) for v in m.normal],
+                                     "friction": [to_json(v) for v in m.friction],
+                                     "total": [to_json(v) for v in m.total],
+                                     "magnitude": to_json(m.magnitude)} for m in f.members},
             }
             for f in core.friction
         },
@@ -343,6 +358,7 @@ def sections_summary(sections: Sections) -> str:
         lines += [line for f in core.forces for line in _force_lines(f, text)]
     for f in core.friction:
         lines.append(f"  friction {f.name}: normal force {text(f.normal)} = {text(f.normal_shown)}")
+        lines += [f"    |F| on {m.name} (normal force and friction) = {text(m.magnitude)}" for m in f.members]
     lines += analysis_summary(sections.analysis, note)
     lines += hamiltonian_summary(sections.hamiltonian, note)
     if core.notes:

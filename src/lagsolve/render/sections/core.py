@@ -176,11 +176,26 @@ class ConstraintForce:
 
 
 @dataclass(frozen=True)
+class ContactMember:
+    """The force of a friction contact on one member: normal part, friction, their sum and its magnitude."""
+
+    name: str
+    normal: tuple[Expr, ...]
+    friction: tuple[Expr, ...]
+    total: tuple[Expr, ...]
+    magnitude: Expr
+
+
+@dataclass(frozen=True)
 class Friction:
     """A friction contact: its term (with the symbol N), and N in closed form with the case that applies."""
 
     name: str
-    particle: str
+    particle: str  # the member that slides (a particle or a planar body)
+    against: str | None  # the member that carries the surface (None: the surroundings)
+    point: tuple[Expr, ...] | None  # the contact point, for a body (a particle's is its position)
+    rate: Expr | None  # the sliding rate σ along the tangent, where it slides along one line
+    tangent: tuple[Expr, ...] | None  # the unit tangent t along which it slides
     coefficient: Expr
     normal: Expr  # the symbol N
     constraints: tuple[str, ...]
@@ -195,6 +210,7 @@ class Friction:
     system: Expr | None  # Eq(N, |a + B N|)
     force: tuple[Expr, ...]  # the friction force with N put in
     generalized: tuple[tuple[Coordinate, Expr], ...]  # its generalized forces with N put in
+    members: tuple[ContactMember, ...]  # the force on each member (empty when the forces are not known)
 
 
 @dataclass(frozen=True)
@@ -274,7 +290,7 @@ def core_sections(derivation: Derivation) -> CoreSections:
         multipliers=None if derivation.multipliers is None else tuple(
             Solved(c.name, c.multiplier, derivation.multipliers[c.name]) for c in derivation.constraints),
         forces=_forces(derivation, coords),
-        friction=tuple(_friction(f, coords) for f in derivation.friction),
+        friction=tuple(_friction(f, coords, derivation) for f in derivation.friction),
         notes=tuple(derivation.notes),
         symbols=tuple(problem.symbols.items()),
         contract=(("reduced", derivation.reduced), ("conserved", derivation.conserved),
@@ -318,11 +334,14 @@ def _forces(derivation: Derivation, coords: tuple[Coordinate, ...]) -> tuple[Con
     return tuple(out)
 
 
-def _friction(f: Any, coords: tuple[Coordinate, ...]) -> Friction:
+def _friction(f: Any, coords: tuple[Coordinate, ...], derivation: Derivation) -> Friction:
     term = f.term
     implicit = f.normal_force == term.normal and f.system is not None
+    body = any(b.name == term.particle for b in derivation.problem.bodies)
     return Friction(
-        name=term.name, particle=term.particle, coefficient=term.coefficient, normal=term.normal,
+        name=term.name, particle=term.particle, against=term.against, point=tuple(term.point) if body else None,
+        rate=term.sliding_rate, tangent=None if term.tangent is None else tuple(term.tangent),
+        coefficient=term.coefficient, normal=term.normal,
         constraints=tuple(term.constraints), term_force=tuple(term.force),
         term_generalized=tuple(zip(coords, term.generalized, strict=True)),
         valid_while=term.valid_while, static=term.static,
@@ -332,4 +351,6 @@ def _friction(f: Any, coords: tuple[Coordinate, ...]) -> Friction:
         case=f.case, condition=f.valid_while, system=f.system,
         force=tuple(f.force or term.force),
         generalized=tuple(zip(coords, f.generalized or term.generalized, strict=True)),
+        members=tuple(ContactMember(m.member, tuple(m.normal), tuple(m.friction), tuple(m.total), m.magnitude)
+                      for m in f.members),
     )
