@@ -6,7 +6,7 @@ from __future__ import annotations
 import sympy
 
 from lagsolve.mechanics.forces import force_terms, position_jacobian
-from lagsolve.mechanics.friction import friction_term
+from lagsolve.mechanics.matrix_form import matrix_form
 from lagsolve.mechanics.model import build_model
 from mechanics_support import (
     assert_same,
@@ -165,8 +165,7 @@ friction:
 def test_friction_opposes_the_sliding_velocity():
     """Friction on a puck sliding in x and y is -mu N (x_dot, y_dot, 0)/sqrt(x_dot^2 + y_dot^2)."""
     problem = problem_text(PUCK)
-    model = build_model(problem)
-    term = friction_term(problem.friction[0], problem, model)
+    term = matrix_form(problem).frictions[0]
     s = names(problem)
     mu, xd, yd = s["mu"], s["x_dot"], s["y_dot"]
     speed = sympy.sqrt(xd**2 + yd**2)
@@ -182,8 +181,7 @@ def test_friction_along_a_tube_uses_the_sign_of_the_sliding_rate():
     """In the rough rotating tube friction is -mu N sign(r_dot) e_r, so
     Q = (-mu N sign(r_dot), 0, 0)."""
     problem = problem_file("rotating_tube")
-    model = build_model(problem)
-    term = friction_term(problem.friction[0], problem, model)
+    term = matrix_form(problem).frictions[0]
     s = names(problem)
     mu, th, ph, rd = s["mu"], s["theta"], s["phi"], s["r_dot"]
     e_r = (sympy.sin(th) * sympy.cos(ph), sympy.sin(th) * sympy.sin(ph), sympy.cos(th))

@@ -6,9 +6,11 @@ from __future__ import annotations
 import sympy
 
 from lagsolve.mechanics.constraints import constraint_terms
+from lagsolve.mechanics.elimination import eliminate
 from lagsolve.mechanics.forces import position_jacobian
 from lagsolve.mechanics.model import build_model
-from lagsolve.mechanics.reactions import reaction
+from lagsolve.mechanics.reactions import internal, reaction
+from lagsolve.mechanics.surface import Surface
 from mechanics_support import (
     PROBLEMS,
     TUBE,
@@ -77,7 +79,9 @@ def reaction_of(problem, name):
     model = build_model(problem)
     (constraint,) = [c for c in problem.constraints if c.name == name]
     terms = constraint_terms(constraint, model)
-    return model, terms, reaction(problem, model, terms)
+    every = tuple(constraint_terms(c, model) for c in problem.constraints)
+    zero = Surface(every, model, eliminate(every, model)).is_zero
+    return model, terms, reaction(problem, model, terms, zero)
 
 
 def _wire(x):
@@ -323,22 +327,6 @@ def test_point_where_the_constraint_cannot_act_gets_a_note():
     assert react.particles == () and "at:" in react.note
 
 
-def test_point_velocity_jacobian_includes_the_rotation():
-    """v_P = v_C + omega z x (P - C): for the contact point (x, -R) of a disk turning at -phi_dot it is
-    (x_dot - R phi_dot, 0), which vanishes when it rolls."""
-    from lagsolve.mechanics.reactions import point_velocity_jacobian
-
-    text = ROLLING_DISK.replace("angular_velocity: phi_dot", "angular_velocity: -phi_dot").replace(
-        "roll: {holonomic: x - R*phi}", "roll: {holonomic: x - R*phi, on: disk, at: [x, -R]}")
-    problem = problem_text(text)
-    model = build_model(problem)
-    s = names(problem)
-    J = point_velocity_jacobian(problem, model, "disk", problem.constraints[0].at)
-    assert (J - sympy.Matrix([[1, -s["R"]], [0, 0]])).is_zero_matrix
-    force = derived_text(text).constraint_forces["roll"]
-    assert force.vector is not None and force.vector[1] == 0
-
-
 def test_a_cylinder_rolling_on_a_sliding_wedge_pushes_along_the_face_and_back_on_the_wedge():
     """problems/wedge_cylinder.yaml, rolling on a face that moves (on: [cyl, wedge]): the force on the
     cylinder is the friction along the face, f = m s_ddot/2 from Newton's law for its rotation,
@@ -357,3 +345,42 @@ def test_a_cylinder_rolling_on_a_sliding_wedge_pushes_along_the_face_and_back_on
     assert all(sympy.simplify(c - e) == 0 for c, e in zip(on_cyl, along, strict=True))
     assert all(sympy.simplify(c + e) == 0 for c, e in zip(on_wedge, on_cyl, strict=True))
     assert sympy.simplify(size.subs({a: sympy.Rational(2, 5)}) - friction.subs({a: sympy.Rational(2, 5)})) == 0
+
+
+SMOOTH_WEDGE = """
+name: block on a smooth wedge that cannot move vertically
+parameters: {m: mass, M: mass, g: gravity, alpha: angle}
+coordinates: [X, x, y]
+particles:
+  wedge: {mass: M, position: [X, 0]}
+  block: {mass: m, position: [x, y]}
+gravity: [0, -g]
+constraints:
+  face: {holonomic: y*cos(alpha) - (x - X)*sin(alpha), on: [block, wedge]}
+"""
+
+
+def test_a_face_between_two_particles_pushes_both_ways_even_where_one_cannot_move() -> None:
+    """The wedge has no vertical coordinate (the floor is built in), so its force is not fixed by its own
+    equations; the face depends on block and wedge only through their relative position, so the wedge gets the
+    opposite of the block's force, vertical part included (not only the part along X), and the same magnitude."""
+    d = derived_text(SMOOTH_WEDGE)
+    assert d.constraint_forces is not None
+    face = d.constraint_forces["face"]
+    (block, on_block, size), (wedge, on_wedge, wedge_size) = face.particles
+    assert (block, wedge) == ("block", "wedge")
+    assert all(sympy.simplify(a + b) == 0 for a, b in zip(on_block, on_wedge, strict=True))
+    assert on_wedge[1] != 0 and sympy.simplify(size - wedge_size) == 0
+    assert face.magnitude is not None
+
+
+def test_strings_are_not_taken_for_contacts() -> None:
+    """A string through a hole (no common motion of the two) and Atwood's string over a pulley (a common motion
+    lengthens it) pull each particle along the string, not equal and opposite."""
+    for name in ("hole_table", "atwood", "incline_pulley"):
+        problem = problem_file(name)
+        model = build_model(problem)
+        string = next(c for c in problem.constraints if c.name == "string")
+        terms = constraint_terms(string, model)
+        first, second = (position_jacobian(problem.particle(p).position, model) for p in string.on)
+        assert not internal(first, second, sympy.Matrix(terms.coefficients), model), name

@@ -86,3 +86,85 @@ def test_kinetic_friction_opposes_sliding_and_normal_force_is_weight() -> None:
     assert normal[0] == pytest.approx(M * G)
     assert qdd[0] == pytest.approx(-K * 0.3 / M - MU * G)
     assert lam[0] == pytest.approx(M * G)
+
+
+def _shipped(name: str, values: dict[str, float] | None = None):  # type: ignore[no-untyped-def]
+    """problems/<name>.yaml bound (with ``values`` over the file's) and run to its t_end."""
+    problem = load_problem(ROOT / "problems" / f"{name}.yaml")
+    system = bind(matrix_form(problem), values or {})
+    q0, qd0 = complete_initial(system, dict(problem.simulation.initial))
+    return system, integrate_motion(system, q0, qd0, problem.simulation.t_end, samples=2001)
+
+
+def test_a_block_on_a_rough_wedge_conserves_the_horizontal_momentum() -> None:
+    """On a smooth floor nothing outside pushes horizontally: M X_dot + m x_dot stays 0 (to 1e-8) while the block
+    slides down the rough face, and the energy lost is the friction's work, the integral of f sigma (1e-6)."""
+    system, run = _shipped("rough_wedge")
+    values = dict(zip(system.parameter_names, system.parameters, strict=True))
+    X, x, y = (system.coordinates.index(c) for c in ("X", "x", "y"))
+    momentum = values["M"] * run.qd[:, X] + values["m"] * run.qd[:, x]
+    assert np.max(np.abs(momentum - momentum[0])) < 1e-8
+    alpha = values["alpha"]
+    sigma = (run.qd[:, x] - run.qd[:, X]) * np.cos(alpha) + run.qd[:, y] * np.sin(alpha)
+    assert np.all(sigma[1:] < 0)  # it slides down the face
+    power = run.friction[:, 0] * sigma  # the friction's component along the tangent times the sliding rate
+    work = np.concatenate([[0.0], np.cumsum((power[1:] + power[:-1]) / 2 * np.diff(run.t))])
+    assert run.energy - run.energy[0] == pytest.approx(work, rel=1e-6, abs=1e-9)
+    assert np.all(run.friction[1:, 0] > 0)  # up the face, against the sliding
+    assert run.friction[:, 0] == pytest.approx(values["mu"] * run.normal_forces[:, 0])
+
+
+@pytest.mark.parametrize("above", [True, False])
+def test_a_disc_on_a_rough_incline_rolls_or_slips_at_the_textbook_threshold(above: bool) -> None:
+    """Started at rest, the disc rolls while mu_s >= tan(alpha)/3, with x_ddot = 2 g sin(alpha)/3 and the friction
+    m g sin(alpha)/3 up the slope; just below the threshold it slips from the start, x_ddot = g (sin - mu cos)."""
+    m, g, alpha, mu, R = 1.0, 9.81, 0.5, 0.1, 0.3
+    threshold = math.tan(alpha) / 3
+    mu_s = threshold * (1.02 if above else 0.98)
+    system, run = _shipped("rough_disc_incline", {"mu_s": mu_s, "mu": mu})
+    x, phi = system.coordinates.index("x"), system.coordinates.index("phi")
+    if above:
+        assert run.stuck[:, 0].all()
+        assert run.friction[:, 0] == pytest.approx(-m * g * math.sin(alpha) / 3, rel=1e-9)
+        assert run.qd[:, x] == pytest.approx(2 * g * math.sin(alpha) / 3 * run.t, abs=1e-9)
+        assert run.qd[:, x] == pytest.approx(R * run.qd[:, phi], abs=1e-9)
+    else:
+        assert not run.stuck[:, 0].any()
+        assert run.qd[:, x] == pytest.approx(g * (math.sin(alpha) - mu * math.cos(alpha)) * run.t, abs=1e-9)
+        assert run.qd[:, phi] == pytest.approx(2 * mu * g * math.cos(alpha) / R * run.t, abs=1e-8)
+        assert run.friction[:, 0] == pytest.approx(-mu * m * g * math.cos(alpha), rel=1e-9)
+
+
+@pytest.mark.parametrize("pull", [8.0, 20.0])
+def test_stacked_blocks_ride_together_or_the_upper_one_slips(pull: float) -> None:
+    """The lower block is pulled across a rough floor. The upper one rides along while the common acceleration
+    a = F/(m1 + m2) - mu1 g is at most mu2_s g (its friction then m2 a); beyond it slips, x2_ddot = mu2 g and
+    m1 x1_ddot = F - mu1 (m1 + m2) g - mu2 m2 g."""
+    m1, m2, g, mu1, mu2 = 2.0, 1.0, 9.81, 0.2, 0.25
+    system, run = _shipped("stacked_blocks", {"F": pull})
+    x1, x2 = system.coordinates.index("x1"), system.coordinates.index("x2")
+    ground, between = system.contact_names.index("ground"), system.contact_names.index("between")
+    assert run.normal_forces[:, ground] == pytest.approx((m1 + m2) * g)
+    assert run.normal_forces[:, between] == pytest.approx(m2 * g)
+    common = pull / (m1 + m2) - mu1 * g
+    if pull == 8.0:
+        assert run.stuck[:, between].all() and not run.stuck[:, ground].any()
+        assert run.qd[:, x1] == pytest.approx(common * run.t, abs=1e-9)
+        assert run.qd[:, x2] == pytest.approx(run.qd[:, x1], abs=1e-9)
+        assert run.friction[:, between] == pytest.approx(m2 * common, rel=1e-9)
+    else:
+        assert common > 0.3 * g and not run.stuck[:, between].any()
+        assert run.qd[:, x2] == pytest.approx(mu2 * g * run.t, abs=1e-9)
+        assert run.qd[:, x1] == pytest.approx((pull - mu1 * (m1 + m2) * g - mu2 * m2 * g) / m1 * run.t, abs=1e-8)
+
+
+def test_a_disc_rolling_on_a_cylinder_leaves_it_at_four_sevenths() -> None:
+    """Rolling from rest at theta0, the disc leaves the cylinder where cos(theta) = 4 cos(theta0)/7 (energy with
+    the rolling constraint, and the normal force m g cos(theta) - m (R + a) theta_dot^2 = 0); the friction at the
+    contact is m g sin(theta)/3 all the way."""
+    system, run = _shipped("disc_on_cylinder")
+    (release,) = [e for e in run.events if e.kind == "release"]
+    assert math.cos(release.state["theta"]) == pytest.approx(4 * math.cos(0.1) / 7, rel=1e-8)
+    theta = run.q[:, system.coordinates.index("theta")]
+    roll = system.constraints.index("roll")
+    assert run.magnitudes[:, roll] == pytest.approx(9.81 * np.abs(np.sin(theta)) / 3, rel=1e-8)

@@ -307,14 +307,16 @@ def test_a_body_pressing_on_a_second_one_is_named_after_it() -> None:
     assert load(WEDGE_AND_CYLINDER.replace("ON", "[cyl]")).constraints[0].on == ("cyl",)
 
 
-@pytest.mark.parametrize(("on", "words"), [
-    ("[cyl, table]", "'table'"), ("[cyl, wedge, wedge]", "at most one"), ("[cyl, cyl]", "'cyl', 'cyl'"),
-    ("[wedge, cyl]", "must name that body (first"), ("[cyl, 3]", "write on: [cyl, OTHER]"),
+@pytest.mark.parametrize(("on", "words", "field"), [
+    ("[cyl, table]", "'table'", "on"), ("[cyl, wedge, wedge]", "at most one", "on"),
+    ("[cyl, cyl]", "'cyl', 'cyl'", "on"), ("[wedge, cyl]", "'wedge' is a particle, a point", "at"),
+    ("[cyl, 3]", "write on: [cyl, OTHER]", "on"), ("[ghost, cyl]", "must name that body or particle", "on"),
 ])
-def test_bad_pairs_of_a_contact_are_refused(on: str, words: str) -> None:
-    """An unknown second name, three names, the body twice, the body second or a number: exit 2, field, fix."""
+def test_bad_pairs_of_a_contact_are_refused(on: str, words: str, field: str) -> None:
+    """An unknown second name, three names, the body twice, a particle first whose position is not the point, a
+    number or an unknown first name: exit 2, field, fix."""
     issues = issues_of(WEDGE_AND_CYLINDER.replace("ON", on))
-    assert any(i.where == "constraints.roll.on" and words in i.message + i.hint for i in issues), issues
+    assert any(i.where == f"constraints.roll.{field}" and words in i.message + i.hint for i in issues), issues
     assert all(i.line > 0 for i in issues)
 
 
