@@ -329,3 +329,15 @@ def test_a_file_without_units_is_not_checked() -> None:
     assert not problem.has_units
     assert scale_issues(problem) == []
     check_units(problem)
+
+
+@pytest.mark.parametrize(("name", "text"), [("fall.yaml", FALL_MS), ("spring.yaml", SPRING_G)])
+def test_docs_show_the_messages_lagsolve_prints(tmp_path: Path, name: str, text: str, monkeypatch: pytest.MonkeyPatch
+                                                ) -> None:
+    """docs/format.md (Units) quotes the refusals of the ms and grams examples exactly as lagsolve prints them."""
+    monkeypatch.chdir(tmp_path)
+    Path(name).write_text(text, encoding="utf-8")
+    result = CliRunner().invoke(main, ["derive", name, "-o", "out"])
+    assert result.exit_code == 2
+    docs = (Path(__file__).resolve().parents[2] / "docs" / "format.md").read_text(encoding="utf-8")
+    assert result.stderr.strip() in docs
