@@ -263,7 +263,8 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
     t_end : float, optional
         End time (default: the file's ``simulation.t_end``).
     values : mapping of str to float, optional
-        Parameter values, over the file's ``simulation.values``.
+        Parameter values, over the file's ``simulation.values``; like every number here, in the units the file
+        declares (one system, never converted: ``docs/format.md``, *Units*).
     initial : mapping of str to float, optional
         Initial coordinates and velocities (``x``, ``x_dot``), over the file's ``simulation.initial``;
         dependent ones are completed from the constraints.
@@ -285,7 +286,8 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
     Raises
     ------
     SpecError
-        An unknown parameter, a missing value or end time, or an initial state off the constraints.
+        An unknown parameter, a missing value or end time, an initial state off the constraints, or units of
+        the wrong dimension or of mixed scales.
     SimulationError
         The integration failed.
 

@@ -113,6 +113,14 @@ def describe(dim: Dimension) -> str:
     return f"{text} ({name})" if name and name != "dimensionless" else text if name is None else "1 (dimensionless)"
 
 
+def quantity(dim: Dimension) -> str:
+    """``an acceleration``, ``a force``: the common name of a dimension with its article, or ``""``."""
+    name = _NAMES.get(dim)
+    if name is None:
+        return ""
+    return "a pure number" if name == "dimensionless" else _ARTICLE.get(name, f"a {name}")
+
+
 def fraction_text(parts: Iterable[tuple[str, float]]) -> str:
     def power(name: str, e: float) -> str:
         e = abs(e)
@@ -297,15 +305,24 @@ RATE: Dimension = ((_T, -1),)
 def check_dimensions(problem: Problem) -> None:
     """Refuse a problem whose declared units make a field the wrong kind of quantity.
 
-    Does nothing for a problem that declares no unit.
+    Does nothing for a problem that declares no unit. The derivation runs
+    :func:`lagsolve.mechanics.unit_system.check_units`, which also refuses units of mixed scales.
 
     Raises
     ------
     SpecError
         One issue per wrong field (file, line, field, the dimension found and the one needed, a hint).
     """
+    issues = dimension_issues(problem)
+    if issues:
+        raise SpecError(sorted(issues, key=lambda issue: issue.line))
+
+
+def dimension_issues(problem: Problem) -> list[Issue]:
+    """One issue per field of ``problem`` whose declared units make it the wrong kind of quantity (see
+    :func:`check_dimensions`); empty for a problem that declares no unit."""
     if not problem.has_units:
-        return
+        return []
     units = algebra(problem)
     issues: list[Issue] = []
     lines = problem.lines
@@ -379,8 +396,7 @@ def check_dimensions(problem: Problem) -> None:
         need(f"friction.{fr.name}.coefficient", fr.coefficient, (), "dimensionless")
         if fr.static is not None:
             need(f"friction.{fr.name}.static", fr.static, (), "dimensionless")
-    if issues:
-        raise SpecError(sorted(issues, key=lambda issue: issue.line))
+    return issues
 
 
 def _line(lines: Mapping[str, int], where: str) -> int:

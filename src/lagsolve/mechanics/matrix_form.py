@@ -16,7 +16,6 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.constraints import ConstraintTerms, constraint_terms
-from lagsolve.mechanics.dimensions import check_dimensions
 from lagsolve.mechanics.elimination import eliminate
 from lagsolve.mechanics.forces import ForceTerm, force_terms
 from lagsolve.mechanics.friction import FrictionTerm, friction_term
@@ -26,6 +25,7 @@ from lagsolve.mechanics.model import Model, build_model
 from lagsolve.mechanics.reactions import Reaction, reaction
 from lagsolve.mechanics.regularity import check_constraints
 from lagsolve.mechanics.surface import Surface
+from lagsolve.mechanics.unit_system import check_units
 from lagsolve.problem.schema import Problem
 
 
@@ -55,7 +55,7 @@ def matrix_form(problem: Problem, *, display: bool = True) -> MatrixForm:
     ``display=False`` is the core of a derivation and what the numeric stage compiles: the energies are
     tidied only when they are small. The equations are the same; only their written shape differs.
     """
-    check_dimensions(problem)  # with units: wrong dimensions refused before anything is derived
+    check_units(problem)  # with units: wrong dimensions and mixed scales refused before anything is derived
     check_masses(problem)  # negative masses: refused with a fix
     model = build_model(problem, tidy=True if display else None)
     constraints = tuple(constraint_terms(c, model) for c in problem.constraints)
