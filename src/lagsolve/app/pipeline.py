@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from lagsolve import ranges
 from lagsolve.app.simulation import Progress, SimulationOptions, SimulationResult, simulate_derivation, simulate_form
 from lagsolve.check.status import Status
 from lagsolve.files import safe_slug
@@ -170,13 +171,14 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = DEFAULT_FORMATS, *,
     Raises
     ------
     SpecError
-        The file is invalid (every problem listed).
+        The file is invalid (every problem listed), or ``timeout`` is outside its range (:mod:`lagsolve.ranges`).
     DerivationError
         The derivation failed or ran out of time.
     """
     from lagsolve.app.budget import run_with_budget
     from lagsolve.problem.load import load_problem
 
+    ranges.check(timeout=timeout)
     problem = load_problem(path)
     _preload()
     text, outputs, files = run_with_budget(_derive_and_render, (problem, formats, templates, simulate, timeout),
@@ -223,13 +225,14 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
     Raises
     ------
     SpecError
-        The file is invalid (every problem listed).
+        The file is invalid (every problem listed), or ``timeout`` is outside its range (:mod:`lagsolve.ranges`).
     DerivationError
         The derivation failed or ran out of time.
     """
     from lagsolve.app.budget import run_with_budget
     from lagsolve.problem.load import load_problem
 
+    ranges.check(timeout=timeout)
     problem = load_problem(path)
     _preload()
     table, counts, rows = run_with_budget(_derive_and_check, (problem, timeout), timeout, f"the check of {path}")
@@ -286,13 +289,15 @@ def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: floa
     Raises
     ------
     SpecError
-        The file or an option is invalid (unknown parameter, missing value, bad initial state).
+        The file or an option is invalid (unknown parameter, missing value, bad initial state, ``timeout``
+        outside its range).
     DerivationError, SimulationError
         The derivation or the integration failed, or ran out of time.
     """
     from lagsolve.app.budget import run_with_budget
     from lagsolve.problem.load import load_problem
 
+    ranges.check(timeout=timeout)
     problem = load_problem(path)
     _preload()
     from dataclasses import replace

@@ -14,6 +14,7 @@ from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from lagsolve import ranges
 from lagsolve.errors import Issue, SpecError
 from lagsolve.problem.methods import DEFAULT as DEFAULT_METHOD
 
@@ -113,6 +114,7 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
                        frozenset(p.name for p in problem.parameters if p.positive),
                        tuple(c.name for c in problem.coordinates))
     _check_options(method, rtol, atol, workers, runs, chunk_size, seed, BATCHED)
+    ranges.check(t_end=t_end)
     grid_specs = _as_specs(grid, "--grid")
     if isinstance(grid_specs, Mapping):
         grid_values = spec.grid_from_mapping(grid_specs, names)
@@ -161,12 +163,7 @@ def _check_options(method: str, rtol: float, atol: float, workers: int, runs: in
     if method not in METHODS:
         bad.append(Issue("<argument>", 0, "method", f"expected one of {', '.join(METHODS)}, found {method!r}",
                          f"{', '.join(batched)} run batched; the others one run at a time"))
-    for key, value in (("rtol", rtol), ("atol", atol)):
-        if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
-            bad.append(Issue("<argument>", 0, key, f"expected a positive finite number, found {value!r}"))
-    for key, count, low in (("workers", workers, 0), ("runs", runs, 1), ("chunk_size", chunk_size, 1),
-                            ("seed", seed, 0)):
-        if count is not None and (isinstance(count, bool) or not isinstance(count, int) or count < low):
-            bad.append(Issue("<argument>", 0, key, f"expected a whole number >= {low}, found {count!r}"))
+    bad += ranges.issues((("rtol", rtol), ("atol", atol), ("workers", workers), ("runs", runs),
+                          ("chunk_size", chunk_size), ("seed", seed)))
     if bad:
         raise SpecError(bad)
