@@ -72,7 +72,8 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     workers : int
         0 runs in this process; N starts a local Dask cluster of N worker processes.
     scheduler : str, optional
-        Address of an existing Dask scheduler (``tcp://host:8786``) to run on instead.
+        Address of an existing Dask scheduler (``tcp://host:8786``) to run on instead. It is checked first,
+        with a time-out: it must answer as a Dask scheduler and have a worker (else SpecError).
     chunk_size : int, optional
         Runs per chunk (default: about four chunks per worker, at most 1024 runs each).
     progress : callable, optional
@@ -89,7 +90,8 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     Raises
     ------
     SpecError
-        Bad input: an unknown name, a malformed range or section, no end time.
+        Bad input: an unknown name, a malformed range or section, no end time, a number outside its range,
+        a scheduler address where no Dask scheduler answers.
     ImportError
         pandas (or, with workers or a scheduler, Dask) is not installed.
 
@@ -133,6 +135,10 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     section = spec.parse_section(poincare, names) if poincare is not None else None
     inputs = spec.inputs(grid_values, random_values, runs, seed)
     settings = Settings(float(end), method, float(rtol), float(atol), section)
+    if scheduler is not None:  # a wrong address is refused before the problem is compiled
+        from lagsolve.sweep.cluster import check_scheduler
+
+        scheduler = check_scheduler(scheduler)
     compiled(text, source)  # bad values surface here, as SpecError, before any worker starts
     total = len(next(iter(inputs.values())))
     size = chunk_size or min(1024, max(1, math.ceil(total / (4 * max(1, workers)))))
