@@ -116,7 +116,19 @@ def _ascii_where_needed() -> None:
             stream.reconfigure(errors="lagsolve-ascii")
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+class _Commands(click.Group):
+    """The command group: Ctrl-C (SIGINT) during any command ends it with one line and exit 130 (128 + SIGINT),
+    after the command's own clean-up (child processes, workers) has run, instead of click's "Aborted!"."""
+
+    def invoke(self, ctx: click.Context) -> object:
+        try:
+            return super().invoke(ctx)
+        except KeyboardInterrupt:
+            click.echo("interrupted", err=True)
+            ctx.exit(130)
+
+
+@click.group(cls=_Commands, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="lagsolve")
 @click.option("-q", "--quiet", is_flag=True, help="Show only errors and the output asked for (no summaries, "
                                                   "'wrote' lines or warnings).")

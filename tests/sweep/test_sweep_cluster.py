@@ -155,3 +155,58 @@ def test_a_real_scheduler_passes_the_check() -> None:
     with LocalCluster(n_workers=0, processes=False, protocol="tcp", dashboard_address=None,
                       silence_logs=logging.ERROR) as cluster:
         assert check_scheduler(cluster.scheduler_address, timeout=5.0) == cluster.scheduler_address
+
+
+def test_a_ctrl_c_while_workers_start_is_held_not_lost() -> None:
+    """Inside interrupts_held SIGINT is ignored (what worker processes started there inherit) and blocked here;
+    a Ctrl-C meanwhile raises KeyboardInterrupt as the block ends, and the handler is back afterwards. (The
+    signal goes to this thread: pytest's process has other threads, such as BLAS's, that do not block it.)"""
+    import signal
+
+    from lagsolve.sweep.cluster import interrupts_held
+
+    handler = signal.getsignal(signal.SIGINT)
+    reached = []
+    with pytest.raises(KeyboardInterrupt), interrupts_held():
+        assert signal.getsignal(signal.SIGINT) == signal.SIG_IGN
+        signal.pthread_kill(threading.main_thread().ident or 0, signal.SIGINT)
+        reached.append("after the signal")
+    assert reached == ["after the signal"]
+    assert signal.getsignal(signal.SIGINT) == handler
+
+
+@pytest.mark.slow
+def test_ctrl_c_during_a_sweep_with_workers_exits_130_quietly(tmp_path: Path) -> None:
+    """SIGINT to the command's whole process group (what Ctrl-C in a terminal does), once its two workers run:
+    exit 130 with the one line "interrupted" (no traceback from the command or from a worker), no table
+    written, and no process of it left."""
+    import os
+    import signal
+    import time
+
+    out = tmp_path / "s.csv"
+    command = [sys.executable, "-m", "lagsolve", "sweep", str(DOUBLE), "--grid", "theta1=0.1:1.5:40", "--grid",
+               "theta2=0.1:1.5:40", "--t-end", "50", "--workers", "2", "-o", str(out)]
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               start_new_session=True)
+    try:
+        parent = psutil.Process(process.pid)
+        workers: list[psutil.Process] = []
+        deadline = time.monotonic() + 120
+        while len(workers) < 2 and process.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.2)
+            workers = [c for c in parent.children(recursive=True) if "spawn_main" in " ".join(c.cmdline())]
+        assert len(workers) >= 2, "the workers did not start"
+        family = parent.children(recursive=True)
+        time.sleep(1.0)  # the workers are at work (or still connecting: the signal is then held, not lost)
+        os.killpg(process.pid, signal.SIGINT)
+        _, stderr = process.communicate(timeout=120)
+    finally:
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+    assert process.returncode == 130, stderr
+    assert stderr == "interrupted\n"
+    assert not out.exists()
+    _, alive = psutil.wait_procs(family, timeout=30)
+    assert alive == []

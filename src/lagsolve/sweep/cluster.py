@@ -8,14 +8,22 @@ An existing scheduler's address is checked before Dask is given it (:func:`check
 connection is made with a time-out, and what answers must send a Dask handshake within it. Dask
 itself would wait for ever on a server that accepts and never answers, and would read another
 service's answer (an HTTP server's) as the length of a message and try to allocate exabytes.
+
+Ctrl-C reaches this process alone, not the local workers: a terminal sends SIGINT to every process
+of its foreground group, and each worker would print a traceback of its own. The local cluster is
+started with SIGINT ignored (:func:`interrupts_held`), which its worker processes inherit; this process
+gets the interrupt (as ``KeyboardInterrupt``) and closes the cluster, which ends them.
 """
 
 from __future__ import annotations
 
+import contextlib
 import logging
+import signal
 import socket
 import struct
-from collections.abc import Callable, Sequence
+import threading
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 from lagsolve.errors import Issue, SpecError
@@ -94,6 +102,32 @@ def check_scheduler(scheduler: str, timeout: float | None = None) -> str:
     return address
 
 
+@contextlib.contextmanager
+def interrupts_held() -> Iterator[None]:
+    """Inside the block SIGINT is ignored, so that the processes started there inherit it ignored (a disposition
+    survives ``exec``; a signal mask does not survive multiprocessing's spawn), and blocked in this thread, so
+    that a Ctrl-C meanwhile is not lost but stays pending and is delivered here when the block ends (Linux
+    queues a blocked signal even while it is ignored). Only in the main thread, on POSIX. A thread started
+    earlier that does not block SIGINT (a BLAS thread pool, which the command line does not start) may take
+    such a Ctrl-C while it is ignored: it is then lost, and a second one stops the sweep."""
+    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    from multiprocessing import resource_tracker
+
+    # started here, not by the first worker: starting it blocks and then *unblocks* SIGINT in the calling
+    # thread, and Dask's event-loop thread (which inherits the block from here) would pass the unblocked
+    # mask on to its threads, one of which would then take a Ctrl-C while it is ignored and lose it
+    resource_tracker.ensure_running()
+    mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    handler = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, handler)  # a pending Ctrl-C stays pending for the handler
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)  # and is delivered now
+
+
 def run_distributed(function: Callable[..., Any], tasks: Sequence[tuple[Any, ...]], workers: int,
                     scheduler: str | None, progress: Callable[[int, int], None] | None, total: int) -> list[Any]:
     """``function(*task)`` for every task, on Dask; results in the order of ``tasks``.
@@ -127,9 +161,10 @@ def run_distributed(function: Callable[..., Any], tasks: Sequence[tuple[Any, ...
                                          f"{CONNECT_TIMEOUT:g} s): {exc}",
                               f"start workers for it (dask worker {address})") from None
         else:
-            cluster = LocalCluster(n_workers=max(1, workers), threads_per_worker=1, processes=True,
-                                   dashboard_address=None, silence_logs=logging.ERROR)
-            client = Client(cluster)
+            with interrupts_held():  # the workers never see a Ctrl-C: this process ends them
+                cluster = LocalCluster(n_workers=max(1, workers), threads_per_worker=1, processes=True,
+                                       dashboard_address=None, silence_logs=logging.ERROR)
+                client = Client(cluster)
         try:
             futures = [client.submit(function, *task, pure=False) for task in tasks]
             order = {future.key: i for i, future in enumerate(futures)}
