@@ -61,14 +61,16 @@ def _derive_and_render(problem: Problem, formats: tuple[str, ...], templates: Pa
     return _render(derivation, formats, templates, simulate)
 
 
-def _render_core(formats: tuple[str, ...], templates: Path | None) -> Callable[[Any, str], tuple]:
-    """What the parent answers with when a derivation is stopped at its CPU limit: the core it sent."""
+def _render_core(formats: tuple[str, ...], templates: Path | None, timeout: float) -> Callable[[Any, str], tuple]:
+    """What the parent answers with when a derivation is stopped at its CPU limit: the core it sent, with a note
+    for each later stage, which did not complete."""
 
     def answer(core: Any, reason: str) -> tuple[str, dict[str, str], dict[str, bytes]]:
         from lagsolve.mechanics.derivation import core as core_of
 
-        return _render(core_of(core.form, reason + "; the matrix form above is what was derived"), formats,
-                       templates, None)
+        note = (f"did not finish within the derivation's {timeout:g} s CPU budget (raise it with --timeout); "
+                "the matrix form above is what was derived")
+        return _render(core_of(core.form, note), formats, templates, None)
 
     return answer
 
@@ -183,7 +185,7 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = DEFAULT_FORMATS, *,
     _preload()
     text, outputs, files = run_with_budget(_derive_and_render, (problem, formats, templates, simulate, timeout),
                                            timeout, f"the derivation of {path}",
-                                           on_partial=_render_core(formats, templates))
+                                           on_partial=_render_core(formats, templates, timeout))
     return Reports(str(path), safe_slug(path), problem.name, text, outputs, files,
                    _unit_warnings(problem) + _warnings(outputs, text))
 
