@@ -144,17 +144,25 @@ def test_a_scheduler_address_that_refuses_or_is_not_tcp_exits_2() -> None:
 
 
 @pytest.mark.slow
-def test_a_real_scheduler_passes_the_check() -> None:
-    """A running Dask scheduler's own address passes the handshake check unchanged."""
+def test_a_real_scheduler_passes_the_check_and_one_without_workers_is_refused(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """A running Dask scheduler's own address passes the handshake check unchanged; a sweep on it while it has no
+    worker (which would wait for ever) is a SpecError saying so."""
+    import importlib
     import logging
 
     from distributed import LocalCluster
 
-    from lagsolve.sweep.cluster import check_scheduler
+    from lagsolve.errors import SpecError
 
+    cluster_module = importlib.import_module("lagsolve.sweep.cluster")
+    monkeypatch.setattr(cluster_module, "CONNECT_TIMEOUT", 1.0)
     with LocalCluster(n_workers=0, processes=False, protocol="tcp", dashboard_address=None,
                       silence_logs=logging.ERROR) as cluster:
-        assert check_scheduler(cluster.scheduler_address, timeout=5.0) == cluster.scheduler_address
+        address = cluster.scheduler_address
+        assert cluster_module.check_scheduler(address, timeout=5.0) == address
+        with pytest.raises(SpecError, match=f"the Dask scheduler at {address} has no worker .*dask worker {address}"):
+            sweep(DOUBLE, grid={"theta1": [0.1]}, t_end=0.1, scheduler=address)
 
 
 def test_a_ctrl_c_while_workers_start_is_held_not_lost() -> None:

@@ -92,7 +92,7 @@ def check_scheduler(scheduler: str, timeout: float | None = None) -> str:
             body = _receive(connection, length) if 0 < length <= HANDSHAKE_LIMIT else b""
         except TimeoutError:
             raise _refuse(f"{address} accepts connections but sent nothing within {seconds:g} s: it is "
-                                     "not a Dask scheduler, or it does not work") from None
+                          "not a Dask scheduler, or it does not work") from None
         except OSError as exc:
             raise _refuse(f"{address} closed the connection: {exc}") from None
     if b"pickle-protocol" not in body:
@@ -157,8 +157,7 @@ def run_distributed(function: Callable[..., Any], tasks: Sequence[tuple[Any, ...
                 client.wait_for_workers(1, timeout=CONNECT_TIMEOUT)
             except (OSError, TimeoutError) as exc:
                 client.close()
-                raise _refuse(f"the Dask scheduler at {address} has no worker (waited "
-                                         f"{CONNECT_TIMEOUT:g} s): {exc}",
+                raise _refuse(f"the Dask scheduler at {address} has no worker (waited {CONNECT_TIMEOUT:g} s): {exc}",
                               f"start workers for it (dask worker {address})") from None
         else:
             with interrupts_held():  # the workers never see a Ctrl-C: this process ends them

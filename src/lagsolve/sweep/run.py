@@ -292,10 +292,8 @@ def _fail_where_not_finite(step: Any, monitored: list[tuple[str, np.ndarray]]) -
     its state may still be finite (a projection that could not move it back onto ψ = 0, log of a
     negative number in the residual only), but nothing measured from there on would mean anything."""
     bad = [(what, ~np.isfinite(values)) for what, values in monitored]
-    for i in range(len(step.rows)):
+    for i in np.flatnonzero(np.any([mask for _, mask in bad], axis=0)):  # usually none: no loop over the rows
         names = [what for what, mask in bad if mask[i]]
-        if not names:
-            continue
         step.fail(np.array([i]), f"{' and '.join(names)} {'is' if len(names) == 1 else 'are'} no longer finite at "
                                  f"t = {step.t_new[i]:.6g} (an expression was evaluated outside its domain, such as "
                                  "log or sqrt of a number <= 0, or the motion diverged)")
