@@ -93,7 +93,7 @@ def test_derive_accepts_a_loaded_problem() -> None:
 
 def test_derive_rejects_a_non_positive_budget() -> None:
     """A budget of zero seconds is a SpecError naming the budget."""
-    with pytest.raises(SpecError, match="budget: expected a positive number of seconds, found 0"):
+    with pytest.raises(SpecError, match="budget: expected a finite number > 0 and <= 1e.06, found 0"):
         lagsolve.derive(FALLING, budget=0)
 
 
@@ -197,9 +197,14 @@ def test_check_accepts_a_derivation() -> None:
 
 
 @pytest.mark.parametrize(("option", "value", "message"), [
-    ("t_end", -1.0, "t_end: expected a positive finite number, found -1.0"),
-    ("t_end", float("nan"), "t_end: expected a positive finite number, found nan"),
-    ("rtol", 0.0, "rtol: expected a positive finite number, found 0.0"),
+    ("t_end", -1.0, "t_end: expected a finite number > 0, found -1"),
+    ("t_end", float("nan"), "t_end: expected a finite number > 0, found nan"),
+    ("t_end", float("inf"), "t_end: expected a finite number > 0, found inf"),
+    ("rtol", 0.0, "rtol: expected a finite number from 1e-13 to 1, found 0"),
+    ("rtol", float("nan"), "rtol: expected a finite number from 1e-13 to 1, found nan"),
+    ("atol", float("inf"), "atol: expected a finite number > 0, found inf"),
+    ("max_step", float("nan"), "max_step: expected a finite number > 0, found nan"),
+    ("budget", float("nan"), "budget: expected a finite number > 0 and <= 1e+06, found nan"),
     ("samples", 1, "samples: expected a whole number from 2 to 1000000, found 1"),
 ])
 def test_simulate_rejects_bad_numbers(option: str, value: float, message: str) -> None:

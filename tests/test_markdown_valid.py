@@ -93,3 +93,75 @@ def test_simulation_section_fence_closes(shipped_derivation: Callable[[str], Any
         text = render(derivation, "md", simulation={"summary": summary, "figures": []})
         assert "## Simulation" in text
         assert markdown_problems(text) == []
+
+
+HOSTILE = r'''
+name: Falling mass
+description: "Drops. [click me](javascript:alert(1)) and ![beacon](https://tracker.example/p.gif?u=1)
+  <https://evil.example/a> https://evil.example/b www.evil.example/c mail a.b@evil.example
+  [ref][r] [r]\n\n[r]: https://evil.example/ref\n\n<img src=x onerror=alert(1)>\n# Forged heading\nSetext\n===\n
+  \\[x](https://evil.example/backslash) and a matrix [[m, 0], [0, m]]"
+parameters:
+  m: "mass\n## Forged | row [p](https://evil.example/param)"
+  g: {description: "gravity ![i](https://tracker.example/g.gif)"}
+coordinates:
+  y: "height\n| forged | cells |"
+functions: {}
+particles: {p: {mass: m, position: [0, y]}}
+gravity: [0, -g]
+'''
+
+
+def _tokens(text: str) -> list[Any]:
+    md = markdown_it.MarkdownIt("commonmark").enable("table")
+    md.use(dollarmath.dollarmath_plugin, allow_space=True, allow_digits=True, double_inline=True)
+    out = []
+    for token in md.parse(text):
+        out.append(token)
+        out += token.children or []
+    return out
+
+
+def test_descriptions_are_inert_text_in_markdown() -> None:
+    """Links, images, autolinks, raw HTML and headings in descriptions stay text: the parsed report has no
+    link or image token, no URL in a text node (where GitHub's autolinker looks), its own headings only, and one
+    table row per parameter and coordinate whatever line breaks their descriptions hold."""
+    import lagsolve
+
+    text = render(lagsolve.derive(HOSTILE, analysis=False), "md")
+    tokens = _tokens(text)
+    assert [t.type for t in tokens if t.type in ("link_open", "image", "html_inline", "html_block")] == []
+    urls = re.compile(r"https?://|www\.|@evil")
+    assert [t.content for t in tokens if t.type == "text" and urls.search(t.content)] == []
+    assert any(t.type == "code_inline" and t.content == "https://evil.example/b" for t in tokens)
+    headings = [tokens[i + 1].content for i, t in enumerate(tokens) if t.type == "heading_open"]
+    assert not [h for h in headings if "Forged" in h or "Setext" in h], headings
+    rows = [tokens[i + 2].content for i, t in enumerate(tokens) if t.type == "td_open" and i + 2 < len(tokens)]
+    assert "height | forged | cells |" in rows and "mass ## Forged | row [p](`https://evil.example/param`)" not in rows
+    assert sum(1 for t in tokens if t.type == "tr_open") == 2 + 3  # header rows, one coordinate, two parameters
+    assert "[[m, 0], [0, m]]" in text and "Drops." in text
+
+
+def test_descriptions_are_inert_in_html_and_latex() -> None:
+    """The HTML report has no link, image or attribute from a description; LaTeX has no \\href, \\url or
+    \\includegraphics from one (their backslashes are escaped)."""
+    from html.parser import HTMLParser
+
+    import lagsolve
+
+    derivation = lagsolve.derive(HOSTILE, analysis=False)
+    found: list[tuple[str, list[tuple[str, str | None]]]] = []
+
+    class Collect(HTMLParser):
+        def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+            found.append((tag, attrs))
+
+    Collect().feed(render(derivation, "html"))
+    links = [dict(attrs).get("href") or "" for tag, attrs in found if tag == "a"]
+    assert links and all(href.startswith("#") for href in links)  # the page's own table of contents only
+    assert not [tag for tag, _ in found if tag in ("img", "script", "iframe")]
+    values = " ".join(v or "" for _, attrs in found for _, v in attrs)
+    assert "evil" not in values and "tracker" not in values and "javascript" not in values
+    tex = render(derivation, "tex")
+    assert "\\href" not in tex and "\\url" not in tex and "\\includegraphics{https" not in tex
+    assert "tracker.example" in tex  # shown, as text

@@ -17,12 +17,12 @@ Nothing here prints, exits or writes files; every error is a :class:`~lagsolve.e
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from lagsolve import ranges
 from lagsolve.errors import Issue, SpecError
 
 if TYPE_CHECKING:
@@ -139,8 +139,7 @@ def derive(path_or_problem: str | Path | bytes | Problem, *, budget: float = DEF
     """
     from lagsolve.mechanics.derivation import derive as run
 
-    if not budget > 0:
-        raise SpecError([Issue("<argument>", 0, "budget", f"expected a positive number of seconds, found {budget!r}")])
+    ranges.check(budget=budget)
     return run(_problem(path_or_problem), budget=budget, analysis=analysis)
 
 
@@ -305,12 +304,8 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
                "coordinates": (coordinates, tuple(Coordinates))}
     bad = [Issue("<argument>", 0, key, f"expected one of {', '.join(allowed)}, found {given!r}")
            for key, (given, allowed) in choices.items() if given is not None and given not in allowed]
-    for key, value in (("t_end", t_end), ("rtol", rtol), ("atol", atol), ("max_step", max_step), ("budget", budget)):
-        if value is not None and not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
-            bad.append(Issue("<argument>", 0, key, f"expected a positive finite number, found {value!r}"))
-    if samples is not None and (isinstance(samples, bool) or not isinstance(samples, int)
-                                or not 2 <= samples <= 1_000_000):
-        bad.append(Issue("<argument>", 0, "samples", f"expected a whole number from 2 to 1000000, found {samples!r}"))
+    bad += ranges.issues((("t_end", t_end), ("rtol", rtol), ("atol", atol), ("max_step", max_step),
+                          ("budget", budget), ("samples", samples)))
     if bad:
         raise SpecError(bad)
     options = SimulationOptions(values=dict(values or {}), initial=dict(initial or {}), t_end=t_end, samples=samples,

@@ -13,7 +13,7 @@ import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
@@ -21,6 +21,7 @@ from lagsolve import __version__
 from lagsolve.errors import LagsolveError, SpecError
 from lagsolve.problem.methods import DEFAULT as DEFAULT_METHOD
 from lagsolve.problem.methods import EXPLICIT, METHODS
+from lagsolve.ranges import RANGES
 from lagsolve.render.formats import DEFAULT_FORMATS, REGISTRY
 
 # numeric libraries run single-threaded: the budgets count the process's CPU time, which idle-spinning BLAS
@@ -31,8 +32,38 @@ for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 if TYPE_CHECKING:
     from lagsolve.app.pipeline import Reports
 
+_F = TypeVar("_F", bound=Callable[..., Any])
+
 #: each format's file extension (the registry: :mod:`lagsolve.render.formats`)
 EXTENSIONS = {f.name: f.extension for f in REGISTRY}
+
+
+class Number(click.ParamType):
+    """Every numeric option's type: a finite number in the option's range (:data:`lagsolve.ranges.RANGES`),
+    else a usage error (exit 2) that gives the range. NaN and infinity are never accepted."""
+
+    def __init__(self, key: str) -> None:
+        self.key = key
+        self.range = RANGES[key]
+        self.name = "integer" if self.range.integer else "float"
+
+    def convert(self, value: object, param: click.Parameter | None, ctx: click.Context | None) -> int | float:
+        number: object = value
+        if isinstance(value, str):
+            try:
+                number = int(value.strip(), 10) if self.range.integer else float(value)
+            except ValueError:
+                self.fail(f"expected {self.range.describe()}, found {value!r}", param, ctx)
+        fault = self.range.fault(number)
+        if fault is not None:
+            self.fail(fault, param, ctx)
+        return number  # type: ignore[return-value]  # fault() is None only for an int or a float
+
+
+def _number(*names: str, key: str, help: str = "", **kwargs: Any) -> Callable[[_F], _F]:
+    """``click.option(*names)`` of the :class:`Number` ``key``, its range said at the end of its help."""
+    accepted = f"[{RANGES[key].describe()}]"
+    return click.option(*names, type=Number(key), help=f"{help} {accepted}" if help else accepted, **kwargs)
 
 
 def _fail(error: LagsolveError) -> int:
@@ -85,7 +116,19 @@ def _ascii_where_needed() -> None:
             stream.reconfigure(errors="lagsolve-ascii")
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+class _Commands(click.Group):
+    """The command group: Ctrl-C (SIGINT) during any command ends it with one line and exit 130 (128 + SIGINT),
+    after the command's own clean-up (child processes, workers) has run, instead of click's "Aborted!"."""
+
+    def invoke(self, ctx: click.Context) -> object:
+        try:
+            return super().invoke(ctx)
+        except KeyboardInterrupt:
+            click.echo("interrupted", err=True)
+            ctx.exit(130)
+
+
+@click.group(cls=_Commands, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="lagsolve")
 @click.option("-q", "--quiet", is_flag=True, help="Show only errors and the output asked for (no summaries, "
                                                   "'wrote' lines or warnings).")
@@ -102,8 +145,8 @@ def main(context: click.Context, quiet: bool, verbose: bool) -> None:
 
 @main.command()
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
-@click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,
-              help="CPU seconds allowed for each derivation and check.")
+@_number("--timeout", key="timeout", default=120.0, show_default=True,
+         help="CPU seconds allowed for each derivation and check.")
 @click.option("--format", "fmt", type=click.Choice(["text", "json", "junit"]), default="text", show_default=True,
               help="json: one array of verdicts per file; junit: JUnit XML for CI (a mismatch is a failure).")
 def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
@@ -149,9 +192,9 @@ def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
               help="Only this format; printed to stdout unless -o is given. json with several files prints one "
                    "array; jsonl prints one result per line. Repeat it for several formats (with -o DIR, as "
                    "without --format: DIR/<problem>/).")
-@click.option("--timeout", type=click.FloatRange(min=0.1), default=120.0, show_default=True,
-              help="CPU seconds allowed for each derivation; a stage that runs out of its share is named "
-                   "and the rest is still given.")
+@_number("--timeout", key="timeout", default=120.0, show_default=True,
+         help="CPU seconds allowed for each derivation; a stage that runs out of its share is named "
+              "and the rest is still given.")
 @click.option("--templates", type=click.Path(file_okay=False, exists=True, path_type=Path),
               help="Folder with markdown/ and latex/ templates that override the packaged ones.")
 @click.option("--golden", type=click.Path(file_okay=False, path_type=Path),
@@ -275,17 +318,17 @@ def _progress_bar(t_end: float) -> Callable[[float], None]:
 
 @main.command()
 @click.argument("files", nargs=-1, required=True, type=click.Path(path_type=Path))
-@click.option("--t-end", type=click.FloatRange(min=0, min_open=True), help="End time (default: simulation.t_end).")
+@_number("--t-end", key="t_end", help="End time (default: simulation.t_end).")
 @click.option("--set", "values", multiple=True, metavar="NAME=VALUE", help="Parameter value (repeatable).")
 @click.option("--initial", multiple=True, metavar="NAME=VALUE",
               help="Initial coordinate or velocity, e.g. x=0.5 or x_dot=0 (repeatable).")
-@click.option("--samples", type=click.IntRange(min=2, max=1_000_000), help="Number of output times (default 1001).")
+@_number("--samples", key="samples", help="Number of output times (default 1001).")
 @click.option("--method", type=click.Choice(METHODS),
               help=f"Integrator (default {DEFAULT_METHOD}; {'/'.join(m for m in METHODS if m not in EXPLICIT)} "
                    "for stiff problems).")
-@click.option("--rtol", type=click.FloatRange(min=0, min_open=True), help="Relative tolerance (default 1e-10).")
-@click.option("--atol", type=click.FloatRange(min=0, min_open=True), help="Absolute tolerance (default 1e-12).")
-@click.option("--max-step", type=click.FloatRange(min=0, min_open=True), help="Largest step size.")
+@_number("--rtol", key="rtol", help="Relative tolerance (default 1e-10).")
+@_number("--atol", key="atol", help="Absolute tolerance (default 1e-12).")
+@_number("--max-step", key="max_step", help="Largest step size.")
 @click.option("--after-release", type=click.Choice(["stop", "continue"]), default="stop", show_default=True,
               help="When a unilateral constraint's force reaches zero: stop there, or go on without it.")
 @click.option("--coordinates", type=click.Choice(["minimal", "full"]), default="minimal", show_default=True,
@@ -298,8 +341,8 @@ def _progress_bar(t_end: float) -> Callable[[float], None]:
 @click.option("--plot", is_flag=True, help="Write PNG figures to the output folder.")
 @click.option("--show", is_flag=True, help="Also open the figures in the system's viewer.")
 @click.option("--animate", is_flag=True, help="Write an animated GIF of the particles.")
-@click.option("--timeout", type=click.FloatRange(min=0.1), default=600.0, show_default=True,
-              help="CPU seconds allowed for derivation and integration of each file.")
+@_number("--timeout", key="timeout", default=600.0, show_default=True,
+         help="CPU seconds allowed for derivation and integration of each file.")
 def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ...], initial: tuple[str, ...],
              samples: int | None, method: str | None, rtol: float | None, atol: float | None,
              max_step: float | None, after_release: str, coordinates: str, fmt: str, output: Path | None,
@@ -393,18 +436,18 @@ def _sweep_progress() -> Callable[[int, int], None]:
 @click.option("--grid", multiple=True, metavar="NAME=START:STOP:COUNT",
               help="Swept parameter, coordinate (theta1) or velocity (theta1_dot); repeat for a Cartesian product.")
 @click.option("--random", "random_", multiple=True, metavar="NAME=LOW:HIGH", help="Uniform random values (repeatable).")
-@click.option("--runs", type=click.IntRange(min=1), help="Random runs (per grid point).")
-@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True, help="Seed of the random values.")
-@click.option("--t-end", type=click.FloatRange(min=0, min_open=True), help="End time (default: simulation.t_end).")
+@_number("--runs", key="runs", help="Random runs (per grid point).")
+@_number("--seed", key="seed", default=0, show_default=True, help="Seed of the random values.")
+@_number("--t-end", key="t_end", help="End time (default: simulation.t_end).")
 @click.option("--method", type=click.Choice(METHODS), default=DEFAULT_METHOD,
               show_default=True, help=f"Integrator; {', '.join(EXPLICIT[:-1])} and {EXPLICIT[-1]} run batched.")
-@click.option("--rtol", type=click.FloatRange(min=0, min_open=True), default=1e-10, show_default=True)
-@click.option("--atol", type=click.FloatRange(min=0, min_open=True), default=1e-12, show_default=True)
+@_number("--rtol", key="rtol", default=1e-10, show_default=True)
+@_number("--atol", key="atol", default=1e-12, show_default=True)
 @click.option("--poincare", metavar="SECTION", help='Record section crossings, e.g. "theta2=0, theta2_dot>0".')
-@click.option("--workers", type=click.IntRange(min=0), default=0, show_default=True,
-              help="Worker processes of a local Dask cluster (0: run in this process).")
+@_number("--workers", key="workers", default=0, show_default=True,
+         help="Worker processes of a local Dask cluster (0: run in this process).")
 @click.option("--scheduler", metavar="ADDRESS", help="Run on an existing Dask cluster, e.g. tcp://10.0.0.1:8786.")
-@click.option("--chunk-size", type=click.IntRange(min=1), help="Runs per chunk (default: about 4 chunks per worker).")
+@_number("--chunk-size", key="chunk_size", help="Runs per chunk (default: about 4 chunks per worker).")
 @click.option("-o", "--output", type=click.Path(path_type=Path), required=True,
               help="The table: FILE.parquet or FILE.csv (one row per run).")
 @click.option("--plot", is_flag=True, help="Also write the regime map (two inputs) or bifurcation scatter (one).")

@@ -65,3 +65,28 @@ def test_check_file_validates_before_deriving(tmp_path: Path) -> None:
     bad.write_text("name: x\n")
     with pytest.raises(SpecError, match="missing required key 'coordinates'"):
         check_file(bad)
+
+
+def test_a_derivation_stopped_after_its_core_names_each_missing_stage() -> None:
+    """The answer given when the budget stops a derivation after its core (--timeout 0.1) names every stage
+    that did not complete, in the terminal summary, the reports and the JSON, instead of "Later stages"."""
+    from pathlib import Path
+
+    from lagsolve.app.pipeline import _render_core
+    from lagsolve.mechanics.derivation import core
+    from lagsolve.mechanics.matrix_form import matrix_form
+    from lagsolve.problem.load import load_problem
+
+    bead = Path(__file__).resolve().parents[2] / "problems" / "bead.yaml"
+    partial = core(matrix_form(load_problem(bead), display=False))
+    summary, outputs, _ = _render_core(("md", "json"), None, 0.1)(partial, "the budget ran out")
+    for stage in ("Explicit solve", "Display simplification", "Forces of constraint", "Conserved quantities",
+                  "Hamiltonian"):
+        line = f"{stage}: did not finish within the derivation's 0.1 s CPU budget (raise it with --timeout)"
+        assert line in summary and f"- {line}" in outputs["md"]
+    assert "Later stages" not in summary + outputs["md"]
+    import json
+
+    notes = json.loads(outputs["json"])["notes"]
+    assert [n["stage"] for n in notes][:3] == ["explicit solve", "forces of constraint", "display simplification"]
+    assert "The explicit solution is not written out: did not finish within" in outputs["md"]

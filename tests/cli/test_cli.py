@@ -107,6 +107,19 @@ def test_timeout_still_gives_the_core(runner: CliRunner) -> None:
     assert set(data["accelerations"]) == {"theta1", "theta2"}
 
 
+@pytest.mark.parametrize("command", ["derive", "check", "simulate"])
+def test_ctrl_c_exits_130_with_one_line(runner: CliRunner, monkeypatch: pytest.MonkeyPatch, command: str) -> None:
+    """An interrupt (KeyboardInterrupt from Ctrl-C) during any command ends it with "interrupted" on stderr and
+    exit 130, not click's "Aborted!" and exit 1."""
+    def interrupted(*args: object, **kwargs: object) -> None:
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(f"lagsolve.app.pipeline.{command}_file", interrupted)
+    result = runner.invoke(main, [command, BEAD])
+    assert result.exit_code == 130
+    assert result.stderr == "interrupted\n" and "Aborted" not in result.output
+
+
 def test_help_does_not_import_sympy() -> None:
     """`lagsolve --help` stays fast: neither SymPy nor matplotlib is imported."""
     code = ("import sys; from lagsolve.cli import main\n"

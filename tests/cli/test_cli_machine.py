@@ -108,6 +108,26 @@ def test_check_junit_reports_an_invalid_file_as_an_error(runner: CliRunner, tmp_
     assert "missing required key 'coordinates'" in error.get("message")
 
 
+def test_check_junit_parses_whatever_the_names_hold(runner: CliRunner, tmp_path: Path) -> None:
+    """Characters XML forbids in a problem's name (U+FFFE, U+FFFF), in a file name (a control character, a byte
+    that is not UTF-8) and in the error message quoting it are written as escapes: the JUnit XML parses."""
+    import os
+
+    named = tmp_path / "named.yaml"
+    named.write_text('name: "Falling \\uFFFE mass \\uFFFF"\nparameters: {m: mass, g: gravity}\ncoordinates: [y]\n'
+                     "particles: {p: {mass: m, position: [0, y]}}\ngravity: [0, -g]\n"
+                     'expected: {accelerations: {y: "-g"}}\n', encoding="utf-8")
+    odd = Path(os.fsdecode(os.fsencode(str(tmp_path)) + b"/odd\xff\x01\x1b.yaml"))
+    odd.write_text("name: odd\n", encoding="utf-8")  # invalid: the error message names the file
+    result = runner.invoke(main, ["check", str(named), str(odd), "--format", "junit"])
+    assert result.exit_code == 2, result.output
+    root = ET.fromstring(result.stdout)
+    suites = root.findall("testsuite")
+    assert suites[0].get("name") == "Falling \\ufffe mass \\uffff"
+    assert suites[1].get("file").endswith("odd\\udcff\\x01\\x1b.yaml")
+    assert "odd\\udcff\\x01\\x1b.yaml" in suites[1].find("./testcase/error").get("message")
+
+
 def test_schema_prints_draft_2020_12(runner: CliRunner) -> None:
     """`schema input` and `schema output` print JSON Schemas of draft 2020-12."""
     for kind, title in (("input", "lagsolve problem file (format v1)"), ("output", "lagsolve result (format v1)")):

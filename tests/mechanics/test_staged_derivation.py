@@ -157,3 +157,30 @@ def test_simulate_does_not_wait_for_the_analysis(tmp_path) -> None:  # noqa: ANN
     assert result.exit_code == 0, result.output
     drift = float(result.output.split("relative drift ")[1].split()[0])
     assert drift < 1e-7
+
+
+@pytest.mark.parametrize(("name", "named", "absent"), [
+    ("bead", ["explicit solve", "forces of constraint", "display simplification", "constraint classification",
+              "minimal coordinates", "conserved quantities", "effective potential", "equilibria and normal modes",
+              "hamiltonian"], ["normal forces"]),
+    ("double_pendulum", ["explicit solve", "display simplification", "conserved quantities", "hamiltonian"],
+     ["forces of constraint", "constraint classification", "minimal coordinates", "normal forces"]),
+    ("rough_incline", ["explicit solve", "normal forces", "forces of constraint"], ["effective potential"]),
+], ids=["constrained", "unconstrained", "friction"])
+def test_the_core_alone_names_each_stage_that_did_not_complete(name: str, named: list[str],
+                                                                absent: list[str]) -> None:
+    """A derivation stopped after its core has one note per stage that would have run (in the order they run),
+    each with the reason; no anonymous "later stages", and none for a stage with nothing to do."""
+    from pathlib import Path
+
+    from lagsolve.mechanics.derivation import core
+    from lagsolve.mechanics.matrix_form import matrix_form
+    from lagsolve.problem.load import load_problem
+
+    form = matrix_form(load_problem(Path(__file__).resolve().parents[2] / "problems" / f"{name}.yaml"), display=False)
+    stopped = core(form, "ran out of time")
+    stages = [n.stage for n in stopped.notes]
+    assert [s for s in stages if s in named] == named and not set(absent) & set(stages)
+    assert "later stages" not in stages
+    assert {(n.kind, n.reason) for n in stopped.notes} == {("budget", "ran out of time")}
+    assert core(form).notes == ()

@@ -33,3 +33,17 @@ def test_unchecked_file_in_json() -> None:
     """A file that was not checked is an entry with its error and exit status."""
     data = json.loads(checks_json([Unchecked("b.yaml", "b.yaml: file not found", 2)]))
     assert data == [{"source": "b.yaml", "passed": False, "error": "b.yaml: file not found", "exit_status": 2}]
+
+
+def test_junit_escapes_what_xml_forbids() -> None:
+    """Every character XML 1.0 forbids, in any attribute or text (names, paths, messages, diagnoses), comes out
+    escaped; the rest of the text is kept as it is."""
+    bad = "".join(chr(c) for c in (*range(0, 9), 11, 12, *range(14, 32), 0xFFFE, 0xFFFF, 0xD800))
+    row = {**ROW, "name": f"x{bad}", "description": f"d{bad}", "label": "ẍ\ufffe"}
+    checked = Checked(f"p/{bad}.yaml", f"A{bad}", "", {"ok": 0, "warning": 1, "mismatch": 0, "unchecked": 0}, (row,))
+    text = checks_junit([checked, Unchecked(f"p/{bad}b.yaml", f"message{bad}", 2)])
+    root = ET.fromstring(text)
+    assert root.find("testsuite").get("name") == "A" + bad.encode("unicode_escape").decode("ascii")
+    assert "\\x00\\x01" in root.find("./testsuite/testcase").get("name")
+    assert root.find("./testsuite/testcase/system-out").text.startswith("label: ẍ\\ufffe\ndescription: d\\x00")
+    assert root.findall("testsuite")[1].find("./testcase/error").text.endswith("\\ufffe\\uffff\\ud800")

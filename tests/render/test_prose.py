@@ -41,3 +41,18 @@ def test_description_math_is_kept_when_safe() -> None:
     assert tex_description("costs $5") == r"costs \$5"
     assert md_description(r"angle $\theta$ | <b>") == r"angle $`\theta`$ \| &lt;b&gt;"
     assert not safe_math(r"\write18{rm}") and not safe_math("a}{") and safe_math(r"\frac{a}{b}")
+
+
+def test_markdown_descriptions_keep_emphasis_but_no_link() -> None:
+    """A description keeps its emphasis and plain brackets; a link, an image, a bare URL and a backslash that would
+    re-open a link are made inert, and a heading line is text."""
+    from lagsolve.render.notation import md_cell
+
+    assert md_description("*light* rod [[a, b]]") == "*light* rod [[a, b]]"
+    assert md_description("[x](javascript:alert(1))") == r"[x\](javascript:alert(1))"
+    assert md_description(r"\[x](y)") == r"\\[x\](y)"
+    assert md_description("see https://e.example/a.") == "see `https://e.example/a.`"
+    assert md_description("(at https://e.example/a)") == "(at `https://e.example/a`)"
+    assert md_description("a\n# b") == "a\n\\# b"
+    assert md_cell("a\r\n## b | c") == r"a ## b \| c"
+    assert md_cell(r"norm $|x|$") == r"norm $`\|x\|`$"

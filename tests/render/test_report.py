@@ -122,6 +122,36 @@ def test_missing_template_lists_searched_paths(bead: Derivation, tmp_path: Path,
         render(bead, "md")
 
 
+@pytest.mark.parametrize("payload", [
+    "{{ cycler.__init__.__globals__.os.system('touch MARK') }}",
+    "{{ ''.__class__.__mro__[1].__subclasses__() }}",
+    "{{ self._TemplateReference__context.cycler.__init__.__globals__.os.popen('touch MARK').read() }}",
+    "{% set x = coordinates.append(1) %}{{ x }}",
+], ids=["globals", "subclasses", "context", "mutation"])
+def test_user_templates_cannot_reach_python(bead: Derivation, tmp_path: Path, payload: str) -> None:
+    """A --templates folder (a pull request's, in CI) is rendered in Jinja2's sandbox: a template that reaches
+    for Python's globals, classes or the context, or mutates it, fails as a RenderError and runs nothing."""
+    marker = tmp_path / "ran"
+    (tmp_path / "markdown").mkdir()
+    (tmp_path / "markdown" / "report.md.j2").write_text(payload.replace("MARK", str(marker)))
+    with pytest.raises(RenderError, match="template markdown/report.md.j2 failed: .*(unsafe|not safely|immutable)"):
+        render(bead, "md", templates=tmp_path)
+    assert not marker.exists()
+
+
+@pytest.mark.parametrize("fmt", ["md", "tex", "html", "json"])
+def test_the_sandbox_renders_the_packaged_templates_unchanged(bead: Derivation, fmt: str,
+                                                              monkeypatch: pytest.MonkeyPatch) -> None:
+    """Every packaged template renders the same in the sandbox as in a plain Jinja2 environment."""
+    import jinja2
+
+    import lagsolve.render.report as report
+
+    sandboxed = render(bead, fmt)
+    monkeypatch.setattr(report, "ENVIRONMENT", jinja2.Environment)
+    assert render(bead, fmt) == sandboxed
+
+
 def test_templates_are_packaged() -> None:
     """The template folders exist where the installed package or the checkout provides them."""
     assert any((d / "report.md.j2").is_file() for d in template_dirs("markdown"))

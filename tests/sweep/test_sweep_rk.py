@@ -56,3 +56,18 @@ def test_a_diverging_run_fails_alone() -> None:
     t, y, steps, failed = integrate_batch(blow_up, np.array([[1.0], [1.0]]), 2.0, Tableau.of("RK45"), 1e-8, 1e-10)
     assert failed[0] == "" and abs(y[0, 0] - np.exp(-2.0)) < 1e-7
     assert "step size fell below" in failed[1] and abs(t[1] - 1.0) < 1e-6  # y = 1/(1 - t) blows up at t = 1
+
+
+def test_a_step_the_callback_refuses_stops_that_run_alone() -> None:
+    """A run the callback stops with Step.fail (a monitored value that is not finite) ends at that step with the
+    reason; the others go on to the end."""
+
+    def refuse_past_one(step: Step) -> None:
+        late = np.flatnonzero((step.rows == 1) & (step.t_new > 1.0))
+        if len(late):
+            step.fail(late, "the energy is no longer finite")
+
+    t, _, _, failed = integrate_batch(_pendulum, np.array([[0.1, 0.0], [1.0, 0.5]]), 3.0, Tableau.of("RK45"),
+                                      1e-8, 1e-10, refuse_past_one)
+    assert failed == ["", "the energy is no longer finite"]
+    assert t[0] == 3.0 and 1.0 < t[1] < 3.0

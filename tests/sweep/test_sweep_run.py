@@ -147,6 +147,67 @@ def test_a_failed_run_says_why_and_the_others_go_on() -> None:
     assert frame["outcome"][1] == "failed"
 
 
+LOG_WIRE = """
+name: Bead on y = log(x)
+parameters: {m: mass, g: gravity}
+coordinates: [x, y]
+particles: {bead: {mass: m, position: [x, y]}}
+gravity: [0, -g]
+constraints: {wire: {holonomic: y - log(x)}}
+simulation:
+  values: {m: 1.0, g: 9.81}
+  initial: {x: 0.5, x_dot: -1.0}
+  t_end: 5.0
+"""
+
+
+def _finite_where_ok(frame: object) -> None:
+    """Every run reported ok or released has every value it measured finite."""
+    measured = [c for c in frame.columns if c.startswith(("final_", "drift_"))]  # type: ignore[attr-defined]
+    measured += ["t_final", "max_residual", "energy_drift"]
+    good = frame[frame["status"] != "failed"]  # type: ignore[index]
+    assert np.isfinite(good[measured].to_numpy(float)).all()
+
+
+@pytest.mark.parametrize("method", ["DOP853", "Radau"])
+def test_a_run_that_leaves_the_domain_fails_as_simulate_does(method: str) -> None:
+    """A bead on y = log(x) reaches x = 0 at t ≈ 2.6, where simulate stops ("no longer finite"): the sweep
+    reports that run failed, with when and why, never ok with an empty residual (batched and per run)."""
+    with pytest.raises(lagsolve.errors.SimulationError, match="no longer finite at t = 2.6"):
+        lagsolve.simulate(LOG_WIRE, t_end=5.0)
+    frame = sweep(LOG_WIRE, grid={"m": [1.0, 2.0]}, t_end=5.0, method=method)
+    assert list(frame["status"]) == ["failed", "failed"] and list(frame["outcome"]) == ["failed", "failed"]
+    for reason in frame["reason"]:
+        assert "no longer finite at t = " in reason
+    if method == "DOP853":  # batched: stopped at the step where it happened, as simulate does
+        assert all("no longer finite at t = 2.6" in reason for reason in frame["reason"])
+        assert (frame["t_final"] < 2.7).all()
+    _finite_where_ok(frame)
+    short = sweep(LOG_WIRE, grid={"m": [1.0]}, t_end=1.0, method=method)  # before x reaches 0: ok
+    assert list(short["status"]) == ["ok"]
+    _finite_where_ok(short)
+
+
+def test_a_row_with_a_value_that_is_not_finite_is_not_ok() -> None:
+    """The status rule: an ok or released row with any measured value NaN (the residual, a drift, the release
+    state) is failed, and the reason names those columns."""
+    from lagsolve.sweep.run import _settle
+
+    base = {"status": "ok", "reason": "", "t_final": 1.0, "final_x": 0.5, "final_x_dot": 0.1,
+            "max_residual": math.nan, "energy_drift": 0.0, "drift_energy": math.inf, "flipped": False,
+            "flip_time": math.nan, "stuck_at_end": False, "release_time": math.nan, "release_x": math.nan}
+    row = dict(base)
+    _settle(row, False, False)
+    assert row["status"] == "failed" and row["outcome"] == "failed"
+    assert row["reason"].startswith("max_residual, drift_energy are not finite")
+    released = {**base, "status": "released", "max_residual": 0.0, "drift_energy": 0.0, "release_time": 0.5}
+    _settle(released, False, False)
+    assert released["status"] == "failed" and released["reason"].startswith("release_x is not finite")
+    fine = {**base, "max_residual": 0.0, "drift_energy": 0.0}
+    _settle(fine, False, False)
+    assert fine["status"] == "ok" and fine["outcome"] == "ok"  # flip_time and release_* may be NaN: no event
+
+
 def test_random_inputs_repeat_with_the_seed() -> None:
     """The same seed gives the same inputs and results; another seed other inputs."""
     one = sweep(DOUBLE, random=["theta1=0:1", "l=0.5:2"], runs=4, seed=7, t_end=0.5)

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from lagsolve import ranges
 from lagsolve.app.simulation import Progress, SimulationOptions, SimulationResult, simulate_derivation, simulate_form
 from lagsolve.check.status import Status
 from lagsolve.files import safe_slug
@@ -60,14 +61,16 @@ def _derive_and_render(problem: Problem, formats: tuple[str, ...], templates: Pa
     return _render(derivation, formats, templates, simulate)
 
 
-def _render_core(formats: tuple[str, ...], templates: Path | None) -> Callable[[Any, str], tuple]:
-    """What the parent answers with when a derivation is stopped at its CPU limit: the core it sent."""
+def _render_core(formats: tuple[str, ...], templates: Path | None, timeout: float) -> Callable[[Any, str], tuple]:
+    """What the parent answers with when a derivation is stopped at its CPU limit: the core it sent, with a note
+    for each later stage, which did not complete."""
 
     def answer(core: Any, reason: str) -> tuple[str, dict[str, str], dict[str, bytes]]:
         from lagsolve.mechanics.derivation import core as core_of
 
-        return _render(core_of(core.form, reason + "; the matrix form above is what was derived"), formats,
-                       templates, None)
+        note = (f"did not finish within the derivation's {timeout:g} s CPU budget (raise it with --timeout); "
+                "the matrix form above is what was derived")
+        return _render(core_of(core.form, note), formats, templates, None)
 
     return answer
 
@@ -170,18 +173,19 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = DEFAULT_FORMATS, *,
     Raises
     ------
     SpecError
-        The file is invalid (every problem listed).
+        The file is invalid (every problem listed), or ``timeout`` is outside its range (:mod:`lagsolve.ranges`).
     DerivationError
         The derivation failed or ran out of time.
     """
     from lagsolve.app.budget import run_with_budget
     from lagsolve.problem.load import load_problem
 
+    ranges.check(timeout=timeout)
     problem = load_problem(path)
     _preload()
     text, outputs, files = run_with_budget(_derive_and_render, (problem, formats, templates, simulate, timeout),
                                            timeout, f"the derivation of {path}",
-                                           on_partial=_render_core(formats, templates))
+                                           on_partial=_render_core(formats, templates, timeout))
     return Reports(str(path), safe_slug(path), problem.name, text, outputs, files,
                    _unit_warnings(problem) + _warnings(outputs, text))
 
@@ -223,13 +227,14 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
     Raises
     ------
     SpecError
-        The file is invalid (every problem listed).
+        The file is invalid (every problem listed), or ``timeout`` is outside its range (:mod:`lagsolve.ranges`).
     DerivationError
         The derivation failed or ran out of time.
     """
     from lagsolve.app.budget import run_with_budget
     from lagsolve.problem.load import load_problem
 
+    ranges.check(timeout=timeout)
     problem = load_problem(path)
     _preload()
     table, counts, rows = run_with_budget(_derive_and_check, (problem, timeout), timeout, f"the check of {path}")
@@ -286,13 +291,15 @@ def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: floa
     Raises
     ------
     SpecError
-        The file or an option is invalid (unknown parameter, missing value, bad initial state).
+        The file or an option is invalid (unknown parameter, missing value, bad initial state, ``timeout``
+        outside its range).
     DerivationError, SimulationError
         The derivation or the integration failed, or ran out of time.
     """
     from lagsolve.app.budget import run_with_budget
     from lagsolve.problem.load import load_problem
 
+    ranges.check(timeout=timeout)
     problem = load_problem(path)
     _preload()
     from dataclasses import replace

@@ -40,7 +40,7 @@ from lagsolve.mechanics.simplify import (
     tidy_sum,
     tidy_sum_light,
 )
-from lagsolve.mechanics.stages import DEFAULT_BUDGET, StageNote, Stages, StageTimeout, cpu_limit
+from lagsolve.mechanics.stages import DEFAULT_BUDGET, STAGES, StageNote, Stages, StageTimeout, cpu_limit
 from lagsolve.problem.schema import Problem
 
 #: above this many coordinates the equation pieces get the light display simplification
@@ -143,15 +143,34 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     return dataclasses.replace(derivation, notes=stages.shown())
 
 
-def core(form: MatrixForm, note: str = "") -> Derivation:
-    """The derivation's core alone: the matrix form with nothing solved or simplified (``note``, when
-    given, says why the later stages are missing)."""
+def core(form: MatrixForm, note: str = "", *, analysis: bool = True) -> Derivation:
+    """The derivation's core alone: the matrix form with nothing solved or simplified. ``note``, when
+    given, says why the later stages are missing: each stage that would have run (:func:`later_stages`)
+    gets a note of its own with that reason, so every missing part is named."""
     elimination = eliminate(form.constraints, form.model)
     shown = _display(form, elimination, None, None, _plain, _plain)
-    notes = (StageNote("later stages", note, "budget"),) if note else ()
+    notes = tuple(StageNote(stage, note, "budget") for stage in later_stages(form, analysis=analysis)) if note else ()
     return Derivation(problem=form.problem, model=form.model, lagrange=form.lagrange, elimination=elimination,
                       raw_accelerations=None, raw_multipliers=None, constraint_forces=None, form=form,
                       notes=notes, **shown)
+
+
+def later_stages(form: MatrixForm, *, analysis: bool = True) -> tuple[str, ...]:
+    """The stages (:data:`~lagsolve.mechanics.stages.STAGES`, in order) a derivation of ``form`` runs after its
+    core, leaving out those with nothing to do: normal and contact forces without friction, forces of constraint and the
+    constraints' classification and minimal coordinates without constraints, the effective potential with
+    friction, and numeric equilibria (a fallback, run only when the symbolic ones do not finish)."""
+    absent = {"numeric equilibria"}
+    if not form.frictions:
+        absent |= {"normal forces", "contact forces"}
+    else:
+        absent.add("effective potential")
+    if not form.constraints:
+        absent |= {"forces of constraint", "constraint classification", "minimal coordinates"}
+    if not analysis:
+        absent |= {"constraint classification", "minimal coordinates", "conserved quantities", "effective potential",
+                   "equilibria and normal modes", "hamiltonian"}
+    return tuple(stage for stage in STAGES if stage not in absent)
 
 
 def _solve(lagrange: LagrangeTerms) -> tuple[tuple[Any, ...], tuple[Any, ...]]:

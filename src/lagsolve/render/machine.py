@@ -8,12 +8,15 @@ JUnit: one ``<testsuite>`` per problem file, one ``<testcase>`` per expected ans
 the file's slug, ``name`` the quantity, e.g. ``accelerations.x``). A mismatch is a ``<failure>``,
 an answer that could not be checked is ``<skipped>``, a warning passes with its diagnosis in
 ``<system-out>``, and a file that could not be loaded or derived is a single testcase with an
-``<error>``.
+``<error>``. A character XML 1.0 does not allow (a control character other than tab and line breaks,
+U+FFFE, U+FFFF, a lone surrogate from a file name that is not UTF-8) is written as its escape ``\\uFFFE``,
+so the document always parses.
 """
 
 from __future__ import annotations
 
 import json
+import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -62,6 +65,19 @@ def checks_json(results: list[Any]) -> str:
     return json.dumps(out, indent=2, ensure_ascii=True) + "\n"
 
 
+#: the characters XML 1.0 forbids (its ``Char`` production: tab, LF, CR, U+0020 to U+D7FF, U+E000 to U+FFFD, U+10000 up)
+_NOT_XML = re.compile("[^\t\n\r\u0020-\ud7ff\ue000-\ufffd\U00010000-\U0010ffff]")
+
+
+def xml_safe(text: str) -> str:
+    r"""``text`` with every character XML 1.0 forbids written as its Python escape (``\x01``, ``\ufffe``).
+
+    >>> xml_safe("a\ufffeb\x01c\ud800")
+    'a\\ufffeb\\x01c\\ud800'
+    """
+    return _NOT_XML.sub(lambda m: m.group(0).encode("unicode_escape", "backslashreplace").decode("ascii"), text)
+
+
 def checks_junit(results: list[Any]) -> str:
     """Check results as JUnit XML: ``testsuites`` / ``testsuite`` per file / ``testcase`` per answer."""
     from lagsolve.app.pipeline import safe_slug
@@ -97,7 +113,8 @@ def checks_junit(results: list[Any]) -> str:
     for key, n in totals.items():
         root.set(key, str(n))
     ET.indent(root)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+    # the markup itself is ASCII: only text from files (names, paths, messages) can hold a forbidden character
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + xml_safe(ET.tostring(root, encoding="unicode")) + "\n"
 
 
 def json_stream(texts: list[str], *, lines: bool) -> str:

@@ -414,10 +414,76 @@ def tex_description(text: str) -> str:
     return render_segments(description_segments(text), tex_escape, lambda m: f"${m}$")
 
 
+#: what a Markdown renderer would turn into a link by itself (GitHub's extended autolinks: a scheme and ``//``,
+#: ``www.``, ``mailto:``/``xmpp:``, an e-mail address), up to a space or a character that ends one
+_AUTOLINK = re.compile(r"(?:\b[A-Za-z][A-Za-z0-9+.\-]*://|\bwww\.|\b(?:mailto|xmpp):)[^\s<>`|\[\]\\]*"
+                       r"|[A-Za-z0-9._%+\-]+@[A-Za-z0-9\-]+(?:\.[A-Za-z0-9\-]+)+")
+#: what closes a link or an image (``](url)``), joins a reference (``][x]``) or defines one (``]: url``), and a table
+#: cell's end: escaped, the rest of the brackets stay as written (``[[a, b], [c, d]]`` is no link)
+_MD_LINK = re.compile(r"(\](?=[(\[:])|\|)")
+#: a line that a Markdown renderer would read as a heading (``# x``) or as the underline of one (``===``, ``---``)
+_MD_HEADING = re.compile(r"^( {0,3})(#|=+[ \t]*$|-+[ \t]*$)", re.MULTILINE)
+
+
+def _md_inert(text: str, *, inline: bool) -> str:
+    r"""Text from a problem file as Markdown that renders as the same text and nothing else: raw HTML, math
+    delimiters and fences as in :func:`md_prose`, and no link, image, autolink or heading (a ``]`` that would
+    close one, backslashes, ``|`` and line-initial ``#`` escaped; a URL or an e-mail address as literal code:
+    no link reference can be defined, so ``[x]`` alone links nowhere). With
+    ``inline`` (a table cell, a parenthesis) a line break is a space, so the text cannot end its row.
+
+    >>> _md_inert("see [here](javascript:alert(1)) ![b](https://t.example/p.png)", inline=True)
+    'see [here\\](javascript:alert(1)) ![b\\](`https://t.example/p.png`)'
+    >>> _md_inert("a\n# Forged | heading", inline=True)
+    'a # Forged \\| heading'
+    >>> print(_md_inert("a\n# Forged heading\n===", inline=False))
+    a
+    \# Forged heading
+    \===
+    """
+    text = str(text)
+    if inline:
+        text = re.sub(r"[ \t]*(?:\r\n|\r|\n)[ \t]*", " ", text)
+    pieces: list[tuple[bool, str]] = []  # (is a link target, text)
+    at = 0
+    for found in _AUTOLINK.finditer(str(text)):
+        link = found.group(0)
+        while link.endswith(")") and link.count(")") > link.count("("):  # "(see https://x.org)": not its ")"
+            link = link[:-1]
+        pieces += [(False, text[at: found.start()]), (True, link)]
+        at = found.start() + len(link)
+    pieces.append((False, text[at:]))
+    out = []
+    for is_link, piece in pieces:
+        if is_link:
+            out.append(md_code_span(piece))
+            continue
+        escaped = md_prose(piece.replace("\\", "\\\\"))
+        escaped = _MD_LINK.sub(r"\\\1", escaped)
+        out.append(escaped if inline else _MD_HEADING.sub(r"\1\\\2", escaped))
+    return "".join(out)
+
+
+def md_code_span(text: str) -> str:
+    """``text`` as an inline Markdown code span (literal: no link, emphasis or HTML inside), with a backtick fence
+    longer than any run of backticks in it."""
+    longest = max((len(run) for run in re.findall(r"`+", text)), default=0)
+    fence = "`" * (longest + 1)
+    pad = " " if text.startswith("`") or text.endswith("`") else ""
+    return f"{fence}{pad}{text}{pad}{fence}"
+
+
 def md_description(text: str) -> str:
-    """A description from the file for Markdown: its safe ``$...$`` math as GitHub math, the rest escaped."""
-    return render_segments(description_segments(text), lambda t: md_prose(t).replace("|", "\\|"),
-                           lambda m: f"$`{m}`$")
+    """A description from the file for Markdown: its safe ``$...$`` math as GitHub math, the rest as inert text
+    (:func:`_md_inert`: no link, image, autolink, raw HTML or heading comes from it)."""
+    return render_segments(description_segments(text), lambda t: _md_inert(t, inline=False), lambda m: f"$`{m}`$")
+
+
+def md_cell(text: str) -> str:
+    """A description for one line of Markdown, a table cell or a parenthesis: as :func:`md_description`, with
+    line breaks as spaces and every ``|`` escaped (in the math too), so that it cannot end its row."""
+    return render_segments(description_segments(text), lambda t: _md_inert(t, inline=True),
+                           lambda m: "$`" + m.replace("|", "\\|") + "`$")
 
 
 def mathml_fragment(mathml: str) -> Markup:
@@ -480,6 +546,7 @@ FILTERS: dict[str, Callable[..., str]] = {
     "md_math": md_math_prose,
     "tex_description": tex_description,
     "md_description": md_description,
+    "md_cell": md_cell,
     "tex": tex_escape,
     "tex_lines": tex_lines,
     "boxed": boxed,

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 import jinja2
+from jinja2.sandbox import ImmutableSandboxedEnvironment
 
 from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation
@@ -163,8 +164,15 @@ def template_dirs(kind: str, extra: Path | None = None) -> list[Path]:
     return dirs
 
 
+#: every template, packaged or from ``--templates``, is rendered in Jinja2's immutable sandbox: a template is data,
+#: and one from a folder the user gave (a pull request's, in CI) cannot reach Python (``__globals__``, ``os``),
+#: call unsafe methods or change the context; what it tries is a RenderError (exit 1)
+ENVIRONMENT: type[jinja2.Environment] = ImmutableSandboxedEnvironment
+
+
 def environment(kind: str, extra: Path | None = None) -> jinja2.Environment:
-    """A Jinja2 environment for ``kind`` ("markdown" or "latex"); LaTeX uses ``((* *))``-style delimiters."""
+    """A sandboxed Jinja2 environment for ``kind`` ("markdown", "latex" or "html"); LaTeX uses ``((* *))``-style
+    delimiters."""
     dirs = [str(d) for d in template_dirs(kind, extra) if d.is_dir()]
     options: dict[str, Any] = {
         "loader": jinja2.FileSystemLoader(dirs),
@@ -177,7 +185,7 @@ def environment(kind: str, extra: Path | None = None) -> jinja2.Environment:
     if kind == "latex":
         options.update(block_start_string="((*", block_end_string="*))", variable_start_string="(((",
                        variable_end_string=")))", comment_start_string="((=", comment_end_string="=))")
-    env = jinja2.Environment(**options)  # noqa: S701 - Markdown/TeX are escaped by filters, HTML autoescaped
+    env = ENVIRONMENT(**options)  # noqa: S701 - Markdown/TeX are escaped by filters, HTML autoescaped
     env.filters.update(FILTERS)
     return env
 

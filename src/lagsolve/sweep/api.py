@@ -14,6 +14,7 @@ from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from lagsolve import ranges
 from lagsolve.errors import Issue, SpecError
 from lagsolve.problem.methods import DEFAULT as DEFAULT_METHOD
 
@@ -71,7 +72,8 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     workers : int
         0 runs in this process; N starts a local Dask cluster of N worker processes.
     scheduler : str, optional
-        Address of an existing Dask scheduler (``tcp://host:8786``) to run on instead.
+        Address of an existing Dask scheduler (``tcp://host:8786``) to run on instead. It is checked first,
+        with a time-out: it must answer as a Dask scheduler and have a worker (else SpecError).
     chunk_size : int, optional
         Runs per chunk (default: about four chunks per worker, at most 1024 runs each).
     progress : callable, optional
@@ -88,7 +90,8 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     Raises
     ------
     SpecError
-        Bad input: an unknown name, a malformed range or section, no end time.
+        Bad input: an unknown name, a malformed range or section, no end time, a number outside its range,
+        a scheduler address where no Dask scheduler answers.
     ImportError
         pandas (or, with workers or a scheduler, Dask) is not installed.
 
@@ -113,6 +116,7 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
                        frozenset(p.name for p in problem.parameters if p.positive),
                        tuple(c.name for c in problem.coordinates))
     _check_options(method, rtol, atol, workers, runs, chunk_size, seed, BATCHED)
+    ranges.check(t_end=t_end)
     grid_specs = _as_specs(grid, "--grid")
     if isinstance(grid_specs, Mapping):
         grid_values = spec.grid_from_mapping(grid_specs, names)
@@ -131,6 +135,10 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     section = spec.parse_section(poincare, names) if poincare is not None else None
     inputs = spec.inputs(grid_values, random_values, runs, seed)
     settings = Settings(float(end), method, float(rtol), float(atol), section)
+    if scheduler is not None:  # a wrong address is refused before the problem is compiled
+        from lagsolve.sweep.cluster import check_scheduler
+
+        scheduler = check_scheduler(scheduler)
     compiled(text, source)  # bad values surface here, as SpecError, before any worker starts
     total = len(next(iter(inputs.values())))
     size = chunk_size or min(1024, max(1, math.ceil(total / (4 * max(1, workers)))))
@@ -161,12 +169,7 @@ def _check_options(method: str, rtol: float, atol: float, workers: int, runs: in
     if method not in METHODS:
         bad.append(Issue("<argument>", 0, "method", f"expected one of {', '.join(METHODS)}, found {method!r}",
                          f"{', '.join(batched)} run batched; the others one run at a time"))
-    for key, value in (("rtol", rtol), ("atol", atol)):
-        if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
-            bad.append(Issue("<argument>", 0, key, f"expected a positive finite number, found {value!r}"))
-    for key, count, low in (("workers", workers, 0), ("runs", runs, 1), ("chunk_size", chunk_size, 1),
-                            ("seed", seed, 0)):
-        if count is not None and (isinstance(count, bool) or not isinstance(count, int) or count < low):
-            bad.append(Issue("<argument>", 0, key, f"expected a whole number >= {low}, found {count!r}"))
+    bad += ranges.issues((("rtol", rtol), ("atol", atol), ("workers", workers), ("runs", runs),
+                          ("chunk_size", chunk_size), ("seed", seed)))
     if bad:
         raise SpecError(bad)

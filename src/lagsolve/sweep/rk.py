@@ -19,7 +19,7 @@ locates events (Poincaré sections) inside the step.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy import integrate
@@ -87,6 +87,13 @@ class Step:
     k: np.ndarray
     tableau: Tableau
     rhs: Rhs
+    failures: dict[int, str] = field(default_factory=dict)  # batch row -> why it stops here (set by a callback)
+
+    def fail(self, subset: np.ndarray, reason: str) -> None:
+        """Stop the runs of the steps ``subset`` (indices into ``rows``) at this step, for ``reason``: a
+        callback found a value it monitors that is not finite, although the state is."""
+        for i in subset:
+            self.failures.setdefault(int(self.rows[i]), reason)
 
     def dense(self, subset: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
         """The dense output of the steps ``subset`` (indices into ``rows``): a function of times,
@@ -139,7 +146,8 @@ def integrate_batch(rhs: Rhs, y0: np.ndarray, t_end: float, tableau: Tableau, rt
     (a projection onto the constraints), after which their derivative is evaluated again.
 
     Returns the final times, states, step counts and, per run, "" or the reason it failed
-    (a step below the smallest step SciPy allows, a state that is not finite, too many steps).
+    (a step below the smallest step SciPy allows, a state that is not finite, too many steps, or
+    what ``accepted`` found wrong with a step through :meth:`Step.fail`).
     """
     runs, d = y0.shape
     t = np.zeros(runs)
@@ -214,6 +222,10 @@ def integrate_batch(rhs: Rhs, y0: np.ndarray, t_end: float, tableau: Tableau, rt
                 failure[r] = f"the state is no longer finite at t = {t[r]:.6g} (the motion diverged or left " \
                              "the domain of an expression)"
                 live[r] = False
+            for stopped, reason in step.failures.items():
+                if live[stopped]:
+                    failure[stopped] = reason
+                    live[stopped] = False
             finished = t[done] >= t_end
             live[done[finished]] = False
             for r in done[steps[done] >= max_steps]:

@@ -233,17 +233,21 @@ def _batched(problem: Compiled, settings: Settings, parameters: np.ndarray, star
     def accepted(step: Step) -> np.ndarray | None:
         which, t, y = step.rows, step.t_new, step.y_new
         q, qd, pw = y[:, :n], y[:, n:], p[which]
-        residual[which] = np.maximum(residual[which], batch.residual(t, q, qd, pw))
+        now = batch.residual(t, q, qd, pw)
+        residual[which] = np.maximum(residual[which], now)
         if section is not None:
             _crossings(step, section, crossings)
         if project:
             q, qd = batch.project(t, q, qd, pw)
         with np.errstate(all="ignore"):
-            worst_energy[which] = np.maximum(worst_energy[which],
-                                             np.abs(batch.energy(t, q, qd, pw)[:, 0] - energy0[which]))
+            energy = batch.energy(t, q, qd, pw)[:, 0]
+            worst_energy[which] = np.maximum(worst_energy[which], np.abs(energy - energy0[which]))
+            conserved = batch.conserved(t, q, qd, pw)
             if conserved0.shape[1]:
-                worst_conserved[which] = np.maximum(worst_conserved[which],
-                                                    np.abs(batch.conserved(t, q, qd, pw) - conserved0[which]))
+                worst_conserved[which] = np.maximum(worst_conserved[which], np.abs(conserved - conserved0[which]))
+        _fail_where_not_finite(step, [("the constraint residual", now), ("the energy", energy),
+                                      *((f"the conserved quantity {name}", conserved[:, c])
+                                        for c, name in enumerate(problem.conserved))])
         if angular.any():
             over = np.any(np.abs(step.y_new[:, :n][:, angular]) > np.pi, axis=1) & ~flipped[which]
             if over.any():
@@ -279,8 +283,44 @@ def _batched(problem: Compiled, settings: Settings, parameters: np.ndarray, star
             row["poincare_t"] = [float(c[0]) for c in found]
             for j, name in enumerate(names):
                 row[f"poincare_{name}"] = [float(c[1 + j]) for c in found]
-        row["outcome"] = _outcome(row, False, bool(angular.any()))
+        _settle(row, False, bool(angular.any()))
     return rows
+
+
+def _fail_where_not_finite(step: Any, monitored: list[tuple[str, np.ndarray]]) -> None:
+    """Stop each run whose monitored values (one per row of the step) are not all finite at this step:
+    its state may still be finite (a projection that could not move it back onto ψ = 0, log of a
+    negative number in the residual only), but nothing measured from there on would mean anything."""
+    bad = [(what, ~np.isfinite(values)) for what, values in monitored]
+    for i in np.flatnonzero(np.any([mask for _, mask in bad], axis=0)):  # usually none: no loop over the rows
+        names = [what for what, mask in bad if mask[i]]
+        step.fail(np.array([i]), f"{' and '.join(names)} {'is' if len(names) == 1 else 'are'} no longer finite at "
+                                 f"t = {step.t_new[i]:.6g} (an expression was evaluated outside its domain, such as "
+                                 "log or sqrt of a number <= 0, or the motion diverged)")
+
+
+#: the columns of a row that must be finite for the run to count as ok (or released); besides these, every
+#: final_<state>, drift_<quantity>, and for a release its time and state
+MEASURED = ("t_final", "max_residual", "energy_drift")
+
+
+def _settle(row: dict[str, Any], has_contacts: bool, angular: bool) -> None:
+    """The one rule for the status of a row: a run is ``ok`` (or ``released``) only if every value it reports
+    is finite; otherwise it failed, and the reason names the columns that are not. Then its outcome."""
+    if row["status"] != "failed":
+        keys = [*MEASURED, *(k for k in row if k.startswith(("final_", "drift_")))]
+        if row["status"] == "released":
+            keys += ["release_time", *(k for k in row if k.startswith("release_") and k != "release_constraint")]
+        if row["flipped"]:
+            keys.append("flip_time")
+        bad = [k for k in dict.fromkeys(keys) if not np.isfinite(row[k])]
+        bad += [k for k in row if k.startswith("poincare_") and isinstance(row[k], list)
+                and not np.all(np.isfinite(row[k]))]
+        if bad:
+            row["status"] = "failed"
+            row["reason"] = (f"{', '.join(bad)} {'is' if len(bad) == 1 else 'are'} not finite at the end of the run "
+                             "(an expression was evaluated outside its domain, or the motion diverged)")
+    row["outcome"] = _outcome(row, has_contacts, angular)
 
 
 def _first_root(step: Any, subset: np.ndarray, g: Any) -> np.ndarray:
@@ -364,5 +404,5 @@ def _per_run(problem: Compiled, settings: Settings, parameters: np.ndarray, star
         row["steps"] = int(motion.stats["steps"])
         if settings.section is not None:
             row["note"] = "Poincaré crossings are recorded on the batched path only"
-        row["outcome"] = _outcome(row, bool(system.contacts), bool(angular.any()))
+        _settle(row, bool(system.contacts), bool(angular.any()))
     return rows
