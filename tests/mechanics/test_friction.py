@@ -259,3 +259,38 @@ def test_a_string_between_two_particles_is_no_normal_constraint() -> None:
         "friction:\n  rub: {coefficient: 0.1, normal: [string]}\n")
     issues = _issues(text)
     assert any(i.where == "friction.rub.normal" and "no known force" in i.message for i in issues), issues
+
+
+CONE = """
+name: particle on a rough cone
+parameters: {m: mass, g: gravity, mu: friction, alpha: half angle}
+coordinates:
+  r: {description: radius, positive: true}
+  phi: angle
+  z: height
+particles: {p: {mass: m, position: [r*cos(phi), r*sin(phi), z]}}
+gravity: [0, 0, -g]
+constraints: {cone: {holonomic: z - r*cot(alpha), on: p}}
+friction: {rub: {coefficient: mu, normal: [cone]}}
+"""
+
+
+def test_friction_in_a_tangent_plane_opposes_the_velocity() -> None:
+    """On a cone (in space, one normal constraint, two sliding directions) the friction is kinetic,
+    -mu N v/|v| with v the particle's velocity on the surface: mu N long, against v, orthogonal to the normal."""
+    problem = load_text(CONE)
+    (term,) = matrix_form(problem).frictions
+    assert term.rate is None and term.tangent is None  # no single line: no stick-slip
+    s = names(problem)
+    rng = random.Random(2)
+    for _ in range(6):
+        a = rng.uniform(0.3, 1.2)
+        r, phi, rd, phid = rng.uniform(0.5, 2), rng.uniform(-3, 3), rng.uniform(-2, 2), rng.uniform(-2, 2)
+        v = {s["alpha"]: a, s["mu"]: 0.3, term.normal: 2.0, s["r"]: r, s["phi"]: phi, s["z"]: r / np.tan(a),
+             s["r_dot"]: rd, s["phi_dot"]: phid, s["z_dot"]: rd / np.tan(a)}
+        force = np.array([float(c.xreplace(v)) for c in term.force])
+        velocity = np.array([rd * np.cos(phi) - r * phid * np.sin(phi), rd * np.sin(phi) + r * phid * np.cos(phi),
+                             rd / np.tan(a)])
+        assert force == pytest.approx(-0.3 * 2.0 * velocity / np.linalg.norm(velocity), rel=1e-9, abs=1e-12)
+        normal = np.array([-np.cos(phi) / np.tan(a), -np.sin(phi) / np.tan(a), 1.0])
+        assert force @ normal == pytest.approx(0, abs=1e-12)

@@ -168,3 +168,48 @@ def test_a_disc_rolling_on_a_cylinder_leaves_it_at_four_sevenths() -> None:
     theta = run.q[:, system.coordinates.index("theta")]
     roll = system.constraints.index("roll")
     assert run.magnitudes[:, roll] == pytest.approx(9.81 * np.abs(np.sin(theta)) / 3, rel=1e-8)
+
+
+CYLINDER_ON_ROUGH_WEDGE = """
+name: cylinder on a rough sliding wedge
+parameters: {M: mass, m: mass, R: radius, g: gravity, alpha: angle, mu: friction, mu_s: static}
+coordinates: [X, s, h, phi]
+particles:
+  wedge: {mass: M, position: [X, 0]}
+bodies:
+  cyl: {mass: m, position: [X + s*cos(alpha) + h*sin(alpha), -s*sin(alpha) + h*cos(alpha)], inertia: m*R**2/2,
+        angular_velocity: -phi_dot}
+gravity: [0, -g]
+constraints:
+  face: {holonomic: h - R, on: [cyl, wedge], at: [X + s*cos(alpha) + (h - R)*sin(alpha),
+                                                  -s*sin(alpha) + (h - R)*cos(alpha)]}
+friction:
+  grip: {coefficient: mu, static: mu_s, normal: [face]}
+simulation:
+  values: {M: 3, m: 1, R: 0.2, g: 9.81, alpha: 0.4, mu: 0.05, mu_s: MUS}
+  initial: {X: 0, s: 0, phi: 0, X_dot: 0, s_dot: 0, phi_dot: 0}
+  t_end: 1
+"""
+
+
+@pytest.mark.parametrize("mu_s", [0.06, 0.3])
+def test_a_cylinder_on_a_rough_sliding_wedge_keeps_the_momentum_rolling_or_slipping(mu_s: float) -> None:
+    """Friction between a turning body and a sliding wedge: the contact point's velocity relative to the face,
+    rotation included. Rolling (enough static friction) it is wedge_cylinder.yaml's s_ddot; slipping it is
+    not; either way the horizontal momentum (M + m) X_dot + m cos(alpha) s_dot stays 0."""
+    problem = load_text(CYLINDER_ON_ROUGH_WEDGE.replace("MUS", str(mu_s)))
+    system = bind(matrix_form(problem))
+    q0, qd0 = complete_initial(system, dict(problem.simulation.initial))
+    run = integrate_motion(system, q0, qd0, 1.0, samples=201)
+    M, m, g, alpha = 3.0, 1.0, 9.81, 0.4
+    X, s, phi = (system.coordinates.index(c) for c in ("X", "s", "phi"))
+    momentum = (M + m) * run.qd[:, X] + m * math.cos(alpha) * run.qd[:, s]
+    assert np.max(np.abs(momentum)) < 1e-9
+    rolling = g * math.sin(alpha) * (M + m) / (1.5 * (M + m) - m * math.cos(alpha) ** 2)
+    if mu_s == 0.3:
+        assert run.stuck[:, 0].all()
+        assert run.qd[:, s] == pytest.approx(rolling * run.t, abs=1e-9)
+        assert run.qd[:, s] == pytest.approx(0.2 * run.qd[:, phi], abs=1e-9)
+    else:
+        assert not run.stuck[1:, 0].any()
+        assert run.qd[-1, s] > rolling * run.t[-1] * 1.05  # slipping, it slides faster than it would roll

@@ -109,7 +109,7 @@ def friction_term(friction: Friction, problem: Problem, model: Model, reactions:
     index = {c.name: i for i, c in enumerate(problem.coordinates)}
     # the sliding coordinates, those that move the member that slides first: the tangent points the way they move it
     own = point_jacobian(problem, model, friction.on, friction.at)
-    sliding = sorted((index[name] for name in friction.sliding), key=lambda i: (own[:, i].is_zero_matrix, i))
+    sliding = sorted((index[name] for name in friction.sliding), key=lambda i: (all(e == 0 for e in own[:, i]), i))
     normals = _normal_directions(friction, problem, reactions, zero)
     tangent = _tangent(friction, problem, J, normals, sliding, zero)
     normal = sympy.Symbol(f"N_{friction.name}", nonnegative=True)
