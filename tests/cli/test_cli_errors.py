@@ -282,3 +282,30 @@ def test_redundant_constraints_exit_2_naming_them(tmp_path: Path) -> None:
     assert f"error: {path}:9: constraints.rod_again.holonomic: the constraints rod, rod_again are redundant" \
         in result.stderr
     assert "remove rod_again" in result.stderr
+
+
+ROUGH_WEDGE = (Path(__file__).resolve().parents[2] / "problems" / "rough_wedge.yaml").read_text(encoding="utf-8")
+
+
+@pytest.mark.parametrize(("rub", "field"), [
+    ("{coefficient: mu, normal: [face], on: []}", "friction.rub.on"),
+    ("{coefficient: mu, normal: [face], on: [wedge, block]}", "friction.rub.normal"),
+    ("{coefficient: mu, normal: [face], on: [block, wedge, block]}", "friction.rub.on"),
+    ("{coefficient: mu, normal: [face], on: [block, ghost]}", "friction.rub.on"),
+    ("{coefficient: mu, normal: [face], at: [x, 2*y]}", "friction.rub.at"),
+    ("{coefficient: mu, normal: [face], at: {x: 1}}", "friction.rub.at"),
+    ("{coefficient: mu, on: block, normal: [face]}\n  other: {coefficient: mu, on: wedge, normal: [face]}",
+     "friction.other.normal"),
+    ("{coefficient: -1, normal: [face]}", "friction.rub.coefficient"),
+    ("{coefficient: mu, normal: [ghost]}", "friction.rub.normal[0]"),
+])
+def test_a_friction_contact_that_cannot_be_modelled_exits_2(tmp_path: Path, rub: str, field: str) -> None:
+    """Hostile or impossible friction contacts: exit 2 with file, line and field, never a traceback, nothing
+    written."""
+    text = ROUGH_WEDGE.replace("rub: {coefficient: mu, normal: [face]}", f"rub: {rub}")
+    path = write(tmp_path, "contact.yaml", text)
+    result, _ = derive(str(path), "-o", str(tmp_path / "out"))
+    assert result.exit_code == 2, result.output
+    assert f"error: {path}:" in result.stderr and f": {field}: " in result.stderr, result.stderr
+    assert "Traceback" not in result.output and "Traceback" not in result.stderr
+    assert not (tmp_path / "out").exists()

@@ -92,3 +92,13 @@ friction:
         load_text(text.replace("on: disc, at: [x, y - R]}", "on: disc, at: [x, y - R]}").replace(
             "normal: [floor]}", "at: [x, y], normal: [floor]}"))
     assert any(i.where == "friction.grip.at" and "at one point" in i.message for i in caught.value.issues)
+
+
+@pytest.mark.parametrize("field", ["coefficient", "static"])
+def test_a_negative_coefficient_is_refused(field: str) -> None:
+    text = WEDGE.replace("FACE", "[block, wedge]").replace("RUB ", f"{'static: -0.2, ' if field == 'static' else ''}")
+    if field == "coefficient":
+        text = text.replace("coefficient: mu", "coefficient: -1/2")
+    with pytest.raises(SpecError) as caught:
+        load_text(text)
+    assert any(i.where == f"friction.rub.{field}" and "negative" in i.message for i in caught.value.issues)

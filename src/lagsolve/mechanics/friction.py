@@ -195,7 +195,12 @@ def _tangent(friction: Friction, problem: Problem, J: sympy.Matrix, normals: lis
         off = U.T * v
         if all(zero(c) for c in off):
             return v  # tangent already, on the surface
-        return (v - U * gram.LUsolve(off)).applyfunc(tidy)
+        try:
+            return (v - U * gram.LUsolve(off)).applyfunc(tidy)
+        except (ValueError, ZeroDivisionError) as exc:  # the normal directions are not independent everywhere
+            raise _refuse(problem, friction, "normal", f"the normal constraints {', '.join(friction.normal)} give "
+                          f"no tangent plane at the contact of {friction.on!r} ({exc})",
+                          "name under 'normal:' only constraints whose forces are independent") from None
 
     moving = [along_surface(J[:, i]) for i in sliding]
     moving = [v for v in moving if not all(zero(c) for c in v)]

@@ -53,6 +53,13 @@ class FrictionReader(ConstraintsReader):
                        if "sliding" in spec else tuple(coordinate_names))
             if coefficient is None or normal is None or sliding is None or ("static" in spec and static is None):
                 continue
+            negative = [key for key, c in (("coefficient", coefficient), ("static", static))
+                        if c is not None and c.is_negative]
+            for key in negative:
+                self.issue((*path, key), f"a coefficient of friction cannot be negative (found {spec[key]})",
+                           "give a value >= 0 (0: no friction)")
+            if negative:
+                continue
             pair = self._pair(path, spec, normal, updated, bodies, positions)
             if pair is None:
                 continue
