@@ -469,9 +469,12 @@ def sweep(file: Path, grid: tuple[str, ...], random_: tuple[str, ...], runs: int
     if output.suffix not in SUFFIXES:
         raise click.BadParameter(f"{output}: name the table FILE.parquet or FILE.csv", param_hint="-o/--output")
     try:
+        from lagsolve.sweep.figures import check_color
+
         frame = run_sweep(file, grid=grid, random=random_, runs=runs, seed=seed, t_end=t_end, method=method,
                           rtol=rtol, atol=atol, poincare=poincare, workers=workers, scheduler=scheduler,
-                          chunk_size=chunk_size, progress=_sweep_progress())
+                          chunk_size=chunk_size, progress=_sweep_progress(),
+                          before=lambda numeric: check_color(color, numeric))
         written = [write_file(output.parent, output.name, table_bytes(frame, output.suffix))]
         if plot or color:
             from lagsolve.sweep.figures import figures, png

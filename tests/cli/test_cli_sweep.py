@@ -92,3 +92,39 @@ def test_output_must_be_parquet_or_csv(runner: CliRunner, tmp_path: Path) -> Non
     result = runner.invoke(main, ["sweep", DOUBLE, "--grid", "theta1=0:1:2", "-o", str(tmp_path / "s.json")])
     assert result.exit_code == 2
     assert "FILE.parquet or FILE.csv" in result.output
+
+
+@pytest.mark.parametrize(("color", "message"), [("nope", "no column 'nope'"), ("status", "column 'status' is not numeric")])
+def test_a_bad_color_is_refused_before_any_run(runner: CliRunner, tmp_path: Path, color: str, message: str,
+                                               monkeypatch: pytest.MonkeyPatch) -> None:
+    """--color is checked against the table's columns once the input is read, before the first run: exit 2 with the
+    columns it could be, and no run is made (run_chunk is never called)."""
+    import importlib
+
+    runs = importlib.import_module("lagsolve.sweep.run")
+
+    def no_run(*args: object, **kwargs: object) -> None:
+        raise AssertionError("a run started before --color was checked")
+
+    monkeypatch.setattr(runs, "run_chunk", no_run)
+    result = runner.invoke(main, ["sweep", str(ROOT / "problems" / "double_pendulum.yaml"), "--grid",
+                                  "theta1=0.1:0.5:2", "--t-end", "0.5", "--color", color, "-o",
+                                  str(tmp_path / "s.csv")])
+    assert result.exit_code == 2, result.output
+    assert f"--color: {message}" in result.stderr and "Traceback" not in result.output
+    assert not (tmp_path / "s.csv").exists()
+
+
+def test_the_columns_known_before_the_runs_are_the_table_s() -> None:
+    """The columns given to ``before`` (and checked by --color) are exactly the table's, numeric where it is."""
+    from pandas.api.types import is_bool_dtype, is_numeric_dtype
+
+    from lagsolve.sweep.api import sweep
+
+    for path, options in ((ROOT / "problems" / "double_pendulum.yaml", {"grid": ["theta1=0.1:0.5:2"], "t_end": 0.5,
+                                                                        "poincare": "theta2=0, theta2_dot>0"}),
+                          (ROOT / "problems" / "spring_on_rough_floor.yaml", {"random": ["mu_s=0.1:0.5"], "runs": 2})):
+        seen: dict[str, bool] = {}
+        frame = sweep(path, before=seen.update, **options)  # type: ignore[arg-type]
+        assert list(seen) == [str(c) for c in frame.columns]
+        assert seen == {str(c): bool(is_numeric_dtype(frame[c]) or is_bool_dtype(frame[c])) for c in frame.columns}

@@ -663,3 +663,25 @@ def test_free_text_and_names_are_bounded() -> None:
         "p.yaml:15: description: text of 20001 characters is too long; the limit here is 20000; shorten it",
     ]
     assert load(BEAD.replace("name: Bead", "name: " + "A" * 200)).name == "A" * 200
+
+
+@pytest.mark.parametrize(("misspelt", "meant"), [("particle", "particles"), ("constraint", "constraints"),
+                                                ("paramters", "parameters"), ("coordinate", "coordinates")])
+def test_a_misspelt_section_is_one_error(misspelt: str, meant: str) -> None:
+    """A misspelt top-level key is reported once, with the fix; what follows from the section it was meant to be
+    (an unknown particle, no kinetic energy, an unknown name) is not reported again."""
+    text = """\
+name: Bead
+parameters: {m: mass, g: gravity}
+coordinates: [x, y]
+particles:
+  bead: {mass: m, position: [x, y]}
+gravity: [0, -g]
+constraints:
+  wire: {holonomic: y - x**2, on: bead}
+friction:
+  rub: {coefficient: 0.1, on: bead, normal: [wire]}
+""".replace(f"{meant}:", f"{misspelt}:")
+    issues = issues_of(text)
+    assert [i.where for i in issues] == [misspelt], issues
+    assert f"did you mean '{meant}'?" in issues[0].hint

@@ -7,6 +7,7 @@ Expression text reaches SymPy only through :func:`lagsolve.problem.expr.parse`.
 
 from __future__ import annotations
 
+import difflib
 from pathlib import Path
 from typing import Any
 
@@ -76,8 +77,9 @@ class _Loader(BodiesReader, FrictionReader, AnswersReader, SimulationReader):
     (:mod:`lagsolve.problem.readers`)."""
 
     def problem(self) -> Problem:
-        data = self.data
-        self.keys((), data, TOP_LEVEL, required=("name", "coordinates"))
+        self.keys((), self.data, TOP_LEVEL)
+        data = self.data = self.misspelt_sections(self.data)
+        self.keys((), {k: v for k, v in data.items() if k in TOP_LEVEL}, TOP_LEVEL, required=("name", "coordinates"))
         name = self.text(("name",), data["name"], one_line=True, limit=MAX_TITLE_LENGTH) if "name" in data else None
         description = ""
         if "description" in data:
@@ -154,6 +156,21 @@ class _Loader(BodiesReader, FrictionReader, AnswersReader, SimulationReader):
             lines={dotted(k): v for k, v in self.lines.items()}, independent=independent, time_unit=time_unit,
             texts=self.texts,
         )
+
+    def misspelt_sections(self, data: dict[str, Any]) -> dict[str, Any]:
+        """``data`` with a misspelt top-level key (``particle:``, reported already) read as the section it was meant
+        to be, so that what follows from the missing section (unknown particles, no kinetic energy) is not
+        reported too: one mistake, one error."""
+        out = dict(data)
+        for key in data:
+            if not isinstance(key, str) or key in TOP_LEVEL:
+                continue
+            close = difflib.get_close_matches(key, TOP_LEVEL, n=1)
+            if close and close[0] not in out:
+                out[close[0]] = data[key]
+                self.lines.update({(close[0], *path[1:]): line for path, line in list(self.lines.items())
+                                   if path[:1] == (key,)})
+        return out
 
     def time_spec(self, value: dict[str, Any]) -> tuple[Any, str | None]:
         """``time: {name: t, unit: ms}`` → the name and the unit."""

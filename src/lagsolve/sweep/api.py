@@ -49,7 +49,8 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
           random: Mapping[str, tuple[float, float]] | Sequence[str] | None = None, runs: int | None = None,
           seed: int = 0, t_end: float | None = None, method: str = DEFAULT_METHOD, rtol: float = 1e-10,
           atol: float = 1e-12, poincare: str | None = None, workers: int = 0, scheduler: str | None = None,
-          chunk_size: int | None = None, progress: ProgressCallback | None = None) -> Any:
+          chunk_size: int | None = None, progress: ProgressCallback | None = None,
+          before: Callable[[dict[str, bool]], None] | None = None) -> Any:
     """Run a problem many times and return one row per run (a :class:`pandas.DataFrame`).
 
     Parameters
@@ -78,6 +79,9 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
         Runs per chunk (default: about four chunks per worker, at most 1024 runs each).
     progress : callable, optional
         Called as ``progress(done, total)`` as chunks finish.
+    before : callable, optional
+        Called with the table's columns (each mapped to whether it is numeric) once the input is checked and
+        before any run starts: a caller checks what it will ask of the table (``lagsolve sweep --color``).
 
     Returns
     -------
@@ -108,7 +112,7 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     from lagsolve.problem.load import load_text
     from lagsolve.sweep import spec
     from lagsolve.sweep.rk import METHODS as BATCHED
-    from lagsolve.sweep.run import Settings, compiled, run_chunk
+    from lagsolve.sweep.run import Settings, columns, compiled, run_chunk
 
     text, source = _text(path_or_text)
     problem = load_text(text, source)
@@ -139,7 +143,9 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
         from lagsolve.sweep.cluster import check_scheduler
 
         scheduler = check_scheduler(scheduler)
-    compiled(text, source)  # bad values surface here, as SpecError, before any worker starts
+    built = compiled(text, source)  # bad values surface here, as SpecError, before any worker starts
+    if before is not None:
+        before(columns(built, settings, list(inputs)))
     total = len(next(iter(inputs.values())))
     size = chunk_size or min(1024, max(1, math.ceil(total / (4 * max(1, workers)))))
     chunks = [(start, {k: v[start: start + size] for k, v in inputs.items()}) for start in range(0, total, size)]

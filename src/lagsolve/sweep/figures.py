@@ -21,6 +21,25 @@ OUTCOMES = {"ok": "#56B4E9", "no flip": "#56B4E9", "flipped": "#D55E00", "stick"
             "released": "#CC79A7", "failed": "#000000"}
 
 
+def check_color(color: str | None, numeric: dict[str, bool]) -> None:
+    """Refuse a ``--color`` that is not a numeric column (``numeric`` maps each column of the table to whether it
+    is numeric) or ``outcome``: checked before any run starts, and again on the table.
+
+    Raises
+    ------
+    SpecError
+        ``color`` is not a column of the table, or not numeric.
+    """
+    if color is None or color == "outcome":
+        return
+    if color not in numeric:
+        raise SpecError([Issue("<command line>", 0, "--color", f"no column {color!r} in the sweep's table",
+                               "known: " + ", ".join(numeric))])
+    if not numeric[color]:
+        raise SpecError([Issue("<command line>", 0, "--color", f"column {color!r} is not numeric",
+                               "give a numeric column (final_theta1, energy_drift, ...) or outcome")])
+
+
 def figures(frame: Any, swept: Sequence[str], title: str, color: str | None = None) -> dict[str, Any]:
     """The figures for the swept inputs: ``{"regime": Figure}`` for two or more (the first two are
     the axes), ``{"bifurcation": Figure}`` for one.
@@ -33,13 +52,9 @@ def figures(frame: Any, swept: Sequence[str], title: str, color: str | None = No
     import matplotlib
 
     matplotlib.use("Agg")
-    if color is not None and color != "outcome":
-        if color not in frame.columns:
-            raise SpecError([Issue("<command line>", 0, "--color", f"no column {color!r} in the sweep's table",
-                                   "known: " + ", ".join(str(c) for c in frame.columns))])
-        if not np.issubdtype(frame[color].dtype, np.number) and frame[color].dtype != bool:
-            raise SpecError([Issue("<command line>", 0, "--color", f"column {color!r} is not numeric",
-                                   "give a numeric column (final_theta1, energy_drift, ...) or outcome")])
+    from pandas.api.types import is_bool_dtype, is_numeric_dtype
+
+    check_color(color, {str(c): bool(is_numeric_dtype(frame[c]) or is_bool_dtype(frame[c])) for c in frame.columns})
     if len(swept) >= 2:
         return {"regime": _regime(frame, swept[0], swept[1], title, None if color == "outcome" else color)}
     return {"bifurcation": _bifurcation(frame, swept[0], title, None if color == "outcome" else color)}

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -153,6 +153,12 @@ def _initial_states(problem: Compiled, inputs: Mapping[str, np.ndarray], paramet
 
 def _state_names(system: Any) -> list[str]:
     return [*system.coordinates, *(f"{c}_dot" for c in system.coordinates)]
+
+
+def columns(problem: Compiled, settings: Settings, swept: Sequence[str]) -> dict[str, bool]:
+    """The columns of the sweep's table, each with whether it is numeric, known before any run."""
+    row = {"run": 0, **{name: 0.0 for name in swept}, **_empty_row(problem, settings, "")}
+    return {k: isinstance(v, bool | int | float) for k, v in row.items()}
 
 
 def _empty_row(problem: Compiled, settings: Settings, path: str) -> dict[str, Any]:
