@@ -221,3 +221,40 @@ def test_simulate_a_derivation_without_analysis() -> None:
     run = lagsolve.simulate(derivation, t_end=1.0, samples=11)
     reference = lagsolve.simulate(BEAD, t_end=1.0, samples=11)
     np.testing.assert_allclose(run.q, reference.q, rtol=1e-7, atol=1e-9)
+
+
+def test_every_result_has_a_short_one_line_repr() -> None:
+    """repr() of a problem, a derivation, a trajectory (and its motion), a check report, a verdict and a figure is
+    one line of at most 160 characters, not a page-long dump."""
+    problem = lagsolve.load_problem(ROOT / "problems" / "bead.yaml")
+    derivation = lagsolve.derive(problem)
+    run = lagsolve.simulate(derivation, t_end=0.5)
+    report = lagsolve.check(derivation)
+    figure = run.plot()["coordinates"]
+    for result in (problem, derivation, run, run.motion, report, report.verdicts[0], figure):
+        text = repr(result)
+        assert "\n" not in text and len(text) <= 160, text
+    assert repr(derivation) == "<Derivation of 'Bead on a wire': 2 coordinates, 1 constraint; complete>"
+    assert repr(report) == "<CheckReport of 'Bead on a wire': 3 ok>"
+
+
+def test_a_check_report_shows_as_a_table_in_a_notebook() -> None:
+    """CheckReport's rich display: an HTML table and a Markdown table, one row per expected answer."""
+    from markdown_it import MarkdownIt
+
+    report = lagsolve.check(ROOT / "problems" / "bead.yaml")
+    html_text = report._repr_html_()
+    assert html_text.count("<tr>") == 1 + len(report.verdicts) and "λ_wire" in html_text
+    tokens = MarkdownIt("commonmark").enable("table").parse(report._repr_markdown_())
+    rows = [t for t in tokens if t.type == "tr_open"]
+    assert len(rows) == 1 + len(report.verdicts)
+
+
+def test_figures_show_themselves_in_a_notebook_without_a_backend_chosen() -> None:
+    """lagsolve never calls matplotlib.use: its figures carry their own Agg canvas and a PNG for IPython."""
+    import matplotlib
+
+    before = matplotlib.get_backend()
+    figure = lagsolve.simulate(ROOT / "problems" / "bead.yaml", t_end=0.5).plot()["coordinates"]
+    assert figure._repr_png_().startswith(b"\x89PNG")
+    assert matplotlib.get_backend() == before

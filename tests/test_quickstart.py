@@ -54,5 +54,6 @@ def test_quickstart_notebook_executes(tmp_path: Path, monkeypatch: pytest.Monkey
     shown = [set(out.get("data", {})) for cell in code for out in cell.outputs if out.output_type == "execute_result"]
     assert {"text/latex", "text/markdown", "text/html"} <= shown[0]  # the derivation
     assert any("text/html" in kinds and "text/latex" not in kinds for kinds in shown[3:])  # the trajectory
+    assert any("image/png" in kinds for kinds in shown)  # a figure shows inline (lagsolve picks no backend)
     errors = [out for cell in code for out in cell.outputs if out.output_type == "error"]
     assert errors == []

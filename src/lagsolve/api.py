@@ -241,6 +241,13 @@ class Trajectory:
 
         return figures(self.motion, self.name, self.labels, scene=self.scene)
 
+    def __repr__(self) -> str:
+        t = self.t
+        span = f"t = {float(t[0]):g} to {float(t[-1]):g}" if len(t) else "no samples"
+        count = len(self.motion.events)
+        events = f", {count} event{'s' * (count != 1)}" if count else ""
+        return f"<Trajectory of {self.name!r}: {len(t)} samples, {span}{events}>"
+
     def _repr_html_(self) -> str:
         from lagsolve.render.display import trajectory_html
 

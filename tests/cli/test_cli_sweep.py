@@ -94,7 +94,8 @@ def test_output_must_be_parquet_or_csv(runner: CliRunner, tmp_path: Path) -> Non
     assert "FILE.parquet or FILE.csv" in result.output
 
 
-@pytest.mark.parametrize(("color", "message"), [("nope", "no column 'nope'"), ("status", "column 'status' is not numeric")])
+@pytest.mark.parametrize(("color", "message"), [("nope", "no column 'nope'"),
+                                               ("status", "column 'status' is not numeric")])
 def test_a_bad_color_is_refused_before_any_run(runner: CliRunner, tmp_path: Path, color: str, message: str,
                                                monkeypatch: pytest.MonkeyPatch) -> None:
     """--color is checked against the table's columns once the input is read, before the first run: exit 2 with the

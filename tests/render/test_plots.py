@@ -143,13 +143,14 @@ def test_animation_frames_carry_a_time_stamp() -> None:
 
     result, scene = _shipped("pendulum_cartesian")
     trajectory = result.trajectory
-    fig = plots._pyplot().figure()  # noqa: SLF001
+    from lagsolve.render.picture import Picture
+
+    fig = Picture()
     drawing = _Drawing(fig.add_subplot(), trajectory, scene, trails=True, units={"t": "s"})
     assert drawing.show(0)[-1].get_text() == "t = 0.00 s"
     assert drawing.show(500)[-1].get_text() == f"t = {trajectory.t[500]:.2f} s"
     rod = drawing.rods[0]
     assert np.allclose(np.column_stack(rod.get_data())[1], trajectory.positions[500, :2])
-    plots._pyplot().close(fig)  # noqa: SLF001
     gif = plots.animation_gif(trajectory, "P", frames=4, scene=scene)
     assert gif.startswith(b"GIF8")
 

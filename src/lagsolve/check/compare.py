@@ -128,6 +128,9 @@ class Verdict:
         """True unless the answer is wrong (a warning or an unchecked answer passes)."""
         return self.status != MISMATCH
 
+    def __repr__(self) -> str:
+        return f"<Verdict on {self.quantity} {self.name}: {self.status}>"
+
 
 @dataclass(frozen=True)
 class CheckReport:
@@ -145,6 +148,22 @@ class CheckReport:
     def passed(self) -> bool:
         """True when no answer is a mismatch."""
         return all(v.passed for v in self.verdicts)
+
+    def __repr__(self) -> str:
+        counts = ", ".join(f"{self.count(s)} {s}" for s in Status if self.count(s)) or "nothing to check"
+        return f"<CheckReport of {self.name!r}: {counts}>"
+
+    # notebook display (IPython calls these); the renderers are imported only when a report is shown
+
+    def _repr_html_(self) -> str:
+        from lagsolve.render.display import check_html
+
+        return check_html(self)
+
+    def _repr_markdown_(self) -> str:
+        from lagsolve.render.display import check_markdown
+
+        return check_markdown(self)
 
 
 @dataclass(frozen=True)

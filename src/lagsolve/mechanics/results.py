@@ -137,6 +137,14 @@ class Derivation:
         """True when every stage that applies gave its result (no stage ran out of budget or size)."""
         return not any(n.kind in ("budget", "size") for n in self.notes)
 
+    def __repr__(self) -> str:
+        problem = self.problem
+        n, m = len(problem.coordinates), len(self.constraints)
+        missing = [note.stage for note in self.notes if note.kind in ("budget", "size")]
+        state = "complete" if not missing else "not completed: " + ", ".join(missing)
+        return (f"<Derivation of {problem.name!r}: {n} coordinate{'s' * (n != 1)}, {m} constraint{'s' * (m != 1)}; "
+                f"{state}>")
+
     # notebook display (IPython calls these); the renderers are imported only when a result is shown
 
     def _repr_latex_(self) -> str:

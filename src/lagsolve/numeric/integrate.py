@@ -152,6 +152,10 @@ class Trajectory:
     stats: RunStats
     friction: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
 
+    def __repr__(self) -> str:
+        span = f"t = {float(self.t[0]):g} to {float(self.t[-1]):g}" if len(self.t) else "no samples"
+        return f"<Trajectory of {', '.join(self.coordinates)}: {len(self.t)} samples, {span}, {self.stats.method}>"
+
 
 @dataclass
 class _Run:

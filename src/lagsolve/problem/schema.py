@@ -239,6 +239,16 @@ class Problem:
     time_unit: str | None = None  # declared with ``time: {name: t, unit: ms}``; seconds otherwise
     texts: Mapping[str, str] = field(default_factory=dict)  # dotted field -> expression as written
 
+    def __repr__(self) -> str:
+        def count(n: int, what: str) -> str:
+            return f"{n} {what}{'s' * (n != 1)}"
+
+        parts = [count(len(self.coordinates), "coordinate")]
+        parts += [count(len(items), what) for items, what in ((self.particles, "particle"), (self.bodies, "body"),
+                                                              (self.constraints, "constraint"),
+                                                              (self.friction, "friction contact")) if items]
+        return f"<Problem {self.name!r} from {self.source}: {', '.join(parts)}>".replace("bodys", "bodies")
+
     @property
     def units(self) -> dict[str, str | None]:
         """The declared unit of each parameter, declared function and coordinate (None: not declared)."""

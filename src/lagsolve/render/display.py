@@ -12,12 +12,16 @@ final state and its run summary. Everything returns strings; nothing is displaye
 from __future__ import annotations
 
 import html
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import sympy
 
 from lagsolve.mechanics.derivation import Derivation
+from lagsolve.render.checks import MARKS, describe, label
 from lagsolve.render.notation import Notation
+
+if TYPE_CHECKING:
+    from lagsolve.check.compare import CheckReport
 
 
 def _lines(derivation: Derivation) -> list[str]:
@@ -80,3 +84,31 @@ def trajectory_html(trajectory: Any) -> str:
             f"<p>{len(trajectory.t)} samples, t from {float(trajectory.t[0]):.6g} to {float(trajectory.t[-1]):.6g}</p>"
             f"<table><thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>"
             f"<pre>{html.escape(trajectory.summary)}</pre></div>")
+
+
+def _check_rows(report: CheckReport) -> list[tuple[str, str, str, str]]:
+    """(mark, quantity, status, what the check found) for each verdict."""
+    note = Notation(report.coordinates)
+    return [(MARKS[v.status], label(v, note, report.coordinates), str(v.status), describe(v, note))
+            for v in report.verdicts]
+
+
+def check_html(report: CheckReport) -> str:
+    """A :class:`~lagsolve.check.compare.CheckReport` as a table: one row per expected answer."""
+    rows = "".join("<tr>" + "".join(f"<td>{html.escape(cell)}</td>" for cell in row) + "</tr>"
+                   for row in _check_rows(report))
+    verdict = "every answer agrees" if report.passed else "some answers are wrong"
+    return (f"<div class=\"lagsolve-check\"><h3>{html.escape(report.name)}</h3><p>{html.escape(report.source)}: "
+            f"{verdict}</p><table><thead><tr><th></th><th>answer</th><th>verdict</th><th>found</th></tr></thead>"
+            f"<tbody>{rows}</tbody></table></div>")
+
+
+def check_markdown(report: CheckReport) -> str:
+    """The same table in Markdown (cells escaped: a name or a note cannot end a row)."""
+    def cell(text: str) -> str:
+        return " ".join(text.split()).replace("|", "\\|")
+
+    lines = [f"**{cell(report.name)}** ({cell(report.source)})", "", "| | answer | verdict | found |",
+             "|---|---|---|---|"]
+    lines += ["| " + " | ".join(cell(c) for c in row) + " |" for row in _check_rows(report)]
+    return "\n".join(lines) + "\n"

@@ -1,4 +1,5 @@
-"""Figures of a simulated motion (matplotlib, Agg backend; nothing is shown from here).
+"""Figures of a simulated motion (matplotlib figures on their own Agg canvas, :mod:`lagsolve.render.picture`;
+nothing is shown from here, and no backend is chosen, so a notebook shows them inline).
 
 Every function takes plain data — a :class:`~lagsolve.numeric.integrate.Trajectory`,
 the :class:`~lagsolve.numeric.scene.Scene` of its rods, surfaces and wires, plus
@@ -35,15 +36,6 @@ SURFACE_COLOURS = ("0.45", "#9c7a4a", "#5b8a9a", "#8a6a9a")
 FLAT = 1e-9
 
 
-def _pyplot() -> Any:
-    import matplotlib
-
-    matplotlib.use("Agg", force=False)
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
 def _fit(text: str, width_inches: float, fontsize: float = 12.0) -> str:
     """``text`` wrapped to lines that fit ``width_inches`` at ``fontsize`` points (about 0.55 em a character)."""
     chars = max(16, int(width_inches * 72 / (0.55 * fontsize)))
@@ -51,10 +43,10 @@ def _fit(text: str, width_inches: float, fontsize: float = 12.0) -> str:
 
 
 def _figure(title: str, rows: int = 1, cols: int = 1, **kwargs: Any) -> tuple[Any, Any]:
-    from matplotlib.figure import Figure
+    from lagsolve.render.picture import Picture
 
     size = kwargs.pop("figsize", (7.5, 2.2 + 2.4 * rows))
-    fig = Figure(figsize=size, layout="constrained")
+    fig = Picture(figsize=size, layout="constrained")
     axes = fig.subplots(rows, cols, squeeze=False, **kwargs)
     fig.suptitle(_fit(title, size[0] - 0.3), parse_math=False)  # user text: a "$" in a name is not mathtext
     return fig, axes
@@ -212,22 +204,25 @@ def animation_gif(trajectory: Trajectory, title: str, frames: int = 120, scene: 
     units = axis_units(units)
     import io
 
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
     from PIL import Image
 
-    plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(5, 5), layout="constrained")
+    from lagsolve.render.picture import Picture
+
+    fig = Picture(figsize=(5, 5), layout="constrained")
+    canvas = FigureCanvasAgg(fig)
+    ax = fig.subplots()
     ax.set_title(_fit(title, 4.7), parse_math=False)
     drawing = _Drawing(ax, trajectory, scene, units=units, trails=True)
     index = np.linspace(0, len(trajectory.t) - 1, max(frames, 1)).astype(int)
     images = []
     for k, i in enumerate(index):
         drawing.show(int(i))
-        fig.canvas.draw()
+        canvas.draw()
         if k == 0:
             fig.set_layout_engine("none")  # laid out once: the same axes on every frame, at a fraction of the cost
-        width, height = fig.canvas.get_width_height()
-        images.append(Image.frombuffer("RGBA", (width, height), bytes(fig.canvas.buffer_rgba()), "raw", "RGBA", 0, 1))
-    plt.close(fig)
+        width, height = canvas.get_width_height()
+        images.append(Image.frombuffer("RGBA", (width, height), bytes(canvas.buffer_rgba()), "raw", "RGBA", 0, 1))
     out = io.BytesIO()
     images[0].save(out, format="GIF", save_all=True, append_images=images[1:], duration=int(1000 / 24), loop=0)
     return out.getvalue()

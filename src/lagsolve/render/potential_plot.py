@@ -25,13 +25,11 @@ def potential_figure(q: Sequence[float], v: Sequence[float],
     >>> fig.axes[0].get_xlabel()
     '$r$'
     """
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
+    from lagsolve.render.picture import Picture
 
     if len(q) != len(v):
         raise ValueError(f"q and v differ in length ({len(q)} and {len(v)})")
-    figure = Figure(figsize=(6.0, 4.0), layout="constrained")
-    FigureCanvasAgg(figure)
+    figure = Picture(figsize=(6.0, 4.0), layout="constrained")
     axes = figure.add_subplot()
     axes.plot(list(q), list(v), color="C0", label=r"$V_{\mathrm{eff}}$")
     styles = {True: ("o", "C2", "stable"), False: ("o", "none", "unstable"), None: ("x", "C3", "not decided")}

@@ -1,4 +1,5 @@
-"""Pictures of a sweep (matplotlib, Agg; figures are returned, never shown).
+"""Pictures of a sweep (matplotlib figures on their own Agg canvas, :mod:`lagsolve.render.picture`; returned,
+never shown, and no backend is chosen).
 
 * two swept inputs: a **regime map**, each run a cell (a grid) or a dot (random draws), coloured by
   its outcome (ok, flipped, stick, slip, released, failed) or by a chosen numeric column;
@@ -49,9 +50,6 @@ def figures(frame: Any, swept: Sequence[str], title: str, color: str | None = No
     SpecError
         ``color`` is not a column of the table, or not numeric (outcome is the categorical choice).
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
     from pandas.api.types import is_bool_dtype, is_numeric_dtype
 
     check_color(color, {str(c): bool(is_numeric_dtype(frame[c]) or is_bool_dtype(frame[c])) for c in frame.columns})
@@ -62,8 +60,9 @@ def figures(frame: Any, swept: Sequence[str], title: str, color: str | None = No
 
 def _regime(frame: Any, x: str, y: str, title: str, color: str | None) -> Any:
     from matplotlib.colors import ListedColormap
-    from matplotlib.figure import Figure
     from matplotlib.patches import Patch
+
+    from lagsolve.render.picture import Picture as Figure
 
     figure = Figure(figsize=(5.2, 4.2), dpi=100, layout="constrained")
     axes = figure.add_subplot()
@@ -102,7 +101,7 @@ def _edges(centres: np.ndarray) -> np.ndarray:
 
 
 def _bifurcation(frame: Any, x: str, title: str, color: str | None) -> Any:
-    from matplotlib.figure import Figure
+    from lagsolve.render.picture import Picture as Figure
 
     figure = Figure(figsize=(5.2, 3.8), dpi=100, layout="constrained")
     axes = figure.add_subplot()
