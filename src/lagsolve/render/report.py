@@ -25,6 +25,7 @@ from lagsolve.mechanics.derivation import Derivation
 from lagsolve.render.analysis_report import analysis_context, analysis_json, analysis_summary, contract_json
 from lagsolve.render.formats import FORMATS
 from lagsolve.render.hamiltonian_report import hamiltonian_context, hamiltonian_json, hamiltonian_summary
+from lagsolve.render.mathml import typeset
 from lagsolve.render.notation import FILTERS, Notation, symbol_table, to_json
 from lagsolve.render.sections import Sections, build
 from lagsolve.render.sections.core import ConstraintForce
@@ -222,10 +223,11 @@ def render_sections(sections: Sections, fmt: str, templates: Path | None = None,
     if spec.figures == "inline":
         simulation, potential = _inlined(simulation, files or {}), _inlined(potential, files or {})
     try:
-        return template.render(**sections_context(sections, spec.math), simulation=simulation,
+        page = template.render(**sections_context(sections, spec.math), simulation=simulation,
                                potential_plot=potential)
     except jinja2.TemplateError as exc:
         raise RenderError(f"template {kind}/{name} failed: {exc}") from None
+    return typeset(page) if spec.math == "mathml" else page
 
 
 def _inlined(figures: dict[str, Any] | None, files: dict[str, bytes]) -> dict[str, Any] | None:
