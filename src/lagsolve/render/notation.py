@@ -12,6 +12,7 @@ environment in :mod:`lagsolve.render.report`.
 from __future__ import annotations
 
 import re
+import textwrap
 import unicodedata
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
@@ -332,8 +333,22 @@ def tex_lines(text: str) -> str:
     a~~b\\
     \textbackslash{}end\{verbatim\}
     """
-    lines = [tex_escape(line).replace(" ", "~") or "~" for line in str(text).rstrip("\n").split("\n")]
+    lines = [tex_escape(part).replace(" ", "~") or "~" for line in str(text).rstrip("\n").split("\n")
+             for part in _wrapped(line)]
     return "\\\\\n".join(lines)
+
+
+#: characters of \small\ttfamily that fit the printed line (A4, 2.2 cm margins: about 96; kept below)
+TT_LINE = 90
+
+
+def _wrapped(line: str) -> list[str]:
+    """A line longer than :data:`TT_LINE` broken at spaces, continued under its own indentation plus two."""
+    if len(line) <= TT_LINE:
+        return [line]
+    indent = " " * (len(line) - len(line.lstrip()) + 2)
+    return textwrap.wrap(line, TT_LINE, subsequent_indent=indent, break_long_words=True,
+                         break_on_hyphens=False) or [line]
 
 
 def md_code(text: str) -> str:
