@@ -172,6 +172,9 @@ def output_schema() -> dict[str, Any]:
             "on": text, "against": {"type": ["string", "null"]},
             "point": {"anyOf": [{"type": "null"}, texts]},
             "sliding_rate": {"type": ["string", "null"]},
+            "sticking": {"anyOf": [{"type": "null"}, {"type": "object", "properties": {
+                "force": text, "normal_force": text, "least_static_coefficient": {"type": ["string", "null"]}},
+                "required": ["force", "normal_force"]}]},
             "tangent": {"anyOf": [{"type": "null"}, texts]},
             "members": {"type": "object", "additionalProperties": {"type": "object", "properties": {
                 "normal": texts, "friction": texts, "total": texts, "magnitude": text},

@@ -41,6 +41,7 @@ from lagsolve.mechanics.simplify import (
     tidy_sum_light,
 )
 from lagsolve.mechanics.stages import DEFAULT_BUDGET, STAGES, StageNote, Stages, StageTimeout, cpu_limit
+from lagsolve.mechanics.sticking import Sticking, sticking
 from lagsolve.problem.schema import Problem
 
 #: above this many coordinates the equation pieces get the light display simplification
@@ -131,6 +132,11 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     else:
         known = forces
         friction = stages.run("contact forces", lambda: tuple(_contact_forces(r, known) for r in friction)) or friction
+    friction = _held(form, friction, decoupled, elimination, stages) if frictions and raw_lam is not None else friction
+    if not frictions:
+        stages.skip("sticking", "no friction acts", "n/a")
+    elif raw_lam is None:
+        stages.skip("sticking", "needs the explicit multipliers, which were not found (see above)")
     derivation = Derivation(
         problem=problem, model=model, constraints=shown["constraints"], force_terms=shown["force_terms"],
         lagrange=lagrange, elimination=elimination, raw_accelerations=raw_acc, raw_multipliers=raw_lam,
@@ -162,7 +168,7 @@ def later_stages(form: MatrixForm, *, analysis: bool = True) -> tuple[str, ...]:
     friction, and numeric equilibria (a fallback, run only when the symbolic ones do not finish)."""
     absent = {"numeric equilibria"}
     if not form.frictions:
-        absent |= {"normal forces", "contact forces"}
+        absent |= {"normal forces", "contact forces", "sticking"}
     else:
         absent.add("effective potential")
     if not form.constraints:
@@ -212,6 +218,24 @@ def _friction_result(term: FrictionTerm, found: NormalForce | None, substituted:
     force = tuple(_shown_normal(v.xreplace(substituted), elimination) for v in term.force)
     generalized = tuple(_shown_normal(v.xreplace(substituted), elimination) for v in term.generalized)
     return FrictionResult(term, value, found.case, found.valid_while, found.system, force, generalized)
+
+
+def _held(form: MatrixForm, friction: tuple[FrictionResult, ...], known: dict[Any, Any], elimination: Elimination,
+          stages: Stages) -> tuple[FrictionResult, ...]:
+    """Each contact that slides along one line, held (:mod:`lagsolve.mechanics.sticking`): the force that holds it
+    and the least static coefficient that can."""
+    def all_held() -> tuple[FrictionResult, ...]:
+        out = []
+        for result in friction:
+            if result.term.rate is None:
+                out.append(result)
+                continue
+            found = sticking(form, result.term, known, elimination)
+            out.append(dataclasses.replace(result, sticking=found) if isinstance(found, Sticking)
+                       else dataclasses.replace(result, sticking_note=found))
+        return tuple(out)
+
+    return stages.run("sticking", all_held) or friction
 
 
 def _contact_forces(result: FrictionResult, forces: dict[str, ConstraintForce]) -> FrictionResult:

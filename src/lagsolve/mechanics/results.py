@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from lagsolve.mechanics.minimal import ReducedSystem
     from lagsolve.mechanics.model import Model
     from lagsolve.mechanics.stages import StageNote
+    from lagsolve.mechanics.sticking import Sticking
     from lagsolve.problem.schema import Problem
 
 
@@ -73,6 +74,8 @@ class FrictionResult:
     # the force on each member (the one that slides, then the one carrying the surface, if any); empty when the
     # forces of constraint are not known
     members: tuple[ContactForce, ...] = ()
+    sticking: Sticking | None = None  # the contact held: the force that holds it and when it can
+    sticking_note: str = ""  # why ``sticking`` is not given
 
 
 @dataclass(frozen=True)

@@ -39,6 +39,7 @@ STAGES: dict[str, float] = {
     "normal forces": 1.0,
     "forces of constraint": 1.0,
     "contact forces": 0.5,
+    "sticking": 0.5,
     "display simplification": 2.0,
     "constraint classification": 1.0,
     "minimal coordinates": 2.0,

@@ -98,7 +98,9 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
          "valid_while": tex(f.valid_while), "normal_force": both(f.normal_shown),
          "case": f.case, "condition": tex(f.condition) if f.condition is not None else "", "static": tex(f.static),
          "members": [{"name": m.name, "normal": [tex(v) for v in m.normal], "friction": [tex(v) for v in m.friction],
-                      "total": [tex(v) for v in m.total], "magnitude": both(m.magnitude)} for m in f.members]}
+                      "total": [tex(v) for v in m.total], "magnitude": both(m.magnitude)} for m in f.members],
+         "held": None if f.held is None else {"force": tex(f.held[0]), "normal": tex(f.held[1]),
+                                               "ratio": tex(f.held[2]) if f.held[2] is not None else ""}}
         for f in core.friction
     ]
     matrix = core.matrix
@@ -313,6 +315,9 @@ def sections_json(sections: Sections) -> dict[str, Any]:
                 "point": [to_json(c) for c in f.point] if f.point is not None else None,
                 "sliding_rate": to_json(f.rate) if f.rate is not None else None,
                 "tangent": [to_json(c) for c in f.tangent] if f.tangent is not None else None,
+                "sticking": None if f.held is None else {
+                    "force": to_json(f.held[0]), "normal_force": to_json(f.held[1]),
+                    "least_static_coefficient": to_json(f.held[2]) if f.held[2] is not None else None},
                 "members": {m.name: {"normal": [to_json(v) for v in m.normal],
                                      "friction": [to_json(v) for v in m.friction],
                                      "total": [to_json(v) for v in m.total],
@@ -369,6 +374,8 @@ def sections_summary(sections: Sections) -> str:
     for f in core.friction:
         lines.append(f"  friction {f.name}: normal force {text(f.normal)} = {text(f.normal_shown)}")
         lines += [f"    |F| on {m.name} (normal force and friction) = {text(m.magnitude)}" for m in f.members]
+        if f.held is not None and f.held[2] is not None:
+            lines.append(f"    sticks while mu_s >= {text(f.held[2])} (holding force {text(f.held[0])})")
     lines += analysis_summary(sections.analysis, note)
     lines += hamiltonian_summary(sections.hamiltonian, note)
     if core.notes:

@@ -211,6 +211,8 @@ class Friction:
     force: tuple[Expr, ...]  # the friction force with N put in
     generalized: tuple[tuple[Coordinate, Expr], ...]  # its generalized forces with N put in
     members: tuple[ContactMember, ...]  # the force on each member (empty when the forces are not known)
+    held: tuple[Expr, Expr, Expr] | None = None  # while it sticks: the force Φ that holds it, N, and |Φ|/N
+    held_note: str = ""  # why ``held`` is not given
 
 
 @dataclass(frozen=True)
@@ -353,4 +355,6 @@ def _friction(f: Any, coords: tuple[Coordinate, ...], derivation: Derivation) ->
         generalized=tuple(zip(coords, f.generalized or term.generalized, strict=True)),
         members=tuple(ContactMember(m.member, tuple(m.normal), tuple(m.friction), tuple(m.total), m.magnitude)
                       for m in f.members),
+        held=None if f.sticking is None else (f.sticking.force, f.sticking.normal, f.sticking.ratio),
+        held_note=f.sticking_note,
     )
