@@ -31,15 +31,10 @@ from lagsolve.mechanics.constraints import constraint_terms
 from lagsolve.mechanics.contact import ContactCheck, check_point
 from lagsolve.mechanics.equilibria import EffectivePotential, effective_potential
 from lagsolve.mechanics.integrability import classify_all
-from lagsolve.mechanics.linearize import (
-    Linearization,
-    applies,
-    complete_numerically,
-    linearize,
-    numeric_linearization,
-)
+from lagsolve.mechanics.linearize import Linearization, applies, linearize
 from lagsolve.mechanics.minimal import ReducedSystem, reduce_system
 from lagsolve.mechanics.minimal_chart import MinimalChart, minimal_chart
+from lagsolve.mechanics.numeric_equilibria import complete_numerically, numeric_linearization
 from lagsolve.mechanics.results import Analysis
 from lagsolve.mechanics.stages import Stages
 from lagsolve.mechanics.surface import constraint_surface
