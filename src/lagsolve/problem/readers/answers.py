@@ -175,7 +175,8 @@ class AnswersReader(Reader):
             return None
         raw = item[key]
         if not isinstance(raw, list) or not raw:
-            self.issue((*path, key), f"expected a non-empty list, found {kind_of(raw)}", f"write e.g. {example}")
+            found = "an empty list" if raw == [] else kind_of(raw)
+            self.issue((*path, key), f"expected a non-empty list, found {found}", f"write e.g. {example}")
             return None
         parsed = [parse((*path, key, k), v) for k, v in enumerate(raw)]
         return None if any(p is None for p in parsed) else tuple(parsed)
