@@ -109,7 +109,8 @@ def test_normal_modes_in_every_projection():
     html = render(pendulums, "html")
     assert "<mi>u</mi><mo>=</mo><mrow><mo>(</mo><mn>1</mn><mo>,</mo><mn>-1</mn><mo>)</mo></mrow>" in html
     text = summary(pendulums)
-    assert "θ1 = 0, θ2 = 0: stable\n      ω² = g/l, mode shape (1, 1)\n      ω² = g/l + 2*k/m, mode shape (1, -1)" in text
+    assert ("θ1 = 0, θ2 = 0: stable\n      ω² = g/l, mode shape (1, 1)\n"
+            "      ω² = g/l + 2*k/m, mode shape (1, -1)") in text
 
 
 def test_numeric_modes_are_labelled_in_the_json():
@@ -117,3 +118,13 @@ def test_numeric_modes_are_labelled_in_the_json():
     down = result_dict(derived_file("triple_pendulum"))["analysis"]["linearization"]["equilibria"][0]
     assert "numeric, at the simulation values" in down["note"]
     assert [float(x) for x in down["mode_shapes"][0].values()] == pytest.approx([1.0, 1.2921127, 1.6312233])
+
+
+def test_the_readme_shows_the_modes_lagsolve_prints():
+    """The README's coupled-pendulum excerpt is the terminal summary's equilibria block, line for line."""
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
+    (block,) = [b for b in readme.split("```\n")[1::2] if "mode shape (1, 1)" in b]
+    assert block.startswith("  equilibria:\n")
+    assert block in summary(derived_file("coupled_pendulums")) + "\n"
