@@ -135,7 +135,10 @@ class _Search:
         self._try(live, fixed, unknown)
 
     def _fix(self, equations: list[Any], fixed: dict[Any, Any], q: Any, value: Any) -> None:
-        """Go on with ``q = value`` put into the equations and into the values already fixed."""
+        """Go on with ``q = value`` put into the equations and into the values already fixed (not when the value
+        contradicts what ``q`` is declared to be: 0 for a positive coordinate)."""
+        if (q.is_positive and value.is_positive is False) or (q.is_nonnegative and value.is_negative):
+            return
         step = {q: value}
         moved = {k: v.xreplace(step) for k, v in fixed.items()}
         moved[q] = value
