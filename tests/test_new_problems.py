@@ -149,7 +149,8 @@ def test_coupled_pendulums_accelerations_and_energy() -> None:
 
 
 def test_coupled_pendulums_normal_modes() -> None:
-    """Linearized at θ = 0 (mass matrix and Hessian of V from the independent route): ω² = g/l and g/l + 2k/m."""
+    """Linearized at θ = 0 (mass matrix and Hessian of V from the independent route): ω² = g/l and g/l + 2k/m,
+    and the file's expected normal modes are these, each shape an eigenvector of M0⁻¹K for its ω²."""
     _, energy, mass = coupled()
     names = sympy.symbols("theta1 theta2", real=True)
     zero = {n: 0 for n in names} | {sympy.Symbol(f"{n}_dot", real=True): 0 for n in names}
@@ -157,9 +158,19 @@ def test_coupled_pendulums_normal_modes() -> None:
     stiffness = sympy.hessian(potential, names).xreplace(zero)
     m, g, length, k = sympy.symbols("m g l k", positive=True)
     values = {m: 1.3, g: 9.81, length: 0.7, k: 2.1}
-    omega2 = np.linalg.eigvals(np.array((mass.xreplace(zero).inv() * stiffness).xreplace(values), dtype=float))
+    block = np.array((mass.xreplace(zero).inv() * stiffness).xreplace(values), dtype=float)
+    omega2 = np.linalg.eigvals(block)
     want = [9.81 / 0.7, 9.81 / 0.7 + 2 * 2.1 / 1.3]
     assert sorted(omega2.real) == pytest.approx(want, rel=1e-12)
+    prob = problem("coupled_pendulums")
+    (modes,) = prob.expected.normal_modes
+    assert {n: float(v) for n, v in modes.at.items()} == {"theta1": 0.0, "theta2": 0.0} and modes.stable is True
+    plain = {s.name: v for s, v in values.items()}
+    for w, shape in zip(modes.squared_frequencies, modes.shapes, strict=True):
+        w_value = evaluate(w, prob, plain)
+        vector = np.array([evaluate(c, prob, plain) for c in shape])
+        assert block @ vector == pytest.approx(w_value * vector, rel=1e-12)
+    assert sorted(evaluate(w, prob, plain) for w in modes.squared_frequencies) == pytest.approx(want, rel=1e-12)
 
 
 def energy_rate(energy: Any, names: Sequence[str]) -> Callable[[Mapping[str, float], np.ndarray], float]:

@@ -100,6 +100,12 @@ def input_schema() -> dict[str, Any]:
             "effective_potential": _closed({"coordinate": {"$ref": "#/$defs/name"}, "expression": expr,
                                             "equilibria": {"type": "array", "items": equilibrium}},
                                            ("coordinate",)),
+            "normal_modes": {"type": "array", "items": _closed({
+                "at": _by_name(expr), "stable": {"type": "boolean"},
+                "squared_frequencies": {"type": "array", "items": expr, "minItems": 1},
+                "shapes": {"type": "array", "items": {"type": "array", "items": expr, "minItems": 1}, "minItems": 1,
+                           "description": "one mode shape per squared frequency, a component per coordinate"},
+            }, ("at",))},
         }),
         "simulation": _closed({
             "values": _by_name({"type": "number"}),

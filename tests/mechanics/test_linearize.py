@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from typing import Any
+
+import pytest
 import sympy
 
 from mechanics_support import derived_file, derived_text, exactly_equal, names
@@ -130,20 +133,6 @@ simulation:
     assert "every configuration" in mode.note
 
 
-def test_numeric_equilibria_show_one_point_of_a_continuum():
-    """The numeric multi-start lands anywhere on a continuum of equilibria; one point of it is listed, marked
-    as not isolated, and its zero omega^2 is not read as instability."""
-    from lagsolve.mechanics.linearize import numeric_linearization
-
-    system = derived_file("two_masses_spring").analysis.system
-    values = {"m1": 1.0, "m2": 2.0, "k": 5.0, "L0": 1.0}
-    (mode,) = numeric_linearization(system, values, {"x1": 0.0, "x2": 1.0}).modes
-    point = {q.name: float(v) for q, v in mode.point}
-    assert abs(point["x2"] - point["x1"] - 1.0) < 1e-9
-    assert "continuum" in mode.note and mode.stable is None
-    assert sorted(float(w) for w in mode.squared_frequencies) == [0.0, 7.5]  # k (m1 + m2)/(m1 m2)
-
-
 def test_a_singular_point_of_the_coordinates_is_no_equilibrium():
     """The elastic pendulum in polar coordinates: F(q, 0) = 0 also at r = 0, but only because the theta
     equation carries the factor r of M (the true theta_ddot = -(2 r_dot theta_dot + g sin theta)/r is
@@ -215,3 +204,136 @@ def test_determinants_over_a_shared_integer_ring_equal_sympys():
                   matrix + sympy.eye(3) * sympy.cos(g), sympy.eye(3) * 2):
         assert _over_integers(other) is None
         assert sympy.expand(_determinant(other) - other.det(method="berkowitz")) == 0
+
+
+# -- normal modes against independent routes ----------------------------------------------------------------
+
+
+def _lagranges_method(kind: str) -> tuple[Any, list[Any], dict[str, Any]]:
+    """SymPy's LagrangesMethod, built here from points and particles (an independent route), for the two
+    pendulums joined by a spring (``"spring"``) or the double pendulum (``"double"``) of equal masses and rods."""
+    from sympy.physics import mechanics as me
+
+    qs = list(me.dynamicsymbols("theta1 theta2"))
+    m, g, rod, k = sympy.symbols("m g l k", positive=True)
+    frame, origin = me.ReferenceFrame("N"), me.Point("O")
+    origin.set_vel(frame, 0)
+    particles, anchor = [], origin
+    for i, q in enumerate(qs):
+        base = anchor if kind == "double" else origin
+        p = base.locatenew(f"P{i}", rod * sympy.sin(q) * frame.x - rod * sympy.cos(q) * frame.y)
+        p.set_vel(frame, p.pos_from(origin).dt(frame))
+        particle = me.Particle(f"p{i}", p, m)
+        particle.potential_energy = m * g * p.pos_from(origin).dot(frame.y)
+        particles.append(particle)
+        anchor = p
+    lagrangian = me.Lagrangian(frame, *particles)
+    if kind == "spring":
+        lagrangian -= k * (rod * sympy.sin(qs[1]) - rod * sympy.sin(qs[0])) ** 2 / 2
+    method = me.LagrangesMethod(lagrangian, qs)
+    method.form_lagranges_equations()
+    return method, qs, {"m": m, "g": g, "l": rod, "k": k}
+
+
+def _linear_block(method: Any, qs: list[Any], point: dict[str, Any]) -> Any:
+    """-M0⁻¹K from LagrangesMethod's own linearization at ``point`` (the lower left block of its A)."""
+    from sympy.physics import mechanics as me
+
+    t = me.dynamicsymbols._t
+    rates = [q.diff(t) for q in qs]
+    op = {q: point[q.name] for q in qs} | {v: 0 for v in rates} | {q.diff(t, 2): 0 for q in qs}
+    A, _, _ = method.linearize(q_ind=qs, qd_ind=rates, A_and_B=True, op_point=op)
+    return A[len(qs):, :len(qs)]
+
+
+def _check_against_lagranges_method(derivation: Any, kind: str) -> None:
+    """At every equilibrium lagsolve lists, at random parameter values: its ω² are the eigenvalues of
+    LagrangesMethod's -A21 = M0⁻¹K and each shape u solves M0⁻¹K u = ω² u."""
+    import random
+
+    import numpy as np
+
+    method, qs, params = _lagranges_method(kind)
+    rng = random.Random(11)
+    for mode in derivation.analysis.linearization.modes:
+        block = -_linear_block(method, qs, {q.name: v for q, v in mode.point})
+        for _ in range(4):
+            values = {name: rng.uniform(0.5, 2.5) for name in params}
+            ours = {s: values[s.name] for w in mode.squared_frequencies for s in w.free_symbols}
+            numbers = np.array(block.xreplace({params[n]: v for n, v in values.items()}).tolist(), dtype=float)
+            want = np.sort(np.linalg.eigvals(numbers).real)
+            got = sorted(float(w.xreplace(ours)) for w in mode.squared_frequencies)
+            assert got == pytest.approx(list(want), rel=1e-10, abs=1e-10)
+            for w, u in zip(mode.squared_frequencies, mode.shapes, strict=True):
+                at = {s: values[s.name] for e in (w, *u) for s in e.free_symbols}
+                vector = np.array([float(c.xreplace(at)) for c in u])
+                assert numbers @ vector == pytest.approx(float(w.xreplace(at)) * vector, rel=1e-9, abs=1e-9)
+
+
+def test_coupled_pendulums_modes_in_closed_form() -> None:
+    """The two pendulums joined by a spring (problems/coupled_pendulums.yaml), the issue's textbook case: hanging
+    down, ω² = g/l in phase, u = (1, 1), and ω² = g/l + 2k/m out of phase, u = (1, -1) (Taylor, ch. 11;
+    Thornton & Marion, ch. 12), in closed form and without a stage running out of its share; the four
+    equilibria and their modes agree with SymPy's LagrangesMethod linearized there."""
+    pendulums = derived_file("coupled_pendulums")
+    s = names(pendulums.problem)
+    g, rod, k, m = s["g"], s["l"], s["k"], s["m"]
+    assert not pendulums.notes
+    linear = pendulums.analysis.linearization
+    assert len(linear.modes) == 4 and "finds no other" in linear.search
+    down = linear.modes[0]
+    assert all(v == 0 for _, v in down.point) and down.stable is True
+    assert exactly_equal(down.squared_frequencies[0], g / rod)
+    assert exactly_equal(down.squared_frequencies[1], g / rod + 2 * k / m)
+    assert down.shapes == ((1, 1), (1, -1))
+    assert sorted(mode.stable for mode in linear.modes) == [False, False, False, True]
+    _check_against_lagranges_method(pendulums, "spring")
+
+
+def test_double_pendulum_mode_shapes() -> None:
+    """The double pendulum hanging down: θ2/θ1 = √2 in the slow mode and -√2 in the fast one (Taylor, §11.4),
+    and at every equilibrium the modes are LagrangesMethod's."""
+    pendulum = derived_file("double_pendulum")
+    down = pendulum.analysis.linearization.modes[0]
+    assert down.shapes == ((1, sympy.sqrt(2)), (1, -sympy.sqrt(2)))
+    _check_against_lagranges_method(pendulum, "double")
+
+
+def _period(times: Any, signal: Any) -> float:
+    """The mean time between upward zero crossings of ``signal`` (linear interpolation between samples)."""
+    import numpy as np
+
+    crossings = [times[i] - signal[i] * (times[i + 1] - times[i]) / (signal[i + 1] - signal[i])
+                 for i in range(len(signal) - 1) if signal[i] < 0 <= signal[i + 1]]
+    return float(np.mean(np.diff(crossings)))
+
+
+def test_a_small_oscillation_started_in_a_mode_keeps_its_shape_and_period() -> None:
+    """Started at rest at ε u (ε = 1e-4) from each of lagsolve's mode shapes hanging down, the full nonlinear
+    motion (LagrangesMethod's equations, integrated by SciPy) keeps θ2 = u2 θ1 and repeats with the period
+    2π/ω of that mode."""
+    import numpy as np
+    from scipy.integrate import solve_ivp
+    from sympy.physics import mechanics as me
+
+    values = {"m": 1.0, "g": 9.81, "l": 1.0, "k": 2.0}
+    method, qs, params = _lagranges_method("spring")
+    t = me.dynamicsymbols._t
+    plain = {q.diff(t): sympy.Symbol(f"v{i}") for i, q in enumerate(qs)} | {q: sympy.Symbol(f"q{i}")
+                                                                             for i, q in enumerate(qs)}
+    numbers = {params[n]: v for n, v in values.items()}
+    state = [plain[q] for q in qs] + [plain[q.diff(t)] for q in qs]
+    mass = sympy.lambdify([state], me.msubs(method.mass_matrix_full, plain).xreplace(numbers), "numpy")
+    forcing = sympy.lambdify([state], me.msubs(method.forcing_full, plain).xreplace(numbers), "numpy")
+
+    def rates(_: float, y: Any) -> Any:
+        return np.linalg.solve(np.array(mass(y), dtype=float), np.array(forcing(y), dtype=float).ravel())
+
+    down = derived_file("coupled_pendulums").analysis.linearization.modes[0]
+    for w, u in zip(down.squared_frequencies, down.shapes, strict=True):
+        omega = float(sympy.sqrt(w).xreplace({s: values[s.name] for s in w.free_symbols}))
+        shape = np.array([float(c) for c in u])
+        times = np.linspace(0, 6 * 2 * np.pi / omega, 6001)
+        run = solve_ivp(rates, (0, times[-1]), [*(1e-4 * shape), 0.0, 0.0], t_eval=times, rtol=1e-11, atol=1e-15)
+        assert _period(run.t, run.y[0]) == pytest.approx(2 * np.pi / omega, rel=1e-5)
+        assert np.max(np.abs(run.y[1] - shape[1] * run.y[0])) <= 1e-8

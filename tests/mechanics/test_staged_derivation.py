@@ -98,9 +98,10 @@ def test_json_of_a_partial_result_keeps_its_keys_with_null_and_notes() -> None:
     assert any(n["stage"] == "explicit solve" and n["kind"] == "size" for n in data["notes"])
 
 
-def test_analysis_without_closed_form_still_gives_the_accelerations() -> None:
-    """Coupled pendulums: the symbolic equilibrium solve has no closed form within its share, yet the JSON
-    has the accelerations (Newton: m l θ̈1 = -m g sin θ1 + k l cos θ1 (sin θ2 - sin θ1)) and a note."""
+def test_a_small_budget_still_gives_the_accelerations() -> None:
+    """Coupled pendulums under a budget of 6 s: whether or not the equilibria finish within their small share,
+    the JSON has the accelerations (Newton: m l θ̈1 = -m g sin θ1 + k l cos θ1 (sin θ2 - sin θ1)), and either
+    the equilibria or a note naming their stage."""
     derivation = derive(load_text(SPRING, "spring.yaml"), budget=6.0)
     data = json.loads(result_json(derivation))
     assert set(data["accelerations"]) == {"theta1", "theta2"}
@@ -108,20 +109,28 @@ def test_analysis_without_closed_form_still_gives_the_accelerations() -> None:
     t1, t2, m, g, rod, k = (s[n] for n in ("theta1", "theta2", "m", "g", "l", "k"))
     newton = -g / rod * sympy.sin(t1) + k / m * sympy.cos(t1) * (sympy.sin(t2) - sympy.sin(t1))
     assert sympy.simplify(derivation.accelerations["theta1"] - newton) == 0
-    assert any(n["stage"] == "equilibria and normal modes" for n in data["notes"])
+    assert data["analysis"]["linearization"].get("equilibria") or any(
+        n["stage"] == "equilibria and normal modes" for n in data["notes"])
 
 
-def test_numeric_normal_modes_of_coupled_pendulums() -> None:
-    """Where the equilibria have no closed form within budget, numeric ones at the simulation values are
-    given: hanging straight down, ω² = g/l and g/l + 2k/m (in phase and out of phase)."""
-    derivation = derive(load_text(SPRING, "spring.yaml"), budget=6.0)
-    modes = derivation.analysis.linearization.modes
-    down = modes[0]
-    assert [float(v) for _, v in down.point] == [0.0, 0.0]
-    assert [float(w) for w in down.squared_frequencies] == pytest.approx([9.81, 9.81 + 2 * 2.0], rel=1e-6)
-    assert down.stable is True and "numeric" in down.note
-    points = {tuple(round(float(v), 6) for _, v in mode.point) for mode in modes}
-    assert (round(np.pi, 6), round(np.pi, 6)) in points and len(points) == len(modes)
+def test_coupled_pendulums_modes_without_a_general_solve() -> None:
+    """The symbolic solve of the coupled equations does not finish, yet with the default budget the equilibria
+    come in closed form from the obvious values of θ1, each checked, and the modes hanging down are the
+    textbook ω² = g/l and g/l + 2k/m (in phase and out of phase); no stage is left out, and the numeric search
+    at the simulation values finds no other equilibrium."""
+    derivation = derive(load_text(SPRING, "spring.yaml"))
+    assert derivation.notes == ()
+    linear = derivation.analysis.linearization
+    down = linear.modes[0]
+    assert all(v == 0 for _, v in down.point)
+    s = {p.name: p.symbol for p in derivation.problem.parameters}
+    g, rod, k, m = s["g"], s["l"], s["k"], s["m"]
+    assert [sympy.simplify(w - e) for w, e in zip(down.squared_frequencies, (g / rod, g / rod + 2 * k / m),
+                                                   strict=True)] == [0, 0]
+    assert down.stable is True and down.note == ""
+    points = {tuple(v for _, v in mode.point) for mode in linear.modes}
+    assert points == {(0, 0), (0, sympy.pi), (sympy.pi, 0), (sympy.pi, sympy.pi)}
+    assert "did not finish within 0.5 s" in linear.search and "finds no other" in linear.search
 
 
 def test_triple_pendulum_frequencies_are_numeric_not_radicals() -> None:

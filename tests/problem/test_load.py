@@ -69,6 +69,11 @@ expected:
     coordinate: x
     expression: k*x**2/2
     equilibria: [{value: 0, stable: true, frequency: "sqrt(k/m)"}]
+  normal_modes:
+    - at: {x: 0, phi: pi}
+      stable: false
+      squared_frequencies: [k/m, "-g/M"]
+      shapes: [[1, 0, 1], [0, 1, "k/M"]]
 simulation:
   values: {m: 1.0, g: 9.81, k: 2, c: 0.1, F0: 1, w: 1, mu: 0.1, I1: 1, I3: 1}
   functions: {"f(u)": "u**2/2"}
@@ -210,6 +215,10 @@ def test_full_problem_expected_answers(full: Problem) -> None:
     assert potential is not None and potential["coordinate"] == "x"
     assert potential["equilibria"] == (
         {"value": 0, "stable": True, "frequency": sympy.sqrt(s["k"] / s["m"])},)
+    (modes,) = expected.normal_modes
+    assert modes["at"] == {"x": 0, "phi": sympy.pi} and modes["stable"] is False
+    assert modes["squared_frequencies"] == (s["k"] / s["m"], -s["g"] / s["M"])
+    assert modes["shapes"] == ((1, 0, 1), (0, 1, s["k"] / s["M"]))
     assert not expected.is_empty()
 
 
@@ -231,7 +240,7 @@ def test_full_problem_lines(full: Problem) -> None:
     assert full.lines["name"] == 1
     assert full.lines["constraints.wire.holonomic"] == 34
     assert full.lines["friction.wall.normal"] == 41
-    assert full.lines["simulation.atol"] == 61
+    assert full.lines["simulation.atol"] == 66
 
 
 def test_planar_body() -> None:
@@ -482,6 +491,20 @@ INVALID = [
     ("equilibria-not-a-list", BEAD + "expected:\n  effective_potential: {coordinate: x, "
      "equilibria: 3}\n", 1, 14, "expected.effective_potential.equilibria",
      "expected a list, found a number (3)"),
+    ("normal-modes-not-a-list", BEAD + "expected:\n  normal_modes: {at: {x: 0}}\n", 1, 14,
+     "expected.normal_modes", "expected a list, found a mapping"),
+    ("normal-modes-without-at", BEAD + "expected:\n  normal_modes: [{stable: true}]\n", 1, 14,
+     "expected.normal_modes[0]", "missing required key 'at'"),
+    ("normal-modes-unknown-coordinate", BEAD + "expected:\n  normal_modes: [{at: {z: 0}}]\n", 1, 14,
+     "expected.normal_modes[0].at.z", "unknown coordinate 'z'; known coordinates: x, y"),
+    ("normal-modes-shape-size", BEAD + "expected:\n  normal_modes: [{at: {x: 0, y: 0}, squared_frequencies: [g], "
+     "shapes: [[1, 0, 0]]}]\n", 1, 14, "expected.normal_modes[0].shapes[0]",
+     "expected a list of 2 components (one per coordinate), found 3 components"),
+    ("normal-modes-shape-count", BEAD + "expected:\n  normal_modes: [{at: {x: 0, y: 0}, squared_frequencies: [g], "
+     "shapes: [[1, 0], [0, 1]]}]\n", 1, 14, "expected.normal_modes[0].shapes",
+     "expected one shape per squared frequency (1), found 2"),
+    ("normal-modes-empty-frequencies", BEAD + "expected:\n  normal_modes: [{at: {x: 0}, squared_frequencies: []}]"
+     "\n", 1, 14, "expected.normal_modes[0].squared_frequencies", "expected a non-empty list, found an empty list"),
     ("expected-unknown-coordinate", BEAD + "expected:\n  accelerations: {z: 1}\n", 1, 14,
      "expected.accelerations.z", "unknown coordinate 'z'; known coordinates: x, y"),
     ("three-d-body-with-2-moments", BEAD + "bodies:\n  disk: {mass: m, position: [x, y], "

@@ -91,3 +91,40 @@ def test_summary_shows_the_analysis(hole):
     assert "p_θ = m1*r²*θ̇" in text
     assert "V_eff(r) = g*m2*r + p_θ²/(2*m1*r²)" in text
     assert "r_0³ = p_θ²/(g*m1*m2): stable, ω² = 3*g*m2/(r_0*(m1 + m2))" in text
+
+
+def test_normal_modes_in_every_projection():
+    """The coupled pendulums' modes hanging down: in the JSON each ω² with its shape by coordinate and the note
+    on how the equilibria were found; in Markdown and HTML each ω² beside its shape; in the terminal one line
+    per mode."""
+    pendulums = derived_file("coupled_pendulums")
+    linear = result_dict(pendulums)["analysis"]["linearization"]
+    down = linear["equilibria"][0]
+    assert down["squared_frequencies"] == ["g/l", "g/l + 2*k/m"]
+    assert down["mode_shapes"] == [{"theta1": "1", "theta2": "1"}, {"theta1": "1", "theta2": "-1"}]
+    assert "Found without a general solve" in linear["search"] and "finds no other" in linear["search"]
+    md = render(pendulums, "md")
+    assert r"$`\omega^2 = \frac{g}{l}`$ with $`u = \left(1, 1\right)`$ and" in md
+    assert r"$`u = \left(1, -1\right)`$: **stable**" in md
+    html = render(pendulums, "html")
+    assert "<mi>u</mi><mo>=</mo><mrow><mo>(</mo><mn>1</mn><mo>,</mo><mn>-1</mn><mo>)</mo></mrow>" in html
+    text = summary(pendulums)
+    assert ("θ1 = 0, θ2 = 0: stable\n      ω² = g/l, mode shape (1, 1)\n"
+            "      ω² = g/l + 2*k/m, mode shape (1, -1)") in text
+
+
+def test_numeric_modes_are_labelled_in_the_json():
+    """Where ω² are numeric (the triple pendulum hanging down) the equilibrium's note says so in the JSON too."""
+    down = result_dict(derived_file("triple_pendulum"))["analysis"]["linearization"]["equilibria"][0]
+    assert "numeric, at the simulation values" in down["note"]
+    assert [float(x) for x in down["mode_shapes"][0].values()] == pytest.approx([1.0, 1.2921127, 1.6312233])
+
+
+def test_the_readme_shows_the_modes_lagsolve_prints():
+    """The README's coupled-pendulum excerpt is the terminal summary's equilibria block, line for line."""
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
+    (block,) = [b for b in readme.split("```\n")[1::2] if "mode shape (1, 1)" in b]
+    assert block.startswith("  equilibria:\n")
+    assert block in summary(derived_file("coupled_pendulums")) + "\n"

@@ -92,6 +92,25 @@ def test_the_browser_renders_the_math(bead: Derivation, browser: Any, tmp_path: 
     assert errors == []
 
 
+def test_the_browser_renders_the_normal_modes(browser: Any, tmp_path: Path,
+                                              shipped_derivation: Callable[[str], Derivation]) -> None:
+    """The coupled pendulums' page: each equilibrium's ω² and mode shapes are MathML that Chromium lays out,
+    and the sentence on how the equilibria were found is there."""
+    page = tmp_path / "coupled.html"
+    page.write_text(render(shipped_derivation("coupled_pendulums"), "html"), encoding="utf-8")
+    browser.get(page.as_uri())
+    items = browser.execute_script(
+        "const h = document.getElementById('equilibria'); const list = h.nextElementSibling.nextElementSibling;"
+        "return [h.nextElementSibling.textContent, Array.from(list.querySelectorAll('li')).map(li => "
+        "Array.from(li.querySelectorAll('math')).map(m => m.getBoundingClientRect().width > 0 && "
+        "m.getBoundingClientRect().height > 0))];")
+    sentence, sizes = items
+    assert "Found without a general solve" in sentence
+    assert len(sizes) == 4 and all(len(maths) >= 7 and all(maths) for maths in sizes)
+    errors = [entry for entry in browser.get_log("browser") if entry["level"] in ("SEVERE", "ERROR")]
+    assert errors == []
+
+
 def test_cli_writes_the_html_report(tmp_path: Path) -> None:
     """`lagsolve derive --format html -o FILE.html` writes the page."""
     from click.testing import CliRunner

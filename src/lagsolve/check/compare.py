@@ -101,8 +101,9 @@ class Verdict:
     """The verdict on one expected quantity.
 
     ``quantity`` is the result key (``accelerations``, ``multipliers``, ``constraint_forces``,
-    ``reduced``, ``conserved``, ``effective_potential``) and ``name`` the entry (``x``, ``wire``,
-    ``wire.vector``, ``energy``, ``expression``, ``equilibria[0].frequency``). ``status`` is one
+    ``reduced``, ``conserved``, ``effective_potential``, ``normal_modes``) and ``name`` the entry (``x``,
+    ``wire``, ``wire.vector``, ``energy``, ``expression``, ``equilibria[0].frequency``,
+    ``normal_modes[0].squared_frequencies[1]``). ``status`` is one
     of ok, warning, mismatch, unchecked; ``reason`` one of the module's reason constants.
     ``expected`` and ``derived`` hold the components compared (one for a scalar).
     ``factor`` (E = factor·D), ``offset`` (E = D + offset) and ``condition`` (where the answer
@@ -221,6 +222,9 @@ def check(derivation: Derivation, *, states: int = STATES, seed: int = 0) -> Che
     checker = _Checker(derivation, items, states, seed)
     verdicts = [checker.verdict(item) for item in items]
     verdicts += checker.equilibria()
+    from lagsolve.check.modes import mode_verdicts  # it builds on this module's verdicts
+
+    verdicts += mode_verdicts(checker, derivation)
     return CheckReport(problem.name, problem.source, tuple(c.name for c in problem.coordinates), tuple(verdicts))
 
 

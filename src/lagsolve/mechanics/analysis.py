@@ -31,9 +31,10 @@ from lagsolve.mechanics.constraints import constraint_terms
 from lagsolve.mechanics.contact import ContactCheck, check_point
 from lagsolve.mechanics.equilibria import EffectivePotential, effective_potential
 from lagsolve.mechanics.integrability import classify_all
-from lagsolve.mechanics.linearize import Linearization, applies, linearize, numeric_linearization
+from lagsolve.mechanics.linearize import Linearization, applies, linearize
 from lagsolve.mechanics.minimal import ReducedSystem, reduce_system
 from lagsolve.mechanics.minimal_chart import MinimalChart, minimal_chart
+from lagsolve.mechanics.numeric_equilibria import complete_numerically, numeric_linearization
 from lagsolve.mechanics.results import Analysis
 from lagsolve.mechanics.stages import Stages
 from lagsolve.mechanics.surface import constraint_surface
@@ -113,6 +114,11 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
             else:
                 linear_note += f"; {_stage_reason(stages, 'numeric equilibria')}"
                 stages.settle("numeric equilibria")  # the analysis section says it
+        elif linear is not None and not linear.complete and spec is not None and not problem.functions:
+            # closed-form equilibria that may not be all: the others are looked for numerically
+            completed = stages.run("numeric equilibria", complete_numerically, linear, system, dict(spec.values),
+                                   dict(spec.initial))
+            linear = completed if completed is not None else linear
     else:
         stages.skip("equilibria and normal modes", "the effective potential covers this system", "n/a")
     effective_contact, modes_contact = _contact(derivation, reduced, effective, linear)

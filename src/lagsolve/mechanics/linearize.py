@@ -14,11 +14,22 @@ with :math:`M_0 = M(q_0)`. Without gyroscopic (G) and damping (D) terms the norm
 :math:`\omega^2` are the eigenvalues of :math:`M_0^{-1}K`; the equilibrium is stable when all
 of them are positive and unstable when one is negative.
 
+Each normal mode has a shape u, :math:`(K - \omega^2 M_0)\,u = 0` (:mod:`lagsolve.mechanics.mode_shapes`).
+
+The equilibria are found in closed form first without a general solve
+(:mod:`lagsolve.mechanics.static_roots`: factors in one coordinate, linear equations, and, where neither
+applies, the obvious values of a coordinate, each checked in :math:`F(q, 0) = 0`); only when that search
+cannot tell it has found every equilibrium does ``sympy.solve`` get a short, bounded try
+(:data:`GENERAL_SOLVE_CAP`), and
+:func:`~lagsolve.mechanics.numeric_equilibria.complete_numerically` then looks for the others at the simulation
+values.
+
 Notes
 -----
-* Equilibria are solved symbolically only for small equations (at most 3 coordinates);
-  larger systems are skipped rather than risking a long solve.
-* Normal modes are computed for up to 3 coordinates (a cubic in ω² at most).
+* Equilibria are found symbolically only for at most 3 coordinates; larger systems are skipped
+  rather than risking a long solve.
+* Normal modes are computed for up to 3 coordinates (a cubic in ω² at most); ω² are symbolic when the
+  characteristic polynomial splits into real factors of degree 2 or less, else numeric at the simulation values.
 """
 
 from __future__ import annotations
@@ -34,11 +45,19 @@ from lagsolve.mechanics.algebra import ops
 from lagsolve.mechanics.conserved import MotionSystem
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.lagrange import lagrange_terms
+from lagsolve.mechanics.mode_shapes import exact_shapes, numeric_shapes
 from lagsolve.mechanics.signs import sign_core
 from lagsolve.mechanics.simplify import tidy
+from lagsolve.mechanics.static_roots import same_solution, static_roots
 
-#: equations F(q, 0) larger than this (operations) are not solved
+#: equations F(q, 0) larger than this (operations) are not given to ``sympy.solve``
 SOLVE_LIMIT = 60
+#: equations F(q, 0) larger than this (operations) are not taken apart either
+SEARCH_LIMIT = 400
+#: CPU seconds ``sympy.solve`` may take once the cheap search has found equilibria but cannot tell it found all
+#: (every system it solves among the shipped problems takes under 0.1 s; the two pendulums joined by a spring
+#: do not finish in 10 s)
+GENERAL_SOLVE_CAP = 0.5
 MAX_COORDINATES = 3
 MAX_EQUILIBRIA = 8
 
@@ -53,7 +72,9 @@ class Mode:
     roots (None for a negative one); ``stable`` True/False/None. ``free`` are the coordinates
     left arbitrary when the equilibria are not isolated (a continuum, e.g. two masses joined by a
     spring, translated together): ``point`` then gives the others in terms of them, and the
-    zero ω² along the continuum is neutral, not a sign of instability.
+    zero ω² along the continuum is neutral, not a sign of instability. ``shapes`` holds one mode
+    shape u per ω² (same order; None where ω² are not given or a shape is not found), with
+    :math:`(K - \\omega^2 M_0)u = 0` and its first non-zero component 1.
     """
 
     point: tuple[tuple[Any, Any], ...]
@@ -66,14 +87,19 @@ class Mode:
     stable: bool | None
     note: str = ""
     free: tuple[Any, ...] = ()
+    shapes: tuple[tuple[Any, ...], ...] | None = None
 
 
 @dataclass(frozen=True)
 class Linearization:
-    """Every equilibrium found for ``coordinates``, with its small-oscillation analysis."""
+    """Every equilibrium found for ``coordinates``, with its small-oscillation analysis. ``complete`` is False
+    when equilibria other than these may exist in closed form; ``search`` then says how these were found and
+    what was done about the others."""
 
     coordinates: tuple[Any, ...]
     modes: tuple[Mode, ...]
+    search: str = ""
+    complete: bool = True
 
 
 def applies(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool) -> str:
@@ -110,17 +136,11 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
     terms = lagrange_terms(model, (), system.generalized_forces, engine="symengine")
     rest = {v: 0 for v in model.velocities}
     static = [tidy(f.xreplace(rest)) for f in terms.forcing]
-    if any(ops(f) > SOLVE_LIMIT for f in static):
-        return None, "the equilibrium equations are too large to solve symbolically"
     coordinates = list(model.coordinates)
-    if all(f == 0 for f in static):
-        solutions: list[dict[Any, Any]] = [{}]  # no force at rest anywhere: every configuration
-    else:
-        try:
-            decoupled = _decoupled(static, coordinates)
-            solutions = sympy.solve(static, coordinates, dict=True) if decoupled is None else decoupled
-        except (NotImplementedError, ValueError, TypeError):
-            return None, "the equilibrium equations could not be solved symbolically"
+    found = _equilibria(static, coordinates)
+    if isinstance(found, str):
+        return None, found
+    solutions, complete, search = found
     points = set()
     for s in solutions:
         free = tuple(q for q in coordinates if q not in s)
@@ -139,7 +159,68 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
     C_all = _damping_at_rest(terms.forcing, list(model.velocities))
     modes = tuple(_mode(point, terms.mass_matrix, K_all, C_all, rest, values, free)
                   for point, free in ordered[:MAX_EQUILIBRIA])
-    return Linearization(model.coordinates, modes), ""
+    return Linearization(model.coordinates, modes, search, complete), ""
+
+
+def _equilibria(static: list[Any], coordinates: list[Any]) -> tuple[list[dict[Any, Any]], bool, str] | str:
+    """The solutions of F(q, 0) = 0 (``static``) in closed form, whether they are every one, and how they were
+    found when not; or why none is given. Decoupled equations are solved one by one; otherwise the cheap search
+    of :mod:`~lagsolve.mechanics.static_roots` goes first, and ``sympy.solve`` runs only when that search cannot
+    tell it found everything (for at most :data:`GENERAL_SOLVE_CAP` s of CPU once the search has found some)."""
+    if all(f == 0 for f in static):
+        return [{}], True, ""  # no force at rest anywhere: every configuration
+    try:
+        decoupled = _decoupled(static, coordinates)
+    except (NotImplementedError, ValueError, TypeError):
+        return "the equilibrium equations could not be solved symbolically"
+    if decoupled is not None:
+        return decoupled, True, ""
+    if any(ops(f) > SEARCH_LIMIT for f in static):
+        return "the equilibrium equations are too large to solve symbolically"
+    roots = static_roots(static, coordinates)
+    if roots.complete:
+        return list(roots.solutions), True, ""
+    small = all(ops(f) <= SOLVE_LIMIT for f in static)
+    general, why = _general_solve(static, coordinates, GENERAL_SOLVE_CAP if roots.solutions else None) if small \
+        else (None, "the equations are too large for a general symbolic solve")
+    if general is not None:
+        return general + [s for s in roots.solutions if not any(same_solution(s, g) for g in general)], True, ""
+    if not roots.solutions:
+        return ("the equilibrium equations are too large to solve symbolically" if not small
+                else "the equilibrium equations could not be solved symbolically")
+    tried = ", ".join(q.name for q in roots.tried)
+    how = (f"{tried} tried at {'their' if len(roots.tried) > 1 else 'its'} obvious values (the zeros of "
+           f"{'their' if len(roots.tried) > 1 else 'its'} sines and cosines, 0 where it appears outside them) and "
+           "F(q, 0) = 0 solved for the rest, each point checked") if tried else \
+        "F(q, 0) = 0 taken apart factor by factor, but a root in one coordinate was not found"
+    search = f"Found without a general solve: {how}; {why}, so other equilibria may exist"
+    return list(roots.solutions), False, search
+
+
+def _general_solve(static: list[Any], coordinates: list[Any],
+                   cap: float | None) -> tuple[list[dict[Any, Any]] | None, str]:
+    """``sympy.solve`` on the whole system (within ``cap`` CPU seconds, when given, and at most half of what the
+    stage has left, so that a solve that does not finish leaves time for the rest), or None and why not."""
+    import signal
+
+    from lagsolve.mechanics.stages import StageTimeout, cpu_limit
+
+    unbounded = "the general symbolic solve does not apply to these equations"
+    if cap is None:  # nothing found otherwise: the solve may take the stage's whole share
+        try:
+            return sympy.solve(static, coordinates, dict=True), ""
+        except (NotImplementedError, ValueError, TypeError):
+            return None, unbounded
+    left, _ = signal.getitimer(signal.ITIMER_PROF)  # the stage's own CPU limit, when one is armed
+    seconds = min(cap, left / 2) if left > 0 else cap
+    try:
+        with cpu_limit(seconds):
+            return sympy.solve(static, coordinates, dict=True), ""
+    except StageTimeout:
+        within = f"within {cap:g} s of CPU" if seconds == cap else "within its share of the stage's CPU time"
+        return None, f"the general symbolic solve did not finish {within}"
+    except (NotImplementedError, ValueError, TypeError):
+        return None, unbounded
 
 
 def _decoupled(static: list[Any], coordinates: list[Any]) -> list[dict[Any, Any]] | None:
@@ -203,7 +284,7 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
     C = C_all.xreplace(at).applyfunc(tidy)
     G = ((C - C.T) / 2).applyfunc(tidy)
     D = ((C + C.T) / 2).applyfunc(tidy)
-    squares = frequencies = None
+    squares = frequencies = shapes = None
     stable = None
     note = ""
     if any(e != 0 for e in (*G, *D)):
@@ -218,8 +299,8 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
             note = "the characteristic polynomial does not split into real factors of degree 2 or less"
             numeric = _numeric_squares(M0, K, values)
             if numeric is not None:
-                squares, stable, frequencies = numeric
-                note += "; ω² are numeric, at the simulation values"
+                squares, stable, frequencies, shapes = numeric
+                note += "; ω² and the mode shapes are numeric, at the simulation values"
         else:
             ordered = sorted((tidy(r) for r, k in roots.items() for _ in range(k)), key=sympy.default_sort_key)
             squares = tuple(ordered)
@@ -234,12 +315,48 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
             if stable is None:
                 stable = False if -1 in signs else (True if all(x == 1 for x in signs) else None)
             frequencies = tuple(tidy(sympy.sqrt(r)) if x == 1 else None for r, x in zip(squares, signs, strict=True))
+            shapes = exact_shapes(M0, K, squares)
+            if shapes is None:
+                shapes = _numeric_shapes_at(M0, K, squares, values)
+                if shapes is not None:
+                    note = "the mode shapes are numeric, at the simulation values"
     if free:
         # along the continuum ω² = 0 is neutral: stable only in the other directions, so not decided here
         stable = None if stable is not False else False
         note = _continuum_note(free, K.rows) + (f"; {note}" if note else "")
     return Mode(point, sympy.ImmutableMatrix(M0), sympy.ImmutableMatrix(G), sympy.ImmutableMatrix(D),
-                sympy.ImmutableMatrix(K), squares, frequencies, stable, note, free)
+                sympy.ImmutableMatrix(K), squares, frequencies, stable, note, free, shapes)
+
+
+def _numeric_shapes_at(M0: Any, K: Any, squares: tuple[Any, ...],
+                       values: dict[str, float] | None) -> tuple[tuple[Any, ...], ...] | None:
+    """The mode shapes of the exact ``squares`` at the parameter ``values`` (floats), or None."""
+    numbers = _at_values((M0, K, sympy.Matrix(squares)), values)
+    if numbers is None:
+        return None
+    m0, k0, w = numbers
+    found = numeric_shapes(m0, k0, [float(x) for x in w.ravel()])
+    return None if found is None else tuple(tuple(sympy.Float(x, 8) for x in u) for u in found)
+
+
+def _at_values(matrices: tuple[Any, ...], values: dict[str, float] | None) -> tuple[Any, ...] | None:
+    """``matrices`` as float arrays at the parameter ``values``; None when a symbol has no value."""
+    import numpy as np
+
+    if not values:
+        return None
+    symbols = set().union(*(m.free_symbols for m in matrices))
+    at = {s: sympy.Float(values[s.name]) for s in symbols if s.name in values}
+    out = []
+    for m in matrices:
+        e = m.xreplace(at)
+        if e.free_symbols:
+            return None
+        try:
+            out.append(np.array(e.tolist(), dtype=float))
+        except TypeError:
+            return None
+    return tuple(out)
 
 
 def _definiteness(M0: Any, K: Any) -> int | None:
@@ -345,138 +462,21 @@ def _splits(polynomial: sympy.Poly, s: Any) -> bool:
     return all(f.degree() <= 2 for f, _ in sympy.factor_list(polynomial)[1])
 
 
-def _numeric_squares(M0: Any, K: Any, values: dict[str, float] | None) -> tuple[Any, bool | None, Any] | None:
-    """The eigenvalues of :math:`M_0^{-1}K` at the parameter ``values``, their stability and square roots."""
+def _numeric_squares(M0: Any, K: Any, values: dict[str, float] | None) -> tuple[Any, bool | None, Any, Any] | None:
+    """The eigenvalues of :math:`M_0^{-1}K` at the parameter ``values``, their stability, square roots and mode
+    shapes."""
     import numpy as np
 
-    if not values:
+    numbers = _at_values((M0, K), values)
+    if numbers is None:
         return None
-    at = {s: sympy.Float(values[s.name]) for s in (M0.free_symbols | K.free_symbols) if s.name in values}
-    m0, k0 = M0.xreplace(at), K.xreplace(at)
-    if m0.free_symbols or k0.free_symbols:
-        return None
-    eig = np.sort(np.linalg.eigvals(np.linalg.solve(np.array(m0.tolist(), dtype=float),
-                                                    np.array(k0.tolist(), dtype=float))).real)
+    m0, k0 = numbers
+    eig = np.sort(np.linalg.eigvals(np.linalg.solve(m0, k0)).real)
     squares = tuple(sympy.Float(float(e), 8) for e in eig)
     stable = bool(np.all(eig > 1e-12)) if np.all(np.abs(eig) > 1e-12) else None
-    return squares, stable, tuple(sympy.Float(float(np.sqrt(e)), 8) if e > 1e-12 else None for e in eig)
-
-
-#: how many starting points the numeric search for equilibria tries
-STARTS = 64
-
-
-def numeric_linearization(system: MotionSystem, values: dict[str, float], initial: dict[str, float]) -> Linearization:
-    r"""Equilibria and normal modes of ``system`` at the parameter ``values``, found numerically.
-
-    The equilibria solve :math:`F(q_0, 0) = 0` by Newton's method (``scipy.optimize.root``) from
-    :data:`STARTS` starting points around the ``initial`` state (angles anywhere in
-    :math:`(-\pi, \pi]`, the same points on every run); the squared frequencies are the eigenvalues
-    of :math:`M_0^{-1}K`. Every result is a floating-point number, and the note says so.
-
-    Raises
-    ------
-    StageSkipped
-        When a parameter has no value, or no equilibrium is found.
-    """
-    import numpy as np
-    from scipy.optimize import root
-
-    from lagsolve.mechanics.stages import StageSkipped
-
-    model = system.model
-    q, qd = list(model.coordinates), list(model.velocities)
-    terms = lagrange_terms(model, (), system.generalized_forces, engine="symengine")
-    params = {s: sympy.Float(values[s.name]) for s in model.lagrangian.free_symbols | set().union(
-        *(f.free_symbols for f in system.generalized_forces)) if s.name in values}
-    rest = {v: 0 for v in qd}
-    static = sympy.Matrix(terms.forcing).xreplace(rest).xreplace(params)
-    stiffness = -static.jacobian(q)
-    mass = sympy.Matrix(terms.mass_matrix).xreplace(params)
-    damping_all = _damping_at_rest(terms.forcing, qd).xreplace(params)
-    missing = (static.free_symbols | mass.free_symbols) - set(q)
-    if missing:
-        raise StageSkipped(f"needs values for {', '.join(sorted(s.name for s in missing))} (simulation.values)")
-    f_static = sympy.lambdify([q], list(static), "numpy")
-    f_jac = sympy.lambdify([q], stiffness * -1, "numpy")
-    f_mass = sympy.lambdify([q], mass, "numpy")
-    f_damp = sympy.lambdify([q], damping_all, "numpy")
-    # an angle-like coordinate appears only inside sines and cosines: its equilibria are the same mod 2π
-    hidden = {a: sympy.Dummy() for e in (*static, *mass) for a in e.atoms(sympy.sin, sympy.cos)}
-    periodic = [not any(c in e.xreplace(hidden).free_symbols for e in (*static, *mass)) for c in q]
-    rng = np.random.default_rng(0)
-    centre = np.array([float(initial.get(c.name, 0.0)) for c in q])
-    found: list[np.ndarray] = []
-    for k in range(STARTS):
-        start = centre if k == 0 else centre + rng.uniform(-np.pi, np.pi, len(q))
-        with np.errstate(all="ignore"):
-            sol = root(lambda x: np.asarray(f_static(x), dtype=float), start,
-                       jac=lambda x: np.asarray(f_jac(x), dtype=float), method="hybr")
-        if not sol.success or not np.all(np.isfinite(sol.x)):
-            continue
-        point = np.array([(x + np.pi) % (2 * np.pi) - np.pi if periodic[i] else x for i, x in enumerate(sol.x)])
-        periodic_mask = np.array(periodic, dtype=bool)
-        point = np.where(periodic_mask & np.isclose(np.abs(point), np.pi, atol=1e-7), np.pi, point)
-        point = np.where(np.abs(point) < 1e-7, 0.0, point)  # the root finder's own noise
-        if np.max(np.abs(np.asarray(f_static(point), dtype=float))) > 1e-9:
-            continue
-        if any(np.allclose(point, p, atol=1e-7) for p in found):
-            continue
-        if np.linalg.cond(np.asarray(f_mass(point), dtype=float)) > 1e12:
-            continue  # a singular point of the coordinates (M singular), not an equilibrium of the motion
-        if _on_continuum(f_static, -np.asarray(f_jac(point), dtype=float), point) and any(
-                _on_continuum(f_static, -np.asarray(f_jac(p), dtype=float), p) for p in found):
-            continue  # the multi-start lands anywhere on a continuum: one point of it is shown
-        found.append(point)
-    if not found:
-        raise StageSkipped(f"no equilibrium found numerically from {STARTS} starting points")
-    found.sort(key=lambda p: (float(np.sum(p**2)), tuple(p)))
-    modes = []
-    for point in found[:MAX_EQUILIBRIA]:
-        m0 = np.asarray(f_mass(point), dtype=float)
-        k0 = -np.asarray(f_jac(point), dtype=float)
-        c0 = np.asarray(f_damp(point), dtype=float)
-        squares = frequencies = None
-        stable = None
-        note = "numeric, at the simulation values"
-        continuum = _on_continuum(f_static, k0, point)
-        if continuum:
-            note = "not isolated: one point of a continuum of equilibria (K is singular along it); " + note
-        if np.max(np.abs(c0)) > 1e-12:
-            note += "; gyroscopic or damping terms: normal modes are not computed"
-        else:
-            eig = np.sort(np.linalg.eigvals(np.linalg.solve(m0, k0)).real)
-            squares = tuple(sympy.Float(float(e), 8) for e in eig)
-            stable = bool(np.all(eig > 1e-12)) if np.all(np.abs(eig) > 1e-12) else None
-            if continuum and stable is None and np.any(eig < -1e-12):
-                stable = False
-            frequencies = tuple(sympy.Float(float(np.sqrt(e)), 8) if e > 1e-12 else None for e in eig)
-        modes.append(Mode(tuple((c, sympy.Float(float(v), 8)) for c, v in zip(q, point, strict=True)),
-                          sympy.ImmutableMatrix(m0.tolist()).applyfunc(lambda e: sympy.Float(e, 8)),
-                          sympy.ImmutableMatrix(sympy.zeros(len(q))), sympy.ImmutableMatrix(sympy.zeros(len(q))),
-                          sympy.ImmutableMatrix(k0.tolist()).applyfunc(lambda e: sympy.Float(e, 8)),
-                          squares, frequencies, stable, note))
-    return Linearization(model.coordinates, tuple(modes))
-
-
-def _on_continuum(f_static: Any, stiffness: Any, point: Any) -> bool:
-    """Whether the equilibrium ``point`` is not isolated: K is singular there and F(q, 0) stays 0 along
-    its null directions (checked a small step away on both sides)."""
-    import numpy as np
-
-    _, sigma, vt = np.linalg.svd(stiffness)
-    scale = max(1.0, float(sigma[0]) if sigma.size else 1.0)
-    for k, value in enumerate(sigma):
-        if value > 1e-9 * scale:
-            continue
-        for step in (1e-3, -1e-3):
-            with np.errstate(all="ignore"):
-                moved = np.asarray(f_static(point + step * vt[k]), dtype=float)
-            if not np.all(np.isfinite(moved)) or np.max(np.abs(moved)) > 1e-9 * scale:
-                break
-        else:
-            return True
-    return False
+    found = numeric_shapes(m0, k0, [float(e) for e in eig])
+    shapes = None if found is None else tuple(tuple(sympy.Float(x, 8) for x in u) for u in found)
+    return squares, stable, tuple(sympy.Float(float(np.sqrt(e)), 8) if e > 1e-12 else None for e in eig), shapes
 
 
 def _damping_at_rest(forcing: Any, velocities: list[Any]) -> sympy.Matrix:

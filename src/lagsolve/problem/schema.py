@@ -187,6 +187,19 @@ class ExpectedPotential(_Record):
     equilibria: tuple[ExpectedEquilibrium, ...] = ()
 
 
+@dataclass(frozen=True, eq=False)
+class ExpectedModes(_Record):
+    """Expected small oscillations about an equilibrium of several coordinates: where (``at``, coordinate name →
+    value; a coordinate left out is free along a continuum of equilibria), whether stable, the squared frequencies
+    ω² of the normal modes, and their shapes (one per ω², in that order; components in the order of the file's
+    coordinates, up to a non-zero factor)."""
+
+    at: Mapping[str, Expr]
+    stable: bool | None = None
+    squared_frequencies: tuple[Expr, ...] | None = None
+    shapes: tuple[tuple[Expr, ...], ...] | None = None
+
+
 @dataclass(frozen=True)
 class Expected:
     """Answers given in the file; each maps a name to a parsed expression (or a typed record)."""
@@ -197,11 +210,12 @@ class Expected:
     reduced: Mapping[str, Expr] = field(default_factory=dict)
     conserved: Mapping[str, Expr] = field(default_factory=dict)
     effective_potential: ExpectedPotential | None = None
+    normal_modes: tuple[ExpectedModes, ...] = ()
 
     def is_empty(self) -> bool:
         return not (
             self.accelerations or self.multipliers or self.constraint_forces or self.reduced
-            or self.conserved or self.effective_potential
+            or self.conserved or self.effective_potential or self.normal_modes
         )
 
 

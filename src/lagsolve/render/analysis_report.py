@@ -112,7 +112,14 @@ def _effective_context(v: Effective, tex: Any, text: Any) -> dict[str, Any]:
     }
 
 
-def _modes_context(modes: Modes, tex: Any) -> dict[str, Any]:
+def _vector(u: tuple[Any, ...], tex: Any, math: str) -> str:
+    """A mode shape as a row, (1, -1)."""
+    if math == "latex":
+        return r"\left(" + ", ".join(tex(c) for c in u) + r"\right)"
+    return tex(sympy.Tuple(*u))
+
+
+def _modes_context(modes: Modes, tex: Any, math: str = "latex") -> dict[str, Any]:
     equilibria = []
     for m in modes.equilibria:
         has_g, has_d = any(x != 0 for x in m.gyroscopic), any(x != 0 for x in m.damping)
@@ -124,8 +131,9 @@ def _modes_context(modes: Modes, tex: Any) -> dict[str, Any]:
             "squares": [tex(s) for s in m.squared_frequencies] if m.squared_frequencies is not None else [],
             "frequencies": [tex(f) if f is not None else "" for f in m.frequencies] if m.frequencies else [],
             "stable": m.stable, "note": m.note, **_contact(m.contact, tex),
+            "shapes": [_vector(u, tex, math) for u in m.shapes] if m.shapes and m.squared_frequencies else [],
         })
-    return {"coordinates": [tex(q) for q in modes.coordinates], "equilibria": equilibria}
+    return {"coordinates": [tex(q) for q in modes.coordinates], "equilibria": equilibria, "search": modes.search}
 
 
 def analysis_context(section: AnalysisSection | None, note: Notation, math: str = "latex") -> dict[str, Any] | None:
@@ -151,7 +159,7 @@ def analysis_context(section: AnalysisSection | None, note: Notation, math: str 
         "cyclic": [tex(q) for q in section.cyclic],
         "effective": _effective_context(section.effective, tex, text) if section.effective is not None else None,
         "effective_note": section.effective_note,
-        "modes": _modes_context(section.modes, tex) if section.modes is not None else None,
+        "modes": _modes_context(section.modes, tex, math) if section.modes is not None else None,
         "equilibria_note": section.equilibria_note,
     }
 
@@ -228,10 +236,14 @@ def analysis_json(section: AnalysisSection | None) -> dict[str, Any] | None:
             "gyroscopic": _matrix_json(m.gyroscopic), "damping": _matrix_json(m.damping),
             "squared_frequencies": ([to_json(s) for s in m.squared_frequencies]
                                     if m.squared_frequencies is not None else None),
+            "mode_shapes": ([{q.name: to_json(x) for q, x in zip(modes.coordinates, u, strict=True)} for u in m.shapes]
+                            if m.shapes is not None else None),
             "stable": m.stable,
             **({"free": [q.name for q in m.free]} if m.free else {}),
+            **({"note": m.note} if m.note else {}),
             **_contact_json(m.contact),
         } for m in modes.equilibria],
+        **({"search": modes.search} if modes.search else {}),
     }
     return out
 
@@ -264,9 +276,12 @@ def analysis_summary(section: AnalysisSection | None, note: Notation) -> list[st
                               + ([f"any {', '.join(text(q) for q in m.free)}"] if m.free else []))
             verdict = {True: "stable", False: "unstable", None: "stability not decided"}[m.stable]
             squares = ""
-            if m.squared_frequencies is not None and m.stable:
+            if m.squared_frequencies is not None and m.stable and not m.shapes:
                 squares = ", ω² = " + "; ".join(text(s) for s in m.squared_frequencies)
             lines.append(f"    {point}: {verdict}{squares}{_contact_summary(m.contact, text)}")
+            if m.squared_frequencies is not None and m.stable and m.shapes:
+                lines += [f"      ω² = {text(s)}, mode shape {text(sympy.Tuple(*u))}"
+                          for s, u in zip(m.squared_frequencies, m.shapes, strict=True)]
     return lines
 
 

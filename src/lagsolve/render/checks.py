@@ -73,6 +73,11 @@ def label(verdict: Verdict, note: Notation, coordinates: tuple[str, ...] = ()) -
         return note.text(sympy.Symbol(name))
     if name == "expression":
         return "V_eff"
+    if verdict.quantity == "normal_modes":
+        index, _, part = name.partition("].")
+        what, _, k = part.partition("[")
+        words = {"squared_frequencies": "ω²", "shapes": "shape"}
+        return f"modes {int(index.split('[')[1]) + 1}: {words.get(what, what)}" + (f" {int(k[:-1]) + 1}" if k else "")
     index, _, part = name.partition("].")
     number = int(index.split("[")[1]) + 1
     return f"equilibrium {number}: {part}"
@@ -105,6 +110,8 @@ def describe(verdict: Verdict, note: Notation) -> str:
         return f"mismatch: differs by a constant (expected = derived + {shown})"
     if reason == c.SAME:
         return "ok"
+    if reason == "at the simulation values":  # check.modes.AT_VALUES
+        return "ok (numeric, at the simulation values)" if verdict.status == Status.OK else "mismatch"
     if reason == c.BRACKET:
         where = "symbolically" if not verdict.states else f"numerically, at {verdict.states} random points"
         return f"ok (conserved: {{C, H}} + ∂C/∂t = 0, {where})"

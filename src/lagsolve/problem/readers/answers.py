@@ -16,11 +16,12 @@ from lagsolve.problem.schema import (
     Expected,
     ExpectedEquilibrium,
     ExpectedForce,
+    ExpectedModes,
     ExpectedPotential,
 )
 
 _EXPECTED_KEYS = ("accelerations", "multipliers", "constraint_forces", "reduced", "conserved",
-                  "effective_potential")
+                  "effective_potential", "normal_modes")
 
 
 class AnswersReader(Reader):
@@ -91,6 +92,7 @@ class AnswersReader(Reader):
         effective = None
         if "effective_potential" in spec:
             effective = self.effective_potential(spec["effective_potential"], names, coordinate_names)
+        modes = self.normal_modes(spec["normal_modes"], names, coordinate_names) if "normal_modes" in spec else ()
         return Expected(
             accelerations=table("accelerations", coordinate_names, "coordinate", plain),
             multipliers=table("multipliers", constraint_names, "constraint", plain),
@@ -98,6 +100,7 @@ class AnswersReader(Reader):
             reduced=reduced,
             conserved=table("conserved", [], "quantity", plain),
             effective_potential=effective,
+            normal_modes=modes,
         )
 
     def effective_potential(self, value: Any, names: gateway.Namespace,
@@ -130,6 +133,62 @@ class AnswersReader(Reader):
             equilibria.append(ExpectedEquilibrium(self.expression((*ipath, "value"), item["value"], names), stable,
                                                   frequency))
         return ExpectedPotential(spec["coordinate"], expression, tuple(equilibria))
+
+    def normal_modes(self, value: Any, names: gateway.Namespace, coordinates: list[str]) -> tuple[ExpectedModes, ...]:
+        """``normal_modes: [{at: {q: value}, stable: true, squared_frequencies: [...], shapes: [[...], ...]}]``."""
+        path: tuple = ("expected", "normal_modes")
+        if not isinstance(value, list):
+            self.issue(path, f"expected a list, found {kind_of(value)}",
+                       "write '- {at: {theta1: 0, theta2: 0}, squared_frequencies: [...]}' items")
+            return ()
+        out = []
+        for i, item in enumerate(value):
+            ipath = (*path, i)
+            item = self.mapping(ipath, item)
+            if item is None or not self.keys(ipath, item, ("at", "stable", "squared_frequencies", "shapes"), ("at",)):
+                continue
+            at: dict[str, Any] = {}
+            for q, v in (self.mapping((*ipath, "at"), item["at"]) or {}).items():
+                if q not in coordinates:
+                    self.issue((*ipath, "at", q), f"unknown coordinate {shown(q)}",
+                               known_names("coordinates", coordinates))
+                    continue
+                parsed = self.expression((*ipath, "at", q), v, names)
+                if parsed is not None:
+                    at[q] = parsed
+            stable = self.flag((*ipath, "stable"), item["stable"]) if "stable" in item else None
+            squares = self._list(item, "squared_frequencies", ipath,
+                                 lambda p, v: self.expression(p, v, names), "'[g/l, g/l + 2*k/m]'")
+            shapes = self._list(item, "shapes", ipath, lambda p, v: self._shape(p, v, names, len(coordinates)),
+                                "'[[1, 1], [1, -1]]' (one shape per squared frequency)")
+            if shapes is not None and (squares is None or len(shapes) != len(squares)):
+                self.issue((*ipath, "shapes"), f"expected one shape per squared frequency ({len(squares or ())}), "
+                                                f"found {len(shapes)}", "give squared_frequencies and a shape for each")
+                shapes = None
+            out.append(ExpectedModes(at, stable, squares, shapes))
+        return tuple(out)
+
+    def _list(self, item: dict[str, Any], key: str, path: tuple, parse: Callable[[tuple, Any], Any],
+              example: str) -> tuple[Any, ...] | None:
+        """``item[key]``, a non-empty list each of whose entries ``parse`` reads; None when absent or wrong."""
+        if key not in item:
+            return None
+        raw = item[key]
+        if not isinstance(raw, list) or not raw:
+            found = "an empty list" if raw == [] else kind_of(raw)
+            self.issue((*path, key), f"expected a non-empty list, found {found}", f"write e.g. {example}")
+            return None
+        parsed = [parse((*path, key, k), v) for k, v in enumerate(raw)]
+        return None if any(p is None for p in parsed) else tuple(parsed)
+
+    def _shape(self, path: tuple, value: Any, names: gateway.Namespace, n: int) -> tuple[Any, ...] | None:
+        """A mode shape: one component per coordinate."""
+        if not isinstance(value, list) or len(value) != n:
+            found = f"{len(value)} components" if isinstance(value, list) else kind_of(value)
+            self.issue(path, f"expected a list of {n} components (one per coordinate), found {found}")
+            return None
+        parts = [self.expression((*path, k), v, names) for k, v in enumerate(value)]
+        return None if any(p is None for p in parts) else tuple(parts)
 
     def independent(self, value: Any, coordinates: list[Coordinate]) -> tuple[str, ...]:
         """``independent: [x]``: the coordinates to keep as minimal coordinates (each once)."""

@@ -181,12 +181,14 @@ class Mode:
     stable: bool | None
     note: str
     contact: Contacts
+    shapes: tuple[tuple[Expr, ...], ...] | None = None  # one mode shape per ω², in the same order
 
 
 @dataclass(frozen=True)
 class Modes:
     coordinates: tuple[Expr, ...]
     equilibria: tuple[Mode, ...]
+    search: str = ""  # how the equilibria were found, when they may not be all
 
 
 @dataclass(frozen=True)
@@ -318,5 +320,5 @@ def _modes(lin: Linearization, contact: Any) -> Modes:
     return Modes(tuple(lin.coordinates), tuple(
         Mode(point=tuple(m.point), free=tuple(m.free), mass=m.mass, stiffness=m.stiffness, gyroscopic=m.gyroscopic,
              damping=m.damping, squared_frequencies=m.squared_frequencies, frequencies=m.frequencies,
-             stable=m.stable, note=m.note, contact=_contacts(check))
-        for m, check in zip(lin.modes, contact or ((),) * len(lin.modes), strict=True)))
+             stable=m.stable, note=m.note, contact=_contacts(check), shapes=m.shapes)
+        for m, check in zip(lin.modes, contact or ((),) * len(lin.modes), strict=True)), lin.search)
