@@ -100,6 +100,10 @@ def input_schema() -> dict[str, Any]:
             "effective_potential": _closed({"coordinate": {"$ref": "#/$defs/name"}, "expression": expr,
                                             "equilibria": {"type": "array", "items": equilibrium}},
                                            ("coordinate",)),
+            "steady_motions": _closed({"coordinate": {"$ref": "#/$defs/name"}, "rate": {"$ref": "#/$defs/name"},
+                                       "values": {"type": "array", "items": expr, "minItems": 1},
+                                       "stable": {"type": "boolean"}, "frequency": expr},
+                                      ("coordinate", "rate", "values")),
         }),
         "simulation": _closed({
             "values": _by_name({"type": "number"}),

@@ -135,11 +135,14 @@ def _numerator_vanishes_symengine(model: Model, expr: Any, accelerations: dict[A
 class Conserved:
     r"""One verified constant of the motion.
 
-    ``name`` is ``p_<q>`` or ``energy``; ``kind`` is ``"momentum"`` or ``"jacobi"``;
+    ``name`` is ``p_<q>``, ``energy`` or the name of a symmetry's momentum (``L_z``, ``P_x``);
+    ``kind`` is ``"momentum"``, ``"jacobi"`` or ``"noether"``;
     ``expression`` its display form; ``reason`` a sentence in plain text. For the Jacobi
     integral ``equals_energy`` says whether :math:`h = T + V`, ``moving`` whether T has a
     part :math:`T_0` free of the velocities (a moving constraint), and ``flags`` which
     conditions held (``"no_time"``, ``"no_work"``, ``"eliminated"``/``"workless"``).
+    ``symmetry`` names the translation or rotation whose momentum it is (``"rotation about z"``;
+    :mod:`~lagsolve.mechanics.symmetry`) and ``generator`` its flow ξ, one entry per coordinate.
     """
 
     name: str
@@ -150,6 +153,8 @@ class Conserved:
     equals_energy: bool | None = None
     moving: bool = False
     flags: tuple[str, ...] = ()
+    symmetry: str = ""
+    generator: tuple[Any, ...] = ()
 
 
 @dataclass(frozen=True)
