@@ -135,6 +135,9 @@ def steady_motions(system: MotionSystem, effective: EffectivePotential) -> tuple
     candidates = [c for k in range(len(cyclic))
                   if (c := _candidate(L.xreplace(rest), q, velocities, momenta, k)) is not None]
     if not candidates:
+        if not sympy.diff(L.xreplace(rest), q).has(*velocities):
+            return None, (f"dL/d{q.name} at rest does not involve the cyclic velocities: the steady motions are the "
+                          "equilibria of the effective potential")
         return None, "the steady-motion condition is not a polynomial of degree 1 or 2 in any cyclic velocity"
     best = min(candidates, key=lambda c: (ops(c.polynomial), c.index))
     k = best.index
@@ -187,7 +190,9 @@ def _simplest(expr: Any) -> Any:
         return first
     forms = [first, sympy.factor_terms(first)]
     if first.has(sympy.cot, sympy.tan):
-        forms.append(tidy(sympy.trigsimp(first)))
+        ratios = first.replace(sympy.cot, lambda u: sympy.cos(u) / sympy.sin(u)).replace(
+            sympy.tan, lambda u: sympy.sin(u) / sympy.cos(u))
+        forms += [tidy(sympy.trigsimp(first)), tidy(sympy.cancel(ratios))]
     return min(forms, key=measure)
 
 
