@@ -482,6 +482,12 @@ INVALID = [
     ("equilibria-not-a-list", BEAD + "expected:\n  effective_potential: {coordinate: x, "
      "equilibria: 3}\n", 1, 14, "expected.effective_potential.equilibria",
      "expected a list, found a number (3)"),
+    ("steady-unknown-rate", BEAD + "expected:\n  steady_motions: {coordinate: x, rate: z, values: [1]}\n", 1, 14,
+     "expected.steady_motions.rate", "unknown coordinate 'z'; known coordinates: x, y"),
+    ("steady-values-not-a-list", BEAD + "expected:\n  steady_motions: {coordinate: x, rate: y, values: 3}\n", 1,
+     14, "expected.steady_motions.values", "expected a list of expressions, found a number (3)"),
+    ("steady-without-rate", BEAD + "expected:\n  steady_motions: {coordinate: x, values: [1]}\n", 1, 14,
+     "expected.steady_motions", "missing required key 'rate'"),
     ("expected-unknown-coordinate", BEAD + "expected:\n  accelerations: {z: 1}\n", 1, 14,
      "expected.accelerations.z", "unknown coordinate 'z'; known coordinates: x, y"),
     ("three-d-body-with-2-moments", BEAD + "bodies:\n  disk: {mass: m, position: [x, y], "
@@ -663,3 +669,12 @@ def test_free_text_and_names_are_bounded() -> None:
         "p.yaml:15: description: text of 20001 characters is too long; the limit here is 20000; shorten it",
     ]
     assert load(BEAD.replace("name: Bead", "name: " + "A" * 200)).name == "A" * 200
+
+
+def test_expected_steady_motions_are_read() -> None:
+    """The heavy top's expected steady precession: the coordinate, the rate, two values, stability, frequency."""
+    expected = load_problem(Path(__file__).resolve().parents[2] / "problems" / "heavy_top.yaml").expected
+    steady = expected.steady_motions
+    assert steady is not None and (steady.coordinate, steady.rate, steady.stable) == ("theta", "phi", True)
+    assert len(steady.roots) == 2 and steady.frequency.has(sympy.Symbol("p_psi", real=True))
+    assert not expected.is_empty()

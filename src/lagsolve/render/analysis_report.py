@@ -315,6 +315,7 @@ def analysis_summary(section: AnalysisSection | None, note: Notation) -> list[st
         lines.append("  conserved:")
         for c in section.conserved:
             extra = " (= T + V)" if c.equals_energy else (" (not T + V)" if c.kind == "jacobi" else "")
+            extra += f" ({c.symmetry})" if c.kind == "noether" else ""
             lines.append(f"    {text(c.symbol)} = {text(c.expression)}{extra}")
     if section.effective is not None:
         lines += _effective_summary(section.effective, text)
@@ -361,6 +362,8 @@ def _steady_summary(s: Steady, text: Any) -> list[str]:
         lines.append(f"    {text(s.velocity)}² = {text(s.square)}")
     else:
         lines += [f"    {text(s.velocity)} = {text(r)}" for r in s.roots]
+    if s.exists_if is not None:
+        lines.append(f"    real when {text(s.exists_if)}")
     verdict = {True: "stable", False: "unstable"}.get(s.stable) if s.stable is not None else (
         f"stable if {text(s.stability_condition)}" if s.stability_condition is not None else "stability not decided")
     at = f" = {text(s.frequency_squared_at)}" if s.frequency_squared_at is not None else ""
