@@ -11,7 +11,7 @@ from scipy.integrate import solve_ivp
 
 from lagsolve.mechanics.stages import StageSkipped
 from lagsolve.mechanics.symmetry import symmetries
-from mechanics_support import derived_file, derived_text, exactly_equal, names
+from mechanics_support import PROBLEMS, derived_file, derived_text, exactly_equal, names
 
 
 def _found(derivation):
@@ -202,3 +202,23 @@ def test_the_rotations_poisson_bracket_is_its_flow_on_the_momenta():
     s = names(d.problem)
     assert sympy.expand(bracket.quantity - (s["x"] * p_y - s["y"] * p_x)) == 0
     assert bracket.status == "symbolic" and bracket.rate == 0
+
+
+def test_a_simulation_monitors_the_symmetrys_momentum():
+    """`simulate` monitors L_z of the Cartesian spherical pendulum next to the energy, as a column and a drift."""
+    import lagsolve
+
+    run = lagsolve.simulate(str(PROBLEMS / "spherical_pendulum_cartesian.yaml"), t_end=2.0, samples=201)
+    column = run.columns()["L_z"]
+    assert numpy.abs(column - column[0]).max() < 1e-8 * abs(column[0])
+    assert "L_z conserved: relative drift" in run.summary
+
+
+def test_large_positions_are_declined_at_once(monkeypatch):
+    """Positions past the size limit are declined before any flow is solved, as 'too large'."""
+    import lagsolve.mechanics.symmetry as symmetry
+
+    d = derived_file("bowl")
+    monkeypatch.setattr(symmetry, "SIZE_LIMIT", 2)
+    with pytest.raises(StageSkipped, match="^too large"):
+        symmetry.symmetries(d.problem, d.analysis.system, d.analysis.conservation, d.analysis.reduced.substitution)

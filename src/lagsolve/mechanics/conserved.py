@@ -188,7 +188,7 @@ def conserved_quantities(system: MotionSystem, *, friction: bool = False) -> Con
         quantities.append(Conserved(
             momentum_name(q), "momentum", tidy(momentum), q,
             f"{q.name} is cyclic: dL/d{q.name} = 0, Q_{q.name} = 0"
-            + (f" and no constraint involves {q.name}_dot" if system.constraints else "") + _unverified(system),
+            + (f" and no constraint involves {q.name}_dot" if system.constraints else "") + unverified_caveat(system),
         ))
     energy = _jacobi(system, friction, notes)
     if energy is not None:
@@ -196,7 +196,7 @@ def conserved_quantities(system: MotionSystem, *, friction: bool = False) -> Con
     return Conservation(tuple(quantities), tuple(cyclic), tuple(notes))
 
 
-def _unverified(system: MotionSystem) -> str:
+def unverified_caveat(system: MotionSystem) -> str:
     """The caveat of a quantity claimed by its criteria alone (no explicit accelerations to verify it with)."""
     if system.accelerations:
         return ""
@@ -235,5 +235,5 @@ def _jacobi(system: MotionSystem, friction: bool, notes: list[str]) -> Conserved
     reason += {"eliminated": ", the constraints are built into the coordinates",
                "workless": ", every constraint has b = 0 (workless)", "unconstrained": ""}[flags[2]]
     reason += "; h = T + V" if equals else "; h = T2 - T0 + V, not T + V (a constraint moves)"
-    reason += _unverified(system)
+    reason += unverified_caveat(system)
     return Conserved("energy", "jacobi", tidy_sum(h), None, reason, equals, moving_t0, tuple(flags))

@@ -42,7 +42,7 @@ from typing import TYPE_CHECKING, Any
 import sympy
 
 from lagsolve.mechanics.algebra import ops
-from lagsolve.mechanics.conserved import Conservation, Conserved, MotionSystem
+from lagsolve.mechanics.conserved import Conservation, Conserved, MotionSystem, unverified_caveat
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.partials import partial
 from lagsolve.mechanics.simplify import tidy
@@ -130,7 +130,7 @@ def symmetries(problem: Problem, system: MotionSystem, conservation: Conservatio
 def _reason(system: MotionSystem, generator: Generator) -> str:
     what = "T, V and every constraint" if system.constraints else "T and V"
     forces = "" if all(f == 0 for f in system.generalized_forces) else ", and no force does work along it"
-    return f"the {generator.text} leaves {what} invariant{forces} (Noether's theorem)"
+    return f"the {generator.text} leaves {what} invariant{forces} (Noether's theorem)" + unverified_caveat(system)
 
 
 def _points(problem: Problem, substitution: Elimination | None) -> list[_Point]:
