@@ -100,6 +100,7 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
         found_v = stages.run("effective potential", effective_potential, system, conservation, friction)
         effective, effective_note = (found_v if found_v is not None
                                      else (None, _stage_reason(stages, "effective potential")))
+    steady, steady_note = _steady(stages, system, effective)
     linear, linear_note = None, "the effective potential covers this system"
     if effective is None and applies(system, conservation.cyclic, friction):
         linear_note = applies(system, conservation.cyclic, friction)
@@ -124,7 +125,6 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
     else:
         stages.skip("equilibria and normal modes", "the effective potential covers this system", "n/a")
     effective_contact, modes_contact = _contact(derivation, reduced, effective, linear)
-    steady, steady_note = _steady(stages, system, effective)
     return Analysis(classes, reduced, reduced_note, system, conservation, effective, effective_note,
                     linear, linear_note, effective_contact, modes_contact, steady, steady_note)
 

@@ -462,16 +462,20 @@ def _symmetry_bracket(h: Hamiltonian, model: Model, name: str, flow: tuple[Any, 
     r"""The rate of the momentum :math:`C = \sum_i \xi_i p_i` of a symmetry's flow ξ
     (:mod:`~lagsolve.mechanics.symmetry`): :math:`\{C, H\} = X^{(1)}L` at :math:`\dot q(q, p)`, since
     :math:`\partial H/\partial q = -\partial L/\partial q` and :math:`\partial H/\partial p = \dot q`, so it is 0
-    exactly when the flow leaves L invariant (proved here again); else it is computed from C."""
+    exactly when the flow leaves L invariant (proved here again; then the bracket of the long H is not formed);
+    else it is computed from C."""
     quantity = sum((x * p for x, p in zip(flow, h.momentum_symbols, strict=True) if x != 0), sympy.Integer(0))
     L = model.lagrangian
     change = sum((sympy.diff(L, q) * x for q, x in zip(model.coordinates, flow, strict=True) if x != 0),
                  sympy.Integer(0))
     change += sum((sympy.diff(L, v) * time_derivative(x, model) for v, x in zip(model.velocities, flow, strict=True)
                    if x != 0), sympy.Integer(0))
-    bracket, partial_t, forces = h._pieces(quantity)
     if proved_zero(change):
-        bracket = sympy.Integer(0)
+        bracket, partial_t = sympy.Integer(0), sympy.diff(quantity, h.time)
+        forces = sum((x * (f + d) for x, f, d in zip(flow, h.forces, h.dissipation, strict=True) if x != 0),
+                     sympy.Integer(0))
+    else:
+        bracket, partial_t, forces = h._pieces(quantity)
     rate = bracket + partial_t + forces
     status = _status(rate)
     zero = sympy.Integer(0)
