@@ -106,6 +106,10 @@ def input_schema() -> dict[str, Any]:
                 "shapes": {"type": "array", "items": {"type": "array", "items": expr, "minItems": 1}, "minItems": 1,
                            "description": "one mode shape per squared frequency, a component per coordinate"},
             }, ("at",))},
+            "steady_motions": _closed({"coordinate": {"$ref": "#/$defs/name"}, "rate": {"$ref": "#/$defs/name"},
+                                       "values": {"type": "array", "items": expr, "minItems": 1},
+                                       "stable": {"type": "boolean"}, "frequency": expr},
+                                      ("coordinate", "rate", "values")),
         }),
         "simulation": _closed({
             "values": _by_name({"type": "number"}),

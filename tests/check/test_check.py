@@ -331,3 +331,59 @@ def test_every_shipped_answer_is_ok(path: Path) -> None:
     """Every `expected:` answer of every problem in problems/ gets the verdict ok (`lagsolve check` passes)."""
     report = check(derived_file(path.stem))
     assert [(v.quantity, v.name, v.status, v.note) for v in report.verdicts if v.status != OK] == []
+
+
+# -- steady motions (expected: steady_motions) ------------------------------------------------------------
+
+TOP_STEADY = """  steady_motions:
+    coordinate: theta
+    rate: phi
+    values: [{values}]
+    stable: {stable}
+    frequency: "{frequency}"
+"""
+GOLDSTEIN = ('"p_psi*(1 - sqrt(1 - 4*m*g*l*(I1 + m*l**2)*cos(theta)/p_psi**2))/(2*(I1 + m*l**2)*cos(theta))", '
+             '"p_psi*(1 + sqrt(1 - 4*m*g*l*(I1 + m*l**2)*cos(theta)/p_psi**2))/(2*(I1 + m*l**2)*cos(theta))"')
+NUTATION = "sqrt((p_psi/(I1 + m*l**2) - 2*phi_dot*cos(theta))**2 + phi_dot**2*sin(theta)**2)"
+
+
+def _steady(values: str = GOLDSTEIN, stable: str = "true", frequency: str = NUTATION) -> dict[str, Verdict]:
+    return verdicts("heavy_top", TOP_STEADY.format(values=values, stable=stable, frequency=frequency))
+
+
+def test_steady_precession_in_goldsteins_form_passes() -> None:
+    """Goldstein's roots (in either order) and the nutation frequency, written with g or without, are ok."""
+    found = _steady()
+    assert [found[f"steady_motions.{k}"].status for k in ("values", "frequency", "stable")] == [OK, OK, OK]
+    swapped = ", ".join(reversed(GOLDSTEIN.split(", ")))
+    # the same omega^2 with the condition used the other way, I1' phi_dot^2 cos = p_psi phi_dot - m g l:
+    # (p_psi/I1')^2 - 4 m g l cos/I1' + phi_dot^2 sin^2
+    with_g = "sqrt(p_psi**2/(I1 + m*l**2)**2 - 4*m*g*l*cos(theta)/(I1 + m*l**2) + phi_dot**2*sin(theta)**2)"
+    found = _steady(values=swapped, frequency=with_g)
+    assert found["steady_motions.values"].status == OK and found["steady_motions.frequency"].status == OK
+
+
+def test_wrong_steady_answers_are_mismatches() -> None:
+    """A root without the factor 2, the nutation frequency without the 2 in 2 phi_dot cos(theta), and 'unstable'
+    are each a mismatch."""
+    half = GOLDSTEIN.replace("/(2*(I1", "/((I1")
+    assert _steady(values=half)["steady_motions.values"].status == MISMATCH
+    assert _steady(frequency=NUTATION.replace("2*phi_dot", "phi_dot"))["steady_motions.frequency"].status == MISMATCH
+    verdict = _steady(stable="false")["steady_motions.stable"]
+    assert (verdict.status, verdict.reason) == (MISMATCH, DIFFERS)
+
+
+def test_steady_motions_with_another_rate_are_a_mismatch_with_a_reason() -> None:
+    """Claiming psi as the rate when lagsolve takes phi says so instead of comparing unlike things."""
+    found = verdicts("heavy_top", TOP_STEADY.format(values=GOLDSTEIN, stable="true", frequency=NUTATION).replace(
+        "rate: phi", "rate: psi"))
+    verdict = found["steady_motions.values"]
+    assert verdict.status == MISMATCH and "takes phi as the rate" in verdict.note
+
+
+def test_steady_motions_where_there_are_none_are_unchecked() -> None:
+    """The bead on the rotating hoop has no cyclic coordinate: an expected steady motion is not checked, and the
+    note says why."""
+    found = verdicts("bead_on_rotating_hoop", '  steady_motions: {coordinate: theta, rate: theta, values: ["0"]}\n')
+    verdict = found["steady_motions.values"]
+    assert verdict.status == UNCHECKED and "no coordinate is cyclic" in verdict.note

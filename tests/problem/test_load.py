@@ -505,6 +505,12 @@ INVALID = [
      "expected one shape per squared frequency (1), found 2"),
     ("normal-modes-empty-frequencies", BEAD + "expected:\n  normal_modes: [{at: {x: 0}, squared_frequencies: []}]"
      "\n", 1, 14, "expected.normal_modes[0].squared_frequencies", "expected a non-empty list, found an empty list"),
+    ("steady-unknown-rate", BEAD + "expected:\n  steady_motions: {coordinate: x, rate: z, values: [1]}\n", 1, 14,
+     "expected.steady_motions.rate", "unknown coordinate 'z'; known coordinates: x, y"),
+    ("steady-values-not-a-list", BEAD + "expected:\n  steady_motions: {coordinate: x, rate: y, values: 3}\n", 1,
+     14, "expected.steady_motions.values", "expected a list of expressions, found a number (3)"),
+    ("steady-without-rate", BEAD + "expected:\n  steady_motions: {coordinate: x, values: [1]}\n", 1, 14,
+     "expected.steady_motions", "missing required key 'rate'"),
     ("expected-unknown-coordinate", BEAD + "expected:\n  accelerations: {z: 1}\n", 1, 14,
      "expected.accelerations.z", "unknown coordinate 'z'; known coordinates: x, y"),
     ("three-d-body-with-2-moments", BEAD + "bodies:\n  disk: {mass: m, position: [x, y], "
@@ -708,3 +714,12 @@ friction:
     issues = issues_of(text)
     assert [i.where for i in issues] == [misspelt], issues
     assert f"did you mean '{meant}'?" in issues[0].hint
+
+
+def test_expected_steady_motions_are_read() -> None:
+    """The heavy top's expected steady precession: the coordinate, the rate, two values, stability, frequency."""
+    expected = load_problem(Path(__file__).resolve().parents[2] / "problems" / "heavy_top.yaml").expected
+    steady = expected.steady_motions
+    assert steady is not None and (steady.coordinate, steady.rate, steady.stable) == ("theta", "phi", True)
+    assert len(steady.roots) == 2 and steady.frequency.has(sympy.Symbol("p_psi", real=True))
+    assert not expected.is_empty()

@@ -107,7 +107,8 @@ def test_normal_modes_in_every_projection():
     assert r"$`\omega^2 = \frac{g}{l}`$ with $`u = \left(1, 1\right)`$ and" in md
     assert r"$`u = \left(1, -1\right)`$: **stable**" in md
     html = render(pendulums, "html")
-    assert "<mi>u</mi><mo>=</mo><mrow><mo>(</mo><mn>1</mn><mo>,</mo><mn>-1</mn><mo>)</mo></mrow>" in html
+    assert ('<mi>u</mi><mo>=</mo><mrow><mo stretchy="false">(</mo><mn>1</mn><mo>,</mo><mrow><mo>&#8722;</mo><mn>1</mn>'
+            '</mrow><mo stretchy="false">)</mo></mrow>') in html
     text = summary(pendulums)
     assert ("θ1 = 0, θ2 = 0: stable\n      ω² = g/l, mode shape (1, 1)\n"
             "      ω² = g/l + 2*k/m, mode shape (1, -1)") in text
@@ -128,3 +129,34 @@ def test_the_readme_shows_the_modes_lagsolve_prints():
     (block,) = [b for b in readme.split("```\n")[1::2] if "mode shape (1, 1)" in b]
     assert block.startswith("  equilibria:\n")
     assert block in summary(derived_file("coupled_pendulums")) + "\n"
+
+
+def test_steady_motions_in_json_reports_and_terminal():
+    """The top's steady precession is in the JSON analysis (condition, two rates, stable, omega^2, the eliminated g),
+    under *Steady motions* in Markdown, LaTeX and HTML, and in the terminal summary."""
+    top = derived_file("heavy_top")
+    steady = result_dict(top)["analysis"]["steady_motions"]
+    assert (steady["coordinate"], steady["rate"], steady["stable"]) == ("theta", "phi", True)
+    assert len(steady["values"]) == 2 and set(steady["eliminated"]) == {"g"}
+    assert steady["verified"] == "equations of motion" and list(steady["held"]) == ["p_psi"]
+    assert "### Steady motions" in render(top, "md")
+    assert r"\subsection*{Steady motions}" in render(top, "tex")
+    assert '<h3 id="steady-motions">Steady motions</h3>' in render(top, "html")
+    assert "  steady motions (θ_0 fixed, φ̇ constant, p_ψ held): " in summary(top)
+    assert result_dict(derived_file("atwood"))["analysis"]["steady_motions"] == {
+        "note": "no coordinate is cyclic: the equilibria of the effective potential are states of rest"}
+
+
+def test_symmetry_momenta_in_json_reports_and_terminal():
+    """The bowl's L_z carries its symmetry and generator in the JSON and the reports; a cyclic momentum that is a
+    symmetry's (the spherical pendulum's p_phi) is named as such."""
+    bowl = derived_file("bowl")
+    data = result_dict(bowl)
+    assert data["conserved"]["L_z"] == "m*(x*y_dot - x_dot*y)"
+    assert data["analysis"]["conserved"]["L_z"]["symmetry"] == "rotation about z"
+    assert data["analysis"]["conserved"]["L_z"]["generator"] == {"x": "-y", "y": "x"}
+    assert r"\delta x = - y\,\varepsilon,\ \delta y = x\,\varepsilon" in render(bowl, "md")
+    (line,) = [line for line in summary(bowl).splitlines() if line.startswith("    L_z = ")]
+    assert line.endswith(" (rotation about z)")
+    pendulum = result_dict(derived_file("spherical_pendulum"))["analysis"]["conserved"]["p_phi"]
+    assert pendulum["symmetry"] == "rotation about z" and pendulum["generator"] == {"phi": "1"}

@@ -30,3 +30,9 @@ def test_the_html_report_has_no_ascii_minus_in_its_math() -> None:
     """Every minus of the HTML report's math is U+2212 (hole table: V = -g m2 z, the string's multiplier)."""
     page = render(derived_file("hole_table"), "html")
     assert "<mo>-</mo>" not in page and page.count("&#8722;") >= 10
+
+
+def test_a_negative_number_gets_the_minus_sign() -> None:
+    """The mode shape (1, -1): SymPy writes <mn>-1</mn>; it is set as the minus sign and the number 1."""
+    out = typeset("<math><mn>-1</mn><mo>,</mo><mn>-0.5</mn><mo>,</mo><mn>2</mn></math>")
+    assert "<mn>-" not in out and out.count("<mrow><mo>&#8722;</mo><mn>") == 2 and "<mn>0.5</mn>" in out

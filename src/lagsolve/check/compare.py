@@ -222,6 +222,7 @@ def check(derivation: Derivation, *, states: int = STATES, seed: int = 0) -> Che
     checker = _Checker(derivation, items, states, seed)
     verdicts = [checker.verdict(item) for item in items]
     verdicts += checker.equilibria()
+    verdicts += _steady_stability(derivation)
     from lagsolve.check.modes import mode_verdicts  # it builds on this module's verdicts
 
     verdicts += mode_verdicts(checker, derivation)
@@ -257,7 +258,62 @@ def _items(derivation: Derivation) -> list[_Item]:
             derived = None if force.vector is None else tuple(force.vector)
             items.append(_Item("constraint_forces", f"{c}.vector", tuple(spec["vector"]), derived, note))
     items += _analysis_items(derivation)
+    items += _steady_items(derivation)
     return items
+
+
+def _steady_items(derivation: Derivation) -> list[_Item]:
+    r"""Expected steady motions against the derived ones: the rates as a set (their sum and product, so the
+    order and the branch of a square root do not matter), and :math:`\omega^2` at each derived rate (both
+    sides written with the rate put in, so either may use the condition or not)."""
+    spec = derivation.problem.expected.steady_motions
+    if spec is None:
+        return []
+    analysis = derivation.analysis
+    steady = analysis.steady if analysis is not None else None
+    values = tuple(spec.roots)
+    note = NOT_YET if analysis is None or not analysis.steady_note else \
+        f"lagsolve gives no steady motions: {analysis.steady_note}"
+    missing = UNCHECKED
+    if steady is not None and (steady.coordinate.name != spec.coordinate or steady.rate.name != spec.rate):
+        note = (f"expected {spec.coordinate} fixed and {spec.rate} turning; lagsolve keeps {steady.coordinate.name} "
+                f"fixed and takes {steady.rate.name} as the rate")
+        steady, missing = None, MISMATCH
+    items = [_Item("steady_motions", "values", _symmetric(values), None if steady is None else
+                   _symmetric(steady.roots), note, real=False, missing=missing)]
+    if steady is not None and len(steady.roots) != len(values):
+        items[0] = _Item("steady_motions", "values", values, tuple(steady.roots), real=False)
+    if spec.frequency is not None:
+        derived = None
+        expected: tuple[Any, ...] = (spec.frequency**2,)
+        if steady is not None:
+            omega = steady.velocity
+            expected = tuple(spec.frequency.xreplace({omega: r})**2 for r in steady.roots)
+            derived = tuple(steady.frequency_squared.xreplace({omega: r}) for r in steady.roots)
+        items.append(_Item("steady_motions", "frequency", expected, derived, note, real=False, missing=missing))
+    return items
+
+
+def _symmetric(values: tuple[Any, ...]) -> tuple[Any, ...]:
+    """The elementary symmetric functions of one or two values (the values themselves when more)."""
+    if len(values) == 2:
+        return (values[0] + values[1], values[0] * values[1])
+    return values
+
+
+def _steady_stability(derivation: Derivation) -> list[Verdict]:
+    """The expected stability of the steady motions against the derived one."""
+    spec = derivation.problem.expected.steady_motions
+    if spec is None or spec.stable is None:
+        return []
+    steady = derivation.analysis.steady if derivation.analysis is not None else None
+    expected = (sympy.true if spec.stable else sympy.false,)
+    if steady is None or steady.stable is None:
+        return [Verdict("steady_motions", "stable", UNCHECKED, NOT_DERIVED, expected,
+                        note="lagsolve does not decide the stability of the steady motions")]
+    same = bool(steady.stable) == bool(spec.stable)
+    return [Verdict("steady_motions", "stable", OK if same else MISMATCH, SAME if same else DIFFERS, expected,
+                    (sympy.true if steady.stable else sympy.false,))]
 
 
 NOT_YET = "not derived yet (lagsolve's analysis does not give it for this problem)"

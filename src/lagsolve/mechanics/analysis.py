@@ -10,9 +10,13 @@ what the motion looks like near equilibrium.
 3. :mod:`~lagsolve.mechanics.conserved` — cyclic momenta and the Jacobi integral of the
    reduced system (or of the full one with its constraints when no reduction exists),
    each verified along the equations;
-4. :mod:`~lagsolve.mechanics.equilibria` — with one degree of freedom left after the cyclic
+4. :mod:`~lagsolve.mechanics.symmetry` — the momenta of the translations and rotations of the
+   whole system that leave T, V and the constraints invariant (Noether), each verified;
+5. :mod:`~lagsolve.mechanics.equilibria` — with one degree of freedom left after the cyclic
    ones, the effective potential, its equilibria, stability and frequencies;
-5. :mod:`~lagsolve.mechanics.linearize` — with several left, equilibria and normal modes.
+6. :mod:`~lagsolve.mechanics.steady` — with cyclic coordinates too, the steady motions about it
+   (the heavy top's steady precession), their stability and the frequency of small oscillations;
+7. :mod:`~lagsolve.mechanics.linearize` — with several left, equilibria and normal modes.
 
 :func:`with_analysis` stores the result in a :class:`~lagsolve.mechanics.derivation.Derivation`
 together with the contract forms ``reduced``, ``conserved`` and ``effective_potential``
@@ -37,7 +41,9 @@ from lagsolve.mechanics.minimal_chart import MinimalChart, minimal_chart
 from lagsolve.mechanics.numeric_equilibria import complete_numerically, numeric_linearization
 from lagsolve.mechanics.results import Analysis
 from lagsolve.mechanics.stages import Stages
+from lagsolve.mechanics.steady import SteadyMotion, steady_motions
 from lagsolve.mechanics.surface import constraint_surface
+from lagsolve.mechanics.symmetry import symmetries
 from lagsolve.problem.names import momentum_name
 
 if TYPE_CHECKING:
@@ -85,6 +91,8 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
     conservation = stages.run("conserved quantities", conserved_quantities, system, friction=friction)
     if conservation is None:
         conservation = Conservation((), (), (_stage_reason(stages, "conserved quantities"),))
+    else:
+        conservation = _with_symmetries(stages, derivation.problem, system, conservation, reduced)
     effective, effective_note = None, ""
     if friction:
         stages.skip("effective potential", "Coulomb friction acts: equilibria are not isolated points", "n/a")
@@ -93,6 +101,7 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
         found_v = stages.run("effective potential", effective_potential, system, conservation, friction)
         effective, effective_note = (found_v if found_v is not None
                                      else (None, _stage_reason(stages, "effective potential")))
+    steady, steady_note = _steady(stages, system, effective)
     linear, linear_note = None, "the effective potential covers this system"
     if effective is None and applies(system, conservation.cyclic, friction):
         linear_note = applies(system, conservation.cyclic, friction)
@@ -123,7 +132,32 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
         stages.skip("equilibria and normal modes", "the effective potential covers this system", "n/a")
     effective_contact, modes_contact = _contact(derivation, reduced, effective, linear)
     return Analysis(classes, reduced, reduced_note, system, conservation, effective, effective_note,
-                    linear, linear_note, effective_contact, modes_contact)
+                    linear, linear_note, effective_contact, modes_contact, steady, steady_note)
+
+
+def _with_symmetries(stages: Stages, problem: Any, system: MotionSystem, conservation: Conservation,
+                     reduced: ReducedSystem | None) -> Conservation:
+    """``conservation`` with the momenta of the system's translations and rotations (stage ``symmetries``)."""
+    if not problem.particles and not problem.bodies:
+        stages.skip("symmetries", "no particle or body positions to move", "n/a")
+        return conservation
+    found = stages.run("symmetries", symmetries, problem, system, conservation,
+                       reduced.substitution if reduced is not None else None)
+    return found if found is not None else conservation
+
+
+def _steady(stages: Stages, system: MotionSystem, effective: EffectivePotential | None) -> tuple[SteadyMotion | None,
+                                                                                                   str]:
+    """The steady motions about the effective potential's coordinate (stage ``steady motions``), or why none."""
+    if effective is None:
+        stages.skip("steady motions", "needs the effective potential", "n/a")
+        return None, "needs the effective potential"
+    if not effective.cyclic:
+        reason = "no coordinate is cyclic: the equilibria of the effective potential are states of rest"
+        stages.skip("steady motions", reason, "n/a")
+        return None, reason
+    found = stages.run("steady motions", steady_motions, system, effective)
+    return found if found is not None else (None, _stage_reason(stages, "steady motions"))
 
 
 def _contact(derivation: Derivation, reduced: ReducedSystem | None, effective: EffectivePotential | None,
@@ -216,6 +250,8 @@ def monitored(form: MatrixForm, budget: float = 30.0) -> tuple[dict[str, Any], M
     conservation = stages.run("conserved quantities", conserved_quantities, system, friction=bool(problem.friction))
     if conservation is None:
         conservation = Conservation((), (), ())
+    else:
+        conservation = _with_symmetries(stages, problem, system, conservation, reduced)
     analysis = Analysis(classes or (), reduced, note, system, conservation, None, "", None, "")
     chart, chart_note = minimal_chart(analysis, model)
     return contract_forms(analysis)["conserved"], chart, chart_note, energy_reason(conservation)

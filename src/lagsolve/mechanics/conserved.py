@@ -135,11 +135,14 @@ def _numerator_vanishes_symengine(model: Model, expr: Any, accelerations: dict[A
 class Conserved:
     r"""One verified constant of the motion.
 
-    ``name`` is ``p_<q>`` or ``energy``; ``kind`` is ``"momentum"`` or ``"jacobi"``;
+    ``name`` is ``p_<q>``, ``energy`` or the name of a symmetry's momentum (``L_z``, ``P_x``);
+    ``kind`` is ``"momentum"``, ``"jacobi"`` or ``"noether"``;
     ``expression`` its display form; ``reason`` a sentence in plain text. For the Jacobi
     integral ``equals_energy`` says whether :math:`h = T + V`, ``moving`` whether T has a
     part :math:`T_0` free of the velocities (a moving constraint), and ``flags`` which
     conditions held (``"no_time"``, ``"no_work"``, ``"eliminated"``/``"workless"``).
+    ``symmetry`` names the translation or rotation whose momentum it is (``"rotation about z"``;
+    :mod:`~lagsolve.mechanics.symmetry`) and ``generator`` its flow ξ, one entry per coordinate.
     """
 
     name: str
@@ -150,6 +153,8 @@ class Conserved:
     equals_energy: bool | None = None
     moving: bool = False
     flags: tuple[str, ...] = ()
+    symmetry: str = ""
+    generator: tuple[Any, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -183,7 +188,7 @@ def conserved_quantities(system: MotionSystem, *, friction: bool = False) -> Con
         quantities.append(Conserved(
             momentum_name(q), "momentum", tidy(momentum), q,
             f"{q.name} is cyclic: dL/d{q.name} = 0, Q_{q.name} = 0"
-            + (f" and no constraint involves {q.name}_dot" if system.constraints else "") + _unverified(system),
+            + (f" and no constraint involves {q.name}_dot" if system.constraints else "") + unverified_caveat(system),
         ))
     energy = _jacobi(system, friction, notes)
     if energy is not None:
@@ -191,7 +196,7 @@ def conserved_quantities(system: MotionSystem, *, friction: bool = False) -> Con
     return Conservation(tuple(quantities), tuple(cyclic), tuple(notes))
 
 
-def _unverified(system: MotionSystem) -> str:
+def unverified_caveat(system: MotionSystem) -> str:
     """The caveat of a quantity claimed by its criteria alone (no explicit accelerations to verify it with)."""
     if system.accelerations:
         return ""
@@ -230,5 +235,5 @@ def _jacobi(system: MotionSystem, friction: bool, notes: list[str]) -> Conserved
     reason += {"eliminated": ", the constraints are built into the coordinates",
                "workless": ", every constraint has b = 0 (workless)", "unconstrained": ""}[flags[2]]
     reason += "; h = T + V" if equals else "; h = T2 - T0 + V, not T + V (a constraint moves)"
-    reason += _unverified(system)
+    reason += unverified_caveat(system)
     return Conserved("energy", "jacobi", tidy_sum(h), None, reason, equals, moving_t0, tuple(flags))

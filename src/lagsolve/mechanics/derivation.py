@@ -170,12 +170,12 @@ def later_stages(form: MatrixForm, *, analysis: bool = True) -> tuple[str, ...]:
     if not form.frictions:
         absent |= {"normal forces", "contact forces", "sticking"}
     else:
-        absent.add("effective potential")
+        absent |= {"effective potential", "steady motions"}
     if not form.constraints:
         absent |= {"forces of constraint", "constraint classification", "minimal coordinates"}
     if not analysis:
         absent |= {"constraint classification", "minimal coordinates", "conserved quantities", "effective potential",
-                   "equilibria and normal modes", "hamiltonian"}
+                   "equilibria and normal modes", "hamiltonian", "symmetries", "steady motions"}
     return tuple(stage for stage in STAGES if stage not in absent)
 
 

@@ -240,7 +240,8 @@ def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonia
         time_dependent=not proved_zero(sympy.diff(H, t)), remainder=remainder, compact=compact)
     routhian, note = routh(model, reduced.generalized_forces, analysis)
     energy = jacobi_integral(model)
-    brackets = tuple(_bracket(result, c.name, c.expression, energy) for c in analysis.conservation.quantities)
+    brackets = tuple(_symmetry_bracket(result, model, c.name, c.generator) if c.generator and c.kind == "noether"
+                     else _bracket(result, c.name, c.expression, energy) for c in analysis.conservation.quantities)
     return dataclasses.replace(result, routhian=routhian, routhian_note=note, brackets=brackets), ""
 
 
@@ -455,6 +456,33 @@ def _dissipation(reduced: Any, rayleigh: Any) -> tuple[Any, ...]:
         return tuple(sympy.Integer(0) for _ in model.coordinates)
     R = reduced.substitution.apply(rayleigh)
     return tuple(-sympy.diff(R, v) for v in model.velocities)
+
+
+def _symmetry_bracket(h: Hamiltonian, model: Model, name: str, flow: tuple[Any, ...]) -> Bracket:
+    r"""The rate of the momentum :math:`C = \sum_i \xi_i p_i` of a symmetry's flow ξ
+    (:mod:`~lagsolve.mechanics.symmetry`): :math:`\{C, H\} = X^{(1)}L` at :math:`\dot q(q, p)`, since
+    :math:`\partial H/\partial q = -\partial L/\partial q` and :math:`\partial H/\partial p = \dot q`, so it is 0
+    exactly when the flow leaves L invariant (proved here again; then the bracket of the long H is not formed);
+    else it is computed from C."""
+    quantity = sum((x * p for x, p in zip(flow, h.momentum_symbols, strict=True) if x != 0), sympy.Integer(0))
+    L = model.lagrangian
+    change = sum((sympy.diff(L, q) * x for q, x in zip(model.coordinates, flow, strict=True) if x != 0),
+                 sympy.Integer(0))
+    change += sum((sympy.diff(L, v) * time_derivative(x, model) for v, x in zip(model.velocities, flow, strict=True)
+                   if x != 0), sympy.Integer(0))
+    if proved_zero(change):
+        bracket, partial_t = sympy.Integer(0), sympy.diff(quantity, h.time)
+        forces = sum((x * (f + d) for x, f, d in zip(flow, h.forces, h.dissipation, strict=True) if x != 0),
+                     sympy.Integer(0))
+    else:
+        bracket, partial_t, forces = h._pieces(quantity)
+    rate = bracket + partial_t + forces
+    status = _status(rate)
+    zero = sympy.Integer(0)
+    if status == "differ":
+        return Bracket(name, quantity, tidy(bracket), tidy(partial_t), tidy(forces), tidy(rate), status)
+    return Bracket(name, quantity, zero if bracket == 0 else tidy(bracket), tidy(partial_t), tidy(forces), zero,
+                   status)
 
 
 def _bracket(h: Hamiltonian, name: str, expression: Any, energy: Any) -> Bracket:

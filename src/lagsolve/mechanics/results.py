@@ -26,6 +26,7 @@ if TYPE_CHECKING:
     from lagsolve.mechanics.minimal import ReducedSystem
     from lagsolve.mechanics.model import Model
     from lagsolve.mechanics.stages import StageNote
+    from lagsolve.mechanics.steady import SteadyMotion
     from lagsolve.mechanics.sticking import Sticking
     from lagsolve.problem.schema import Problem
 
@@ -183,3 +184,6 @@ class Analysis:
     #: per equilibrium of ``effective_potential`` / ``linearization``: the unilateral constraints' forces there
     effective_contact: tuple[tuple[ContactCheck, ...], ...] = ()
     modes_contact: tuple[tuple[ContactCheck, ...], ...] = ()
+    #: the steady motions about the effective potential's coordinate (:mod:`lagsolve.mechanics.steady`)
+    steady: SteadyMotion | None = None
+    steady_note: str = ""

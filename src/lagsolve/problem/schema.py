@@ -200,6 +200,19 @@ class ExpectedModes(_Record):
     shapes: tuple[tuple[Expr, ...], ...] | None = None
 
 
+@dataclass(frozen=True, eq=False)
+class ExpectedSteady(_Record):
+    """Expected steady motions: the coordinate held fixed (its name stands for the fixed value), the cyclic
+    coordinate turning at the constant rate (its velocity's name stands for the rate), the values of that rate,
+    whether they are stable, and the frequency of small oscillations about them."""
+
+    coordinate: str
+    rate: str
+    roots: tuple[Expr, ...] = ()  # the file's ``values``
+    stable: bool | None = None
+    frequency: Expr | None = None
+
+
 @dataclass(frozen=True)
 class Expected:
     """Answers given in the file; each maps a name to a parsed expression (or a typed record)."""
@@ -211,11 +224,12 @@ class Expected:
     conserved: Mapping[str, Expr] = field(default_factory=dict)
     effective_potential: ExpectedPotential | None = None
     normal_modes: tuple[ExpectedModes, ...] = ()
+    steady_motions: ExpectedSteady | None = None
 
     def is_empty(self) -> bool:
         return not (
             self.accelerations or self.multipliers or self.constraint_forces or self.reduced
-            or self.conserved or self.effective_potential or self.normal_modes
+            or self.conserved or self.effective_potential or self.normal_modes or self.steady_motions
         )
 
 

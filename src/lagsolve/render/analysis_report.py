@@ -13,7 +13,15 @@ import sympy
 
 from lagsolve.mechanics.integrability import Integrability
 from lagsolve.render.notation import Notation, to_json
-from lagsolve.render.sections.analysis import AnalysisSection, Classified, Contacts, Effective, Modes, Reduced
+from lagsolve.render.sections.analysis import (
+    AnalysisSection,
+    Classified,
+    Contacts,
+    Effective,
+    Modes,
+    Reduced,
+    Steady,
+)
 
 KINDS = {
     Integrability.HOLONOMIC: "holonomic (as given)",
@@ -119,6 +127,29 @@ def _vector(u: tuple[Any, ...], tex: Any, math: str) -> str:
     return tex(sympy.Tuple(*u))
 
 
+def _steady_context(s: Steady, tex: Any) -> dict[str, Any]:
+    def shown(expr: Any) -> str:
+        return tex(expr) if expr is not None else ""
+
+    return {
+        "coordinate": tex(s.coordinate), "at": tex(s.at), "rate": tex(s.rate), "velocity": tex(s.velocity),
+        "held": [{"coordinate": tex(c), "momentum": tex(p), "value": tex(v)} for c, p, v in s.held],
+        "velocities": [{"symbol": tex(v), "value": tex(e)} for v, e in s.velocities],
+        "momentum": {"symbol": tex(s.momentum[0]), "value": tex(s.momentum[1])},
+        "condition": tex(s.condition), "condition_lhs": tex(s.condition.lhs),
+        "qdot": tex(s.coordinate_velocity), "qddot": tex(s.coordinate_acceleration),
+        "excluded": [tex(sympy.Eq(e, 0)) for e in s.excluded],
+        "roots": [tex(r) for r in s.roots] if s.square is None else [],
+        "square": shown(s.square), "exists_if": shown(s.exists_if),
+        "limits": {"slow": tex(s.limits[0]), "fast": tex(s.limits[1])} if s.limits is not None else None,
+        "mass": tex(s.mass), "frequency_squared": tex(s.frequency_squared),
+        "frequency_squared_at": shown(s.frequency_squared_at),
+        "eliminated": ({"symbol": tex(s.eliminated[0]), "value": tex(s.eliminated[1])}
+                       if s.eliminated is not None else None),
+        "stable": s.stable, "stability_condition": shown(s.stability_condition), "verified": s.verified,
+    }
+
+
 def _modes_context(modes: Modes, tex: Any, math: str = "latex") -> dict[str, Any]:
     equilibria = []
     for m in modes.equilibria:
@@ -146,6 +177,8 @@ def analysis_context(section: AnalysisSection | None, note: Notation, math: str 
         "name": c.name, "kind": c.kind, "symbol": tex(c.symbol), "tex": tex(c.expression), "text": text(c.expression),
         "coordinate": tex(c.coordinate) if c.coordinate is not None else "",
         "reason": c.reason, "equals_energy": bool(c.equals_energy), "moving": c.moving, "flags": list(c.flags),
+        "symmetry": c.symmetry,
+        "generator": [{"coordinate": tex(q), "value": tex(x), "unit": x == 1} for q, x in c.generator],
     } for c in section.conserved]
     return {
         "constraints": [_classified_context(k, tex, math) for k in section.constraints],
@@ -161,6 +194,7 @@ def analysis_context(section: AnalysisSection | None, note: Notation, math: str 
         "effective_note": section.effective_note,
         "modes": _modes_context(section.modes, tex, math) if section.modes is not None else None,
         "equilibria_note": section.equilibria_note,
+        "steady": _steady_context(section.steady, tex) if section.steady is not None else None,
     }
 
 
@@ -212,7 +246,9 @@ def analysis_json(section: AnalysisSection | None) -> dict[str, Any] | None:
         "agreement": r.agreement,
     }
     out["conserved"] = {c.name: {"reason": c.reason, **({"equals_total_energy": c.equals_energy}
-                                                        if c.kind == "jacobi" else {})}
+                                                        if c.kind == "jacobi" else {}),
+                                 **({"symmetry": c.symmetry, "generator": {q.name: to_json(x) for q, x in c.generator}}
+                                    if c.symmetry else {})}
                         for c in section.conserved}
     out["conserved_notes"] = list(section.conserved_notes)
     v = section.effective
@@ -227,6 +263,8 @@ def analysis_json(section: AnalysisSection | None) -> dict[str, Any] | None:
                         "frequency_squared_at": maybe(e.derived.frequency_squared_at), **_contact_json(e.contact)}
                        for e in v.equilibria],
     }
+    out["steady_motions"] = _steady_json(section.steady) if section.steady is not None else {
+        "note": section.steady_note}
     modes = section.modes
     out["linearization"] = {"note": section.linearization_note} if modes is None else {
         "coordinates": [q.name for q in modes.coordinates],
@@ -248,6 +286,29 @@ def analysis_json(section: AnalysisSection | None) -> dict[str, Any] | None:
     return out
 
 
+def _steady_json(s: Steady) -> dict[str, Any]:
+    """The steady motions in the JSON, in the coordinate's own name (standing for its steady value)."""
+    d = s.derived
+
+    def maybe(expr: Any) -> str | None:
+        return to_json(expr) if expr is not None else None
+
+    return {
+        "coordinate": d.coordinate.name, "rate": d.rate.name,
+        "held": {p.name: to_json(value) for _, p, value in d.held},
+        "velocities": {v.name: to_json(value) for v, value in d.velocities},
+        "momentum": {d.momentum[0].name: to_json(d.momentum[1])},
+        "condition": to_json(d.condition.lhs), "coefficients": [to_json(c) for c in d.coefficients],
+        "excluded": [to_json(e) for e in d.excluded], "values": [to_json(r) for r in d.roots],
+        "exists_if": maybe(d.exists_if),
+        "slow_fast": [to_json(x) for x in d.limits] if d.limits is not None else None,
+        "mass": to_json(d.mass), "curvature": to_json(d.curvature),
+        "frequency_squared": to_json(d.frequency_squared), "frequency_squared_at": maybe(d.frequency_squared_at),
+        "eliminated": {d.eliminated[0].name: to_json(d.eliminated[1])} if d.eliminated is not None else None,
+        "stable": d.stable, "stability_condition": maybe(d.stability_condition), "verified": d.verified,
+    }
+
+
 def analysis_summary(section: AnalysisSection | None, note: Notation) -> list[str]:
     """Terminal lines: minimal coordinates, conserved quantities, effective potential and equilibria."""
     if section is None:
@@ -266,9 +327,12 @@ def analysis_summary(section: AnalysisSection | None, note: Notation) -> list[st
         lines.append("  conserved:")
         for c in section.conserved:
             extra = " (= T + V)" if c.equals_energy else (" (not T + V)" if c.kind == "jacobi" else "")
+            extra += f" ({c.symmetry})" if c.kind == "noether" else ""
             lines.append(f"    {text(c.symbol)} = {text(c.expression)}{extra}")
     if section.effective is not None:
         lines += _effective_summary(section.effective, text)
+    if section.steady is not None:
+        lines += _steady_summary(section.steady, text)
     if section.modes is not None:
         lines.append("  equilibria:")
         for m in section.modes.equilibria:
@@ -302,6 +366,23 @@ def _effective_summary(v: Effective, text: Any) -> list[str]:
         if e.frequency_squared is not None:
             line += f", ω² = {text(e.frequency_squared)}"
         lines.append(line + _contact_summary(e.contact, text))
+    return lines
+
+
+def _steady_summary(s: Steady, text: Any) -> list[str]:
+    held = "".join(f", {text(p)} held" for _, p, _ in s.held)
+    lines = [f"  steady motions ({text(s.at)} fixed, {text(s.velocity)} constant{held}): "
+             f"{text(s.condition.lhs)} = {text(s.condition.rhs)}"]
+    if s.square is not None:
+        lines.append(f"    {text(s.velocity)}² = {text(s.square)}")
+    else:
+        lines += [f"    {text(s.velocity)} = {text(r)}" for r in s.roots]
+    if s.exists_if is not None:
+        lines.append(f"    real when {text(s.exists_if)}")
+    verdict = {True: "stable", False: "unstable"}.get(s.stable) if s.stable is not None else (
+        f"stable if {text(s.stability_condition)}" if s.stability_condition is not None else "stability not decided")
+    at = f" = {text(s.frequency_squared_at)}" if s.frequency_squared_at is not None else ""
+    lines.append(f"    {verdict}, ω² = {text(s.frequency_squared)}{at}")
     return lines
 
 

@@ -71,6 +71,8 @@ def label(verdict: Verdict, note: Notation, coordinates: tuple[str, ...] = ()) -
         if conjugate is not None:
             return momentum_name(note.text(sympy.Symbol(conjugate)))
         return note.text(sympy.Symbol(name))
+    if verdict.quantity == "steady_motions":
+        return {"values": "steady rates", "frequency": "steady ω²", "stable": "steady stability"}.get(name, name)
     if name == "expression":
         return "V_eff"
     if verdict.quantity == "normal_modes":

@@ -17,6 +17,7 @@ _TALL = ("<mfrac", "<mtable", "<msqrt", "<mroot", "<munderover", "<munder")
 
 _MATH = re.compile(r"<math\b[^>]*>.*?</math>", re.S)
 _MINUS = re.compile(r"<mo>-</mo>")
+_NEGATIVE = re.compile(r"<mn>-([^<]*)</mn>")  # a negative number: the minus sign, then the number
 # ⁢ then a function applied to a parenthesised argument: a thin space before the name, ⁡ after it
 _FUNCTION = re.compile(r"(<mo>(?:&InvisibleTimes;|&#8290;|\u2062)</mo>)?(<mrow>)?(<mi>[A-Za-z]{2,}</mi>)"
                        r"(?=<mrow><mo>\()")
@@ -30,6 +31,7 @@ def typeset(page: str) -> str:
 
 def _math(math: str) -> str:
     math = _MINUS.sub("<mo>&#8722;</mo>", math)
+    math = _NEGATIVE.sub(r"<mrow><mo>&#8722;</mo><mn>\1</mn></mrow>", math)
     math = _FUNCTION.sub(_function, math)
     return _parentheses(math)
 

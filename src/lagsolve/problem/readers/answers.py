@@ -18,10 +18,11 @@ from lagsolve.problem.schema import (
     ExpectedForce,
     ExpectedModes,
     ExpectedPotential,
+    ExpectedSteady,
 )
 
 _EXPECTED_KEYS = ("accelerations", "multipliers", "constraint_forces", "reduced", "conserved",
-                  "effective_potential", "normal_modes")
+                  "effective_potential", "normal_modes", "steady_motions")
 
 
 class AnswersReader(Reader):
@@ -93,6 +94,9 @@ class AnswersReader(Reader):
         if "effective_potential" in spec:
             effective = self.effective_potential(spec["effective_potential"], names, coordinate_names)
         modes = self.normal_modes(spec["normal_modes"], names, coordinate_names) if "normal_modes" in spec else ()
+        steady = None
+        if "steady_motions" in spec:
+            steady = self.steady_motions(spec["steady_motions"], names, coordinate_names)
         return Expected(
             accelerations=table("accelerations", coordinate_names, "coordinate", plain),
             multipliers=table("multipliers", constraint_names, "constraint", plain),
@@ -101,7 +105,33 @@ class AnswersReader(Reader):
             conserved=table("conserved", [], "quantity", plain),
             effective_potential=effective,
             normal_modes=modes,
+            steady_motions=steady,
         )
+
+    def steady_motions(self, value: Any, names: gateway.Namespace, coordinates: list[str]) -> ExpectedSteady | None:
+        """``steady_motions: {coordinate, rate, values: [...], stable, frequency}``."""
+        path = ("expected", "steady_motions")
+        spec = self.mapping(path, value)
+        if spec is None or not self.keys(path, spec, ("coordinate", "rate", "values", "stable", "frequency"),
+                                         ("coordinate", "rate", "values")):
+            return None
+        ok = True
+        for key in ("coordinate", "rate"):
+            if spec[key] not in coordinates:
+                self.issue((*path, key), f"unknown coordinate {shown(spec[key])}",
+                           known_names("coordinates", coordinates))
+                ok = False
+        raw = spec["values"]
+        if not isinstance(raw, list) or not raw:
+            self.issue((*path, "values"), f"expected a list of expressions, found {kind_of(raw)}",
+                       "write e.g. 'values: [\"sqrt(g/(l*cos(theta)))\"]'")
+            return None
+        values = [self.expression((*path, "values", i), v, names) for i, v in enumerate(raw)]
+        stable = self.flag((*path, "stable"), spec["stable"]) if "stable" in spec else None
+        frequency = self.expression((*path, "frequency"), spec["frequency"], names) if "frequency" in spec else None
+        if not ok or any(v is None for v in values) or ("frequency" in spec and frequency is None):
+            return None
+        return ExpectedSteady(spec["coordinate"], spec["rate"], tuple(values), stable, frequency)
 
     def effective_potential(self, value: Any, names: gateway.Namespace,
                             coordinates: list[str]) -> ExpectedPotential | None:

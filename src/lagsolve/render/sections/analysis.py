@@ -23,6 +23,7 @@ if TYPE_CHECKING:
     from lagsolve.mechanics.linearize import Linearization
     from lagsolve.mechanics.minimal import ReducedSystem
     from lagsolve.mechanics.results import Derivation
+    from lagsolve.mechanics.steady import SteadyMotion
 
 Expr = Any
 
@@ -101,6 +102,8 @@ class Conserved:
     equals_energy: bool | None
     moving: bool
     flags: tuple[str, ...]
+    symmetry: str = ""  # the translation or rotation whose momentum it is (Noether)
+    generator: tuple[tuple[Expr, Expr], ...] = ()  # (coordinate, ξ) for each coordinate the flow moves
 
 
 @dataclass(frozen=True)
@@ -167,6 +170,36 @@ class Effective:
 
 
 @dataclass(frozen=True)
+class Steady:
+    """The steady motions about the effective potential's coordinate, written in its symbol ``at`` (q₀); the
+    rate's velocity symbol ``velocity`` stands for the constant rate Ω (``derived``: the mechanics record)."""
+
+    coordinate: Expr
+    coordinate_velocity: Expr
+    coordinate_acceleration: Expr
+    at: Expr
+    rate: Expr
+    velocity: Expr
+    held: tuple[tuple[Expr, Expr, Expr], ...]  # (coordinate, momentum symbol, ∂L/∂q̇) of each held momentum
+    velocities: tuple[tuple[Expr, Expr], ...]  # (velocity symbol, value) of the held coordinates
+    momentum: tuple[Expr, Expr]  # (p of the rate, its value at the steady motion)
+    condition: Expr
+    excluded: tuple[Expr, ...]
+    roots: tuple[Expr, ...]
+    square: Expr | None
+    exists_if: Expr | None
+    limits: tuple[Expr, Expr] | None
+    mass: Expr
+    frequency_squared: Expr
+    frequency_squared_at: Expr | None
+    eliminated: tuple[Expr, Expr] | None
+    stable: bool | None
+    stability_condition: Expr | None
+    verified: str
+    derived: Any
+
+
+@dataclass(frozen=True)
 class Mode:
     """An equilibrium of the linearization and its small oscillations."""
 
@@ -206,6 +239,8 @@ class AnalysisSection:
     effective_note: str
     modes: Modes | None
     linearization_note: str
+    steady: Steady | None = None
+    steady_note: str = ""
 
     @property
     def velocity_constraints(self) -> bool:
@@ -236,8 +271,9 @@ def analysis_section(derivation: Derivation) -> AnalysisSection | None:
         reduced_note=analysis.reduced_note,
         system=analysis.system.kind,
         conserved=tuple(
-            Conserved(c.name, c.kind, sympy.Symbol(c.name) if c.kind == "momentum" else sympy.Symbol("h"),
-                      c.expression, c.coordinate, c.reason, c.equals_energy, c.moving, tuple(c.flags))
+            Conserved(c.name, c.kind, sympy.Symbol("h") if c.kind == "jacobi" else sympy.Symbol(c.name),
+                      c.expression, c.coordinate, c.reason, c.equals_energy, c.moving, tuple(c.flags), c.symmetry,
+                      _generator(c.generator, analysis.system.model.coordinates))
             for c in conservation.quantities),
         conserved_notes=tuple(conservation.notes),
         cyclic=tuple(conservation.cyclic),
@@ -246,7 +282,35 @@ def analysis_section(derivation: Derivation) -> AnalysisSection | None:
         effective_note=analysis.effective_note,
         modes=_modes(analysis.linearization, analysis.modes_contact) if analysis.linearization is not None else None,
         linearization_note=analysis.linearization_note,
+        steady=_steady(analysis.steady, derivation) if analysis.steady is not None else None,
+        steady_note=analysis.steady_note,
     )
+
+
+def _generator(flow: tuple[Any, ...], coordinates: tuple[Any, ...]) -> tuple[tuple[Any, Any], ...]:
+    """The coordinates a symmetry's flow moves, with its component ξ for each."""
+    return tuple((q, x) for q, x in zip(coordinates, flow, strict=False) if x != 0)
+
+
+def _steady(s: SteadyMotion, derivation: Derivation) -> Steady:
+    q0 = equilibrium_symbol(s.coordinate, derivation.problem.symbols)
+
+    def at(expr: Any) -> Any:
+        return expr.xreplace({s.coordinate: q0}) if isinstance(expr, sympy.Basic) else expr
+
+    model = derivation.model
+    k = model.coordinates.index(s.coordinate)
+    return Steady(
+        coordinate=s.coordinate, coordinate_velocity=model.velocities[k],
+        coordinate_acceleration=model.accelerations[k], at=q0, rate=s.rate, velocity=s.velocity,
+        held=tuple((c, p, value) for c, p, value in s.held),
+        velocities=tuple((v, at(value)) for v, value in s.velocities),
+        momentum=(s.momentum[0], at(s.momentum[1])), condition=at(s.condition),
+        excluded=tuple(at(e) for e in s.excluded), roots=tuple(at(r) for r in s.roots), square=at(s.square),
+        exists_if=at(s.exists_if), limits=(at(s.limits[0]), at(s.limits[1])) if s.limits is not None else None,
+        mass=at(s.mass), frequency_squared=at(s.frequency_squared), frequency_squared_at=at(s.frequency_squared_at),
+        eliminated=(s.eliminated[0], at(s.eliminated[1])) if s.eliminated is not None else None,
+        stable=s.stable, stability_condition=at(s.stability_condition), verified=s.verified, derived=s)
 
 
 def _classified(k: Classification) -> Classified:
