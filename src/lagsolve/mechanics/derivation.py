@@ -50,6 +50,12 @@ LARGE_SYSTEM = 4
 #: above this many operations the magnitude of a contact's force is not simplified
 CONTACT_LIMIT = 60
 
+#: up to this many coordinates and constraints q̈ and λ are given explicitly however long they are, when the bound
+#: on their size lets the solve run (:mod:`~lagsolve.mechanics.ringsolve`); whether a report prints one is decided
+#: there. A larger system's explicit results are given only while they are at most SIZE_LIMIT operations long
+EXPLICIT_COORDINATES = 6
+EXPLICIT_CONSTRAINTS = 3
+
 
 def derive(problem: Problem, *, budget: float | None = None, analysis: bool = True,
            on_core: Callable[[Derivation], None] | None = None) -> Derivation:
@@ -185,7 +191,9 @@ def _solve(lagrange: LagrangeTerms) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
     contracted = dataclasses.replace(
         lagrange, mass_matrix=sympy.ImmutableMatrix(lagrange.mass_matrix.applyfunc(compound_angles)),
         forcing=sympy.ImmutableMatrix(lagrange.forcing.applyfunc(compound_angles)))
-    return solve_augmented(contracted, SIZE_LIMIT)
+    n, m = lagrange.constraint_jacobian.cols, lagrange.constraint_jacobian.rows
+    explicit = n <= EXPLICIT_COORDINATES and m <= EXPLICIT_CONSTRAINTS
+    return solve_augmented(contracted, None if explicit else SIZE_LIMIT)
 
 
 def _plain(expr: Any) -> Any:

@@ -1,6 +1,10 @@
 r"""Solving the augmented system by its structure, with a bound on the size of what comes out.
 
-The equations :math:`M\ddot q = F + A^T\lambda`, :math:`A\ddot q = \beta` are solved
+Where the entries are polynomials in symbols and functions of them (every shipped problem), the whole
+augmented system is solved at once, fraction-free, in a polynomial ring, after a bound on the size of
+the result that declines a too large solve before it starts (:mod:`~lagsolve.mechanics.ringsolve`).
+Otherwise (floats, algebraic numbers) the equations :math:`M\ddot q = F + A^T\lambda`,
+:math:`A\ddot q = \beta` are solved
 
 * block by block: :math:`M` is split into the diagonal blocks its sparsity pattern allows
   (a diagonal :math:`M`, bodies that do not share coordinates), and each block is solved on
@@ -31,6 +35,7 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.algebra import cancel, known_cancelled, ops
+from lagsolve.mechanics.ringsolve import MAX_TERMS, solve_in_ring
 from lagsolve.mechanics.stages import StageSkipped
 
 #: an explicit result (or an intermediate of the elimination) with more operations than this is not produced
@@ -258,12 +263,19 @@ def _solve_blocks(M: sympy.Matrix, rhs: sympy.Matrix, limit: int | None) -> symp
     return out
 
 
-def solve_structured(M: Any, F: Any, A: Any, beta: Any, limit: int | None = SIZE_LIMIT) -> tuple[list[Any], list[Any]]:
-    r"""(:math:`\ddot q`, :math:`\lambda`) of the augmented system, unsimplified (module docstring).
+def solve_structured(M: Any, F: Any, A: Any, beta: Any, limit: int | None = SIZE_LIMIT,
+                     terms: int | None = MAX_TERMS) -> tuple[list[Any], list[Any]]:
+    r"""(:math:`\ddot q`, :math:`\lambda`) of the augmented system, unsimplified (module docstring): in a
+    polynomial ring when the entries allow it (:func:`~lagsolve.mechanics.ringsolve.solve_in_ring`, after a
+    bound on the size of the result that declines at once past ``terms`` terms), else by the structure below.
 
     Raises ``ValueError`` when the system is singular and :class:`StageSkipped` when the result
-    would be larger than ``limit`` operations per expression (``None``: no bound).
+    would be larger than ``terms`` terms or ``limit`` operations per expression (``None``: no bound).
     """
+    ring = solve_in_ring(M, F, A, beta, terms)
+    if ring is not None:
+        _guard([*ring[0], *ring[1]], limit)
+        return ring
     M, F, A, beta = sympy.Matrix(M), sympy.Matrix(F), sympy.Matrix(A), sympy.Matrix(beta)
     m = A.rows
     try:

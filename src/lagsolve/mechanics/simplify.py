@@ -83,6 +83,8 @@ TIDY_LIMIT = 200
 #: above this many operations sums are not searched for compound angles (the pairing grows with the square)
 CONTRACT_LIMIT = 600
 TRIGSIMP_LIMIT = 0
+#: above this many operations a cancelled quotient is not factored (:func:`_factor_cancelled`)
+FACTOR_LIMIT = 1000
 _ERRORS = (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError)
 
 
@@ -105,6 +107,9 @@ def pythagoras(expr: Any) -> list[Any]:
     out = []
     for of, to in ((sympy.cos, sympy.sin), (sympy.sin, sympy.cos)):
         n, d = _reduce_squares(numerator, of, to), _reduce_squares(denominator, of, to)
+        if ops(n) + ops(d) > FACTOR_LIMIT:  # only while cheap (see _factor_cancelled)
+            out.append(n / d)
+            continue
         try:
             out.append(factor(n) / factor(d))
         except _ERRORS:
@@ -152,7 +157,7 @@ def tidy(expr: Any) -> Any:
 def _search(expr: Any) -> Any:
     """The search of :func:`tidy`: each rewriting of ``expr``, then the smallest by :func:`measure`."""
     candidates: list[Any] = [expr]
-    for step in (cancel, factor_terms, lambda e: factor(cancel(e))):
+    for step in (cancel, factor_terms, _factor_cancelled):
         try:
             candidates.append(step(expr))
         except _ERRORS:
@@ -172,10 +177,17 @@ def _search(expr: Any) -> Any:
     best = smallest(candidates)
     candidates += signs(best)  # v/|v| appears only once roots of squares became Abs: look at the best form
     best = smallest(candidates)
-    if ops(best) <= SIMPLIFY_LIMIT and not best.has(*_TRIG) and not _scaled_number(best):
+    if ops(best) <= SIMPLIFY_LIMIT and not best.has(*_TRIG, sympy.sign) and not _scaled_number(best):
         with contextlib.suppress(*_ERRORS):
             candidates.append(sympy.simplify(best))
     return smallest(candidates)
+
+
+def _factor_cancelled(expr: Any) -> Any:
+    """``factor(cancel(expr))``, only while cheap: a quotient that cancelling writes out at length (a normal force
+    over a sum of squares) is not factored (Wang's algorithm on it costs seconds and the form is not kept)."""
+    cancelled = cancel(expr)
+    return factor(cancelled) if ops(cancelled) <= FACTOR_LIMIT else cancelled
 
 
 def _scaled_number(expr: Any) -> bool:
@@ -454,7 +466,8 @@ def root_of_square(square: Any) -> Any:
     atoms = sorted(square.atoms(sympy.Derivative, sympy.core.function.AppliedUndef), key=sympy.default_sort_key)
     reals = {atom: sympy.Dummy(f"r{i}", real=True) for i, atom in enumerate(atoms)}
     candidates = []
-    for form in (square, sympy.factor(square)):
+    # factoring a long square (a coupled normal force written out) costs seconds and gives no root: only while cheap
+    for form in (square, sympy.factor(square)) if ops(square) <= TIDY_LIMIT else (square,):
         root = sympy.sqrt(form.xreplace(reals)).xreplace({v: k for k, v in reals.items()})
         candidates += [root, tidy_abs(root)]
     return smallest(candidates)
