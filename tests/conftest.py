@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 
 from lagsolve.app.pipeline import Reports, derive_file
+from lagsolve.mechanics import stages
 from lagsolve.mechanics.derivation import Derivation
 from mechanics_support import derived_file
 
@@ -40,6 +41,36 @@ def shipped_reports() -> Callable[[str], Reports]:
         return cache[name]
 
     return reports
+
+
+#: the stages that spent their whole share of the budget and gave up, during the test running now
+_SPENT: list[str] = []
+_RUN = stages.Stages.run
+
+
+def _watched_run(self: stages.Stages, stage: str, fn: Callable[..., object], *args: object,
+                 **kwargs: object) -> object:
+    """:meth:`Stages.run`, noting each stage that ran out of its share of the budget."""
+    before = len(self.notes)
+    result = _RUN(self, stage, fn, *args, **kwargs)  # type: ignore[arg-type]
+    _SPENT.extend(f"{n.stage}: {n.reason}" for n in self.notes[before:] if n.reason.startswith("ran out"))
+    return result
+
+
+stages.Stages.run = _watched_run  # type: ignore[assignment,method-assign]
+
+
+@pytest.fixture(autouse=True)
+def no_stage_spends_its_share(request: pytest.FixtureRequest) -> object:
+    """Every problem a test derives finishes each stage or declines it at once (issue 28): a stage that spends
+    its whole share of the CPU budget and then gives up fails the test, unless the test is marked ``budget``
+    (it gives a tiny budget on purpose)."""
+    _SPENT.clear()
+    yield
+    if _SPENT and request.node.get_closest_marker("budget") is None:
+        spent, _SPENT[:] = list(_SPENT), []
+        pytest.fail("a stage ran out of its share of the CPU budget instead of declining at once: "
+                    + "; ".join(spent), pytrace=False)
 
 
 #: a test function run over at least this many shipped problems runs the whole problem library: it is marked

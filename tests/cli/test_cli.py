@@ -93,6 +93,7 @@ def test_update_golden_needs_golden(runner: CliRunner) -> None:
     assert result.exit_code == 2 and "--update-golden needs --golden" in result.stderr
 
 
+@pytest.mark.budget
 def test_timeout_still_gives_the_core(runner: CliRunner) -> None:
     """A stage past its share of the --timeout CPU budget is named on stderr (exit 0), and the rest is still
     given: the coupled pendulums' symbolic equilibria never finish, their accelerations and matrix form do."""

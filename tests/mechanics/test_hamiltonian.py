@@ -276,6 +276,7 @@ def test_check_verifies_a_claim_by_its_poisson_bracket():
     assert by_name["p_r.poisson_bracket"].status == "mismatch"
 
 
+@pytest.mark.budget
 def test_a_hamiltonian_out_of_budget_is_named_and_the_rest_comes_out(monkeypatch):
     """When the Hamiltonian stage runs out of its CPU share, a note names it, the key is null, the rest is there."""
     import lagsolve.mechanics.hamiltonian as module

@@ -24,6 +24,7 @@ def test_a_stage_that_finishes_returns_its_value() -> None:
     assert stages.notes == []
 
 
+@pytest.mark.budget
 def test_a_stage_past_its_share_is_stopped_with_a_note() -> None:
     """A stage that uses up its CPU share returns None and is named, with its share, in a note."""
     stages = Stages(2.0)
@@ -33,6 +34,7 @@ def test_a_stage_past_its_share_is_stopped_with_a_note() -> None:
     assert "ran out of its share of the CPU budget" in note.reason and "--timeout" in note.reason
 
 
+@pytest.mark.budget
 def test_a_swallowed_timeout_is_raised_again() -> None:
     """Code that catches one StageTimeout is interrupted again, so a stage cannot run on forever."""
 
