@@ -35,6 +35,7 @@ lint: $(STAMP)
 
 bench: $(STAMP)
 	$(BIN)/python bench/derive.py
+	$(BIN)/python bench/classics.py
 	$(BIN)/python bench/simulate.py
 	$(BIN)/python bench/scale.py
 	$(BIN)/python bench/sweep.py

@@ -43,3 +43,14 @@ def test_probes_evaluate_unevaluated_objects():
     assert numerically_zero(sympy.Integral(2 * y, (y, 0, x)) - x**2)
     assert numerically_zero(sympy.sin(x - y) - sympy.sin(x) * sympy.cos(y) + sympy.cos(x) * sympy.sin(y))
     assert not numerically_zero(sympy.sin(x - y) - sympy.sin(x) * sympy.cos(y))
+
+
+def test_signs_of_products_are_split():
+    """The wedge's friction in two routes: sign((Ẋ − ẋ) cos α) sign(cos α) against sign(Ẋ − ẋ) is proved zero; a
+    sign that really differs (sign(Ẋ − ẋ) against sign(Ẋ + ẋ)) is not."""
+    X, v, a, m = sympy.symbols("X_dot x_dot alpha m", real=True)
+    one = m * sympy.sign(X * sympy.cos(a) - v * sympy.cos(a)) * sympy.sign(sympy.cos(a)) / (1 + m ** 2)
+    other = m * sympy.sign(X - v) / (1 + m ** 2)
+    assert zero_status(one - other) is Zero.PROVED
+    assert zero_status(-2 * sympy.sign(-3 * (X - v)) / 3 - 2 * sympy.sign(X - v) / 3) is Zero.PROVED
+    assert zero_status(sympy.sign(X - v) - sympy.sign(X + v)) is Zero.NONZERO

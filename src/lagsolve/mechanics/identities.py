@@ -16,7 +16,7 @@ from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.simplify import pythagoras, tidy
+from lagsolve.mechanics.simplify import pythagoras, reduce_squares, tidy
 
 #: concrete smooth functions standing in for declared functions in numeric probes
 _PROBES = (lambda u: sympy.sin(u) + u**2 / 3, lambda u: sympy.exp(u / 2) - u, lambda u: u**3 / 5 + sympy.cos(u))
@@ -62,12 +62,23 @@ def zero_status(expr: Any, *, samples: int = 6, seed: int = 3) -> Zero:
         pass
     if not numerically_zero(expr, samples=samples, seed=seed):
         return Zero.NONZERO  # a value away from zero is proof enough, and cheaper than the rewritings below
-    if tidy(expr) == 0:
-        return Zero.PROVED
+    if expr.has(sympy.sign):
+        expr = split_signs(expr)
+        if expr == 0:
+            return Zero.PROVED
     forms = [expr]
     if any(not f.args[0].is_Symbol for f in expr.atoms(sympy.sin, sympy.cos)):
         # cos(θ1 − θ2) and the like (the solve keeps them): expand into single angles, then try again
         forms.append(sympy.expand_trig(expr))
+    try:
+        # the numerator with every cos² written 1 − sin², expanded: each step an identity, so 0 is a proof,
+        # and much cheaper than the simplifier's search (a friction problem's reduced equations: 3 s → 0.1 s)
+        if any(reduce_squares(sympy.fraction(sympy.cancel(f))[0], sympy.cos, sympy.sin) == 0 for f in forms):
+            return Zero.PROVED
+    except (sympy.PolynomialError, ValueError, TypeError):
+        pass
+    if tidy(expr) == 0:
+        return Zero.PROVED
     try:
         # sin² + cos² = 1 both ways, also on expressions too large for the display simplifier
         if any(sympy.cancel(f) == 0 or any(p == 0 for p in pythagoras(f)) for f in forms[1:] + forms[:1]):
@@ -75,6 +86,27 @@ def zero_status(expr: Any, *, samples: int = 6, seed: int = 3) -> Zero:
     except (sympy.PolynomialError, ValueError, TypeError):
         pass
     return Zero.UNDECIDED
+
+
+def split_signs(expr: Any) -> Any:
+    """``expr`` with each sign(a b) written sign(a) sign(b) (the factors of ``factor_terms(a)``, a number's sign
+    evaluated) and then sign(a)² as 1: identities wherever no factor is zero, so an expression they take to 0
+    vanishes identically as a function. The friction of a wedge's face, sign((Ẋ − ẋ) cos α) sign(cos α) in one
+    route and sign(Ẋ − ẋ) in the other, then agree."""
+
+    def split(arg: Any) -> Any:
+        out = sympy.Integer(1)
+        for f in sympy.Mul.make_args(sympy.factor_terms(arg)):
+            if f.is_number:
+                out *= sympy.sign(f)
+            else:
+                base, exp = f.as_base_exp()
+                out *= sympy.sign(base) ** exp if exp.is_Integer else sympy.sign(f)
+        return out
+
+    split_form = expr.replace(lambda e: isinstance(e, sympy.sign), lambda e: split(e.args[0]))
+    return split_form.replace(lambda e: e.is_Pow and isinstance(e.base, sympy.sign) and e.exp.is_Integer
+                              and e.base.args[0].is_extended_real, lambda e: e.base ** (int(e.exp) % 2))
 
 
 def _polynomial(expr: Any) -> bool:

@@ -88,7 +88,7 @@ FACTOR_LIMIT = 1000
 _ERRORS = (sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError)
 
 
-def _reduce_squares(expr: Any, of: Any, to: Any) -> Any:
+def reduce_squares(expr: Any, of: Any, to: Any) -> Any:
     """Rewrite even powers of ``of`` (cos, say) with ``1 - to**2`` and expand: a cheap, canonical
     reduction modulo sin² + cos² = 1."""
 
@@ -106,7 +106,7 @@ def pythagoras(expr: Any) -> list[Any]:
     numerator, denominator = sympy.fraction(cancel(expr))
     out = []
     for of, to in ((sympy.cos, sympy.sin), (sympy.sin, sympy.cos)):
-        n, d = _reduce_squares(numerator, of, to), _reduce_squares(denominator, of, to)
+        n, d = reduce_squares(numerator, of, to), reduce_squares(denominator, of, to)
         if ops(n) + ops(d) > FACTOR_LIMIT:  # only while cheap (see _factor_cancelled)
             out.append(n / d)
             continue
@@ -127,7 +127,7 @@ def _reduce_factor(term: Any) -> Any:
     base, exp = term.as_base_exp()
     if not base.has(sympy.sin, sympy.cos):
         return term
-    forms = [base, _reduce_squares(base, sympy.cos, sympy.sin), _reduce_squares(base, sympy.sin, sympy.cos)]
+    forms = [base, reduce_squares(base, sympy.cos, sympy.sin), reduce_squares(base, sympy.sin, sympy.cos)]
     return smallest(forms) ** exp
 
 
@@ -243,8 +243,8 @@ def tidy_sum(expr: Any) -> Any:
     expanded = expand(expr)
     candidates = [expanded]
     if expanded.has(*_TRIG):
-        candidates += [_reduce_squares(expanded, sympy.cos, sympy.sin),
-                       _reduce_squares(expanded, sympy.sin, sympy.cos)]
+        candidates += [reduce_squares(expanded, sympy.cos, sympy.sin),
+                       reduce_squares(expanded, sympy.sin, sympy.cos)]
         if ops(expanded) <= TRIGSIMP_LIMIT:
             reduced = sympy.trigsimp(expanded)
             candidates += [reduced, sympy.expand(sympy.expand_trig(reduced))]
