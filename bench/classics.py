@@ -78,6 +78,7 @@ def _sympy_coupled_pendulums() -> None:
 def _sympy_pydy() -> None:
     sys.path.insert(0, str(ROOT / "tests"))
     import sympy
+
     from test_classics import pydy_kane  # PyDy's documented model, built as its documentation does
 
     _, (_, _, _, rates) = pydy_kane()
