@@ -64,9 +64,9 @@ def _sympy_coupled_pendulums() -> None:
     from sympy.physics import mechanics as me
 
     th1, th2 = me.dynamicsymbols("theta1 theta2")
-    m, g, l, k, d = symbols("m g l k d")
-    x1, y1 = l * sin(th1), -l * cos(th1)
-    x2, y2 = d + l * sin(th2), -l * cos(th2)
+    m, g, length, k, d = symbols("m g l k d")
+    x1, y1 = length * sin(th1), -length * cos(th1)
+    x2, y2 = d + length * sin(th2), -length * cos(th2)
     t = me.dynamicsymbols._t
     T = m * (x1.diff(t) ** 2 + y1.diff(t) ** 2 + x2.diff(t) ** 2 + y2.diff(t) ** 2) / 2
     V = m * g * (y1 + y2) + k * ((x2 - x1) - d) ** 2 / 2
