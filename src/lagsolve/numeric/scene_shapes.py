@@ -345,6 +345,8 @@ class Builder:
                 directions.append((d, (j, axis)))
         out = []
         kind = "support" if surface.implied else "ground"
+        if surface.implied:  # a fixed floor or table: where it is at the start, under all the member's travel
+            point = np.broadcast_to(point[0], point.shape)
         for d, views in directions:
             low, high = self.extent(point, d, surface.particle if surface.implied else None)
             if surface.particle in self.corners:  # under the whole wedge or box it carries

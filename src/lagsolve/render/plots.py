@@ -46,7 +46,7 @@ def fit(text: str, width_inches: float, fontsize: float = 12.0) -> str:
 def figure(title: str, rows: int = 1, cols: int = 1, **kwargs: Any) -> tuple[Any, Any]:
     from lagsolve.render.picture import Picture
 
-    size = kwargs.pop("figsize", (WIDTH, min(1.3 + 1.75 * rows, MAX_HEIGHT)))
+    size = kwargs.pop("figsize", (WIDTH, min(1.15 + 1.45 * rows, MAX_HEIGHT)))
     fig = Picture(figsize=size, layout="constrained")
     axes = fig.subplots(rows, cols, squeeze=False, **kwargs)
     fig.suptitle(fit(title, size[0] - 0.3), parse_math=False)  # user text: a "$" in a name is not mathtext
@@ -115,7 +115,7 @@ def path_figure(trajectory: Trajectory, title: str,
     to the first particle's positions, shape (samples, components)."""
     dims = {d for _, d in trajectory.particles}
     three = 3 in dims
-    fig, axes = figure(f"{title}: paths", 1, 2 if three else 1, figsize=(WIDTH, 3.9 if three else 4.6))
+    fig, axes = figure(f"{title}: paths", 1, 2 if three else 1, figsize=(WIDTH, 3.5 if three else 4.1))
     planes = [(0, 1, "x", "y")] + ([(0, 2, "x", "z")] if three else [])
     length = (units or {}).get("length")
     for ax, (i, j, xl, yl) in zip(axes[0], planes, strict=True):
@@ -192,7 +192,7 @@ def phase_figure(trajectory: Trajectory, title: str, labels: Mapping[str, str], 
     cols = min(3, len(moving))
     rows = -(-len(moving) // cols)
     fig, axes = figure(f"{title}: phase portraits", rows, cols,
-                       figsize=(WIDTH, min(0.9 + (6.0 / max(cols, 2) + 0.4) * rows, MAX_HEIGHT)))
+                       figsize=(WIDTH, min(0.9 + (5.6 / max(cols, 2) + 0.3) * rows, MAX_HEIGHT)))
     for idx, k in enumerate(moving):
         ax = axes[idx // cols][idx % cols]
         name = trajectory.coordinates[k]

@@ -321,7 +321,8 @@ class Drawing:
 
 
 def _figure_size(panels: int) -> tuple[float, float]:
-    return (WIDTH, 4.6) if panels == 1 else (WIDTH, 3.9)
+    """One view (with the legend beside it) or two (with the legend under them), two figures to a printed page."""
+    return (WIDTH, 4.1) if panels == 1 else (WIDTH, 3.7)
 
 
 def sketch_figure(trajectory: Trajectory, scene: Scene | None, title: str, units: Units = None,
