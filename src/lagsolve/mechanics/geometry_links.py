@@ -298,5 +298,5 @@ def supports(problem: Problem, coordinates: list[Any], holding: set[str | None],
         if not any(any(c != 0 for c in m) for m in moves):
             continue
         if all(_zero(sum((g * c for g, c in zip(gravity, m, strict=True)), sympy.Integer(0))) for m in moves):
-            out.append(Surface(f"support of {p.name}", p.name, tuple(p.position), tuple(gravity), implied=True))
+            out.append(Surface(f"surface under {p.name}", p.name, tuple(p.position), tuple(gravity), implied=True))
     return out

@@ -299,7 +299,8 @@ class Builder:
         run = self.run
         lines: list[tuple[str, np.ndarray, np.ndarray]] = []
         shapes: list[Shape] = []
-        ordered = sorted(self.geometry.surfaces, key=lambda s: s.implied)  # the carriers' bases first
+        # the faces wedges and boxes carry first (their bodies, bases and corners), then the floors under them
+        ordered = sorted(self.geometry.surfaces, key=lambda s: (s.carrier is None, s.implied))
         for surface in ordered:
             point, normal = run.along(surface.point), run.along(surface.normal)
             if point is None or normal is None:

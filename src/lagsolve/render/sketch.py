@@ -88,6 +88,11 @@ def views(trajectory: Trajectory, scene: Scene | None) -> list[tuple[int, int]]:
         return [(0, 1)]
     if bodies:  # the side that shows the bodies broadest (a coin face-on)
         spread = np.ptp(np.vstack(bodies), axis=0)
+    elif standing and points and max(spread[0], spread[1]) < 1.5 * min(spread[0], spread[1]):
+        # round a surface of revolution about as far one way as the other: the side whose plane holds the
+        # particle at the start, so it is drawn on the surface's profile, not inside it
+        start = np.abs(points[0][0])
+        return [(0, 1), (0, 2) if start[1] <= start[0] else (1, 2)]
     return [(0, 1), (0, 2) if spread[0] >= spread[1] else (1, 2)]
 
 
@@ -116,6 +121,9 @@ class Drawing:
         self.plane = [_cut(p, i, j) for p in _plane(trajectory)]
         self.markers = [(name, _cut(v, i, j)) for name, v in scene.markers]
         self.shapes = [s for s in scene.shapes if set(s.views) <= {i, j}]
+        self.forces = [(f, _cut(f.point, i, j), _cut(f.vector, i, j)) for f in scene.forces]
+        self.per_force = 0.0
+        self.sample = sample
         self._limits(sample)
         ax.set_aspect("equal", adjustable="box")
         ax.grid(alpha=0.2)
@@ -123,7 +131,7 @@ class Drawing:
         ax.set_xlabel(with_unit("xyz"[i], length))
         ax.set_ylabel(with_unit("xyz"[j], length))
         for label, points in scene.curves:
-            if points.shape[1] > max(i, j) or (points.shape[1] == 2 and (i, j) == (0, 1)):
+            if self._in_view(points):
                 pts = _cut(points, i, j)
                 ax.plot(pts[:, 0], pts[:, 1], **STYLES["wire"], label=label or "wire")
         self.artists: list[tuple[Shape, Any]] = []
@@ -169,15 +177,14 @@ class Drawing:
                                            fontsize="small", zorder=5, annotation_clip=False))
         for dot, trail in zip(self.dots, self.trails, strict=False):
             trail.set_color(dot.get_color())
-        self.forces = [(f, _cut(f.point, i, j), _cut(f.vector, i, j)) for f in scene.forces]
-        span = self.span
-        self.per_force = force_scale(scene, span) if per_force is None else per_force
+        self.per_force = force_scale(scene, self.span) if per_force is None else per_force
+        self._limits(sample)  # again, with room for the arrows' heads
         self.arrows = self._arrows()
         self._gravity()
         if legend and ax.get_legend_handles_labels()[0]:
             self.legend = ax.legend(**self.legend_options())
-        self.stamp = ax.text(0.03, 0.96, "", transform=ax.transAxes, ha="left", va="top", fontsize="medium",
-                             bbox={"boxstyle": "round", "facecolor": "white", "edgecolor": "0.7", "alpha": 0.85},
+        # the time stamp above the view's top left corner, clear of what is drawn
+        self.stamp = ax.text(0.0, 1.015, "", transform=ax.transAxes, ha="left", va="bottom", fontsize="medium",
                              zorder=6)
 
     # --- layout ------------------------------------------------------------------------------------------
@@ -189,20 +196,29 @@ class Drawing:
         groups += [_cut(p[rows], self.i, self.j).reshape(-1, 2) for p in self.scene.pivots]
         for _, a, b in self.scene.rods:
             groups += [_cut(a[rows], self.i, self.j), _cut(b[rows], self.i, self.j)]
+        for _, curve in self.scene.curves:  # a closed wire (a ring, a hoop) is shown whole
+            if len(curve) > 2 and np.allclose(curve[0], curve[-1]) and self._in_view(curve):
+                groups.append(_cut(curve, self.i, self.j))
         for shape in self.shapes:
             if shape.kind in BOUNDED:
                 points = shape.points if shape.points.ndim == 2 or sample is None else shape.points[sample]
                 groups.append(_cut(points, self.i, self.j).reshape(-1, 2))
+        if self.per_force > 0:  # the arrows' heads
+            for _, point, vector in self.forces:
+                groups.append((point[rows] + self.per_force * vector[rows]).reshape(-1, 2))
         points = np.vstack(groups) if groups else np.zeros((1, 2))
         points = points[np.all(np.isfinite(points), axis=1)]
         return points if len(points) else np.zeros((1, 2))
+
+    def _in_view(self, points: np.ndarray) -> bool:
+        return points.shape[1] > max(self.i, self.j) or (points.shape[1] == 2 and (self.i, self.j) == (0, 1))
 
     def _limits(self, sample: int | None) -> None:
         """Square limits around every member, pivot and bounded shape, with room for labels and arrows: over the
         whole run (the animation's axes stay put), or for a sketch at one sample, around that sample where the
         run goes far beyond it (a cart that rolls away)."""
         points = self._points(None)
-        if sample is not None and len(self.plane) + len(self.markers) > 1:
+        if sample is not None:
             here = self._points(sample)
             size = float(np.ptp(here, axis=0).max())
             if size > 1e-9 * (1 + float(np.abs(here).max())) and np.ptp(points, axis=0).max() > 4 * size:
@@ -246,17 +262,25 @@ class Drawing:
 
         out = []
         colours: dict[tuple[str, str], str] = {}
+        first: dict[tuple[str, str], list[np.ndarray]] = {}
         for force, _, _ in self.forces:
             key = (force.kind, force.label)
             if key not in colours:
                 palette = FORCE_COLOURS if force.kind == "constraint" else FRICTION_COLOURS
                 colours[key] = palette[sum(1 for k in colours if k[0] == force.kind) % len(palette)]
-            if not any(label == self._force_label(force) for label in self.ax.get_legend_handles_labels()[1]):
+            # the opposite force on the second member where the two touch (the wedge under the block): dashed,
+            # with its own entry, so the pair does not read as one double-headed arrow
+            reaction = any(np.allclose(p, force.point) for p in first.get(key, []))
+            first.setdefault(key, []).append(force.point)
+            label = self._force_label(force) + (f" on {force.member}" if reaction else "")
+            style = "--" if reaction else "-"
+            if not any(label == known for known in self.ax.get_legend_handles_labels()[1]):
                 # the legend's entry: an arrow-headed line (the arrow itself may be hidden at the sample shown)
-                self.ax.plot([], [], color=colours[key], linewidth=1.6, marker=">", markersize=6,
-                             label=self._force_label(force))
+                self.ax.plot([], [], color=colours[key], linewidth=1.6, marker=">", markersize=6, linestyle=style,
+                             label=label)
             arrow = FancyArrowPatch((0, 0), (0, 0), arrowstyle="-|>", mutation_scale=11, linewidth=1.6,
-                                    color=colours[key], zorder=5.5, shrinkA=0, shrinkB=0)
+                                    color=colours[key], zorder=5.5, shrinkA=0, shrinkB=0, linestyle=style,
+                                    alpha=0.75 if reaction else 1.0)
             self.ax.add_patch(arrow)
             out.append(arrow)
         return out
@@ -303,9 +327,15 @@ class Drawing:
         for values, marker in zip(self.pivot_points, self.pivots, strict=True):
             marker.set_data([values[sample, 0]], [values[sample, 1]])
         members = self.plane + [v for _, v in self.markers]
+        placed: list[np.ndarray] = []
         for xy, dot, label in zip(members, self.dots, self.labels, strict=True):
-            dot.set_data([xy[sample, 0]], [xy[sample, 1]])
-            label.xy = (xy[sample, 0], xy[sample, 1])
+            here = xy[sample]
+            dot.set_data([here[0]], [here[1]])
+            label.xy = (here[0], here[1])
+            # members at one place (a wedge's corner under a cylinder's centre): their names one under another
+            close = sum(1 for p in placed if float(np.linalg.norm(p - here)) < 0.04 * self.span)
+            label.xyann = (7, 7 - 11 * close)
+            placed.append(here)
         for xy, trail in zip(members, self.trails, strict=False):
             trail.set_data(xy[: sample + 1, 0], xy[: sample + 1, 1])
         for (_, point, vector), arrow in zip(self.forces, self.arrows, strict=True):
@@ -338,6 +368,8 @@ def sketch_figure(trajectory: Trajectory, scene: Scene | None, title: str, units
     drawings = _drawings(axes[0], trajectory, scene, planes, units, sample=sample)
     for drawing in drawings:
         drawing.show(sample)
+    for drawing in drawings[1:]:  # one time stamp
+        drawing.stamp.set_visible(False)
     _legend(fig, drawings, axes[0][1] if len(planes) == 1 else None)
     return fig
 
@@ -349,7 +381,9 @@ def _drawings(axes: Any, trajectory: Trajectory, scene: Scene | None, planes: li
                 for ax, (i, j) in zip(axes, planes, strict=False)]
     per_force = min((d.per_force for d in drawings if d.per_force > 0), default=0.0)
     for d in drawings:
-        d.per_force = per_force
+        if d.per_force != per_force:
+            d.per_force = per_force
+            d._limits(d.sample)
     return drawings
 
 
@@ -404,6 +438,7 @@ def animation_gif(trajectory: Trajectory, title: str, frames: int = 120, scene: 
             d.show(int(i))
         canvas.draw()
         if k == 0:
+            canvas.draw()  # the layout settles in a second pass (the legend under the views clears the labels)
             fig.set_layout_engine("none")  # laid out once: the same axes on every frame, at a fraction of the cost
         width, height = canvas.get_width_height()
         images.append(Image.frombuffer("RGBA", (width, height), bytes(canvas.buffer_rgba()), "raw", "RGBA", 0, 1))
