@@ -176,7 +176,7 @@ def test_derive_with_simulation_embeds_figures(runner: CliRunner, tmp_path: Path
     assert "## Simulation" in md
     assert "![Paths in space, with the constraint curve where there is one](bead_path.png)" in md
     assert "wall time" not in md  # reports stay byte-identical run to run
-    assert r"\includegraphics[width=0.85\linewidth]{bead_conservation.png}" in (folder / "bead.tex").read_text()
+    assert r"\includegraphics[width=\linewidth]{bead_conservation.png}" in (folder / "bead.tex").read_text()
 
 
 def test_simulate_flag_needs_a_folder_for_stdout_formats(runner: CliRunner) -> None:

@@ -57,14 +57,24 @@ def test_ladder_rod_between_particles_and_two_surfaces() -> None:
 
 
 def test_wedge_incline_is_carried_by_the_wedge() -> None:
-    """The block's incline passes through the wedge's edge (X, Y) and moves with it; Atwood's string is no
-    surface (y1 + y2 + l is not a relative position)."""
+    """The block's incline passes through the wedge's edge (X, Y) and moves with it, carried by the wedge."""
     problem = problem_file("wedge")
     X, Y, alpha = _symbols(problem, "X", "Y", "alpha")
     incline = next(s for s in geometry(problem).surfaces if s.constraint == "incline")
-    assert incline.particle == "block" and incline.point == (X, Y)
+    assert incline.particle == "block" and incline.point == (X, Y) and incline.carrier == "wedge"
     assert incline.normal == (-sympy.sin(alpha), sympy.cos(alpha))
-    assert geometry(problem_file("atwood")) == geometry(problem_file("atwood")).__class__((), (), ())
+
+
+def test_atwood_string_runs_over_a_pulley_of_radius_r() -> None:
+    """y1 + y2 + l is no surface and no rod but a string: its force on each mass has the same size and lies along
+    the vertical strand, from each mass up to its point of the pulley, (-R, 0) and (R, 0)."""
+    problem = problem_file("atwood")
+    (R,) = _symbols(problem, "R")
+    g = geometry(problem)
+    assert not g.rods and not g.surfaces and not g.curves
+    (string,) = g.strings
+    assert string.ends == ("m1", "m2") and string.anchors == ((-R, 0), (R, 0))
+    assert string.slides == ((0, 1), (0, 1))
 
 
 def test_unilateral_sphere_is_a_circle_not_a_rod() -> None:

@@ -38,7 +38,7 @@ class Reports:
 
 
 FIGURE_CAPTIONS = {
-    "sketch": "The system at the start: particles, rods, pivots, surfaces and wires",
+    "sketch": "The system at the start, drawn from the problem, with its forces of constraint and friction as arrows",
     "path": "Paths in space, with the constraint curve where there is one",
     "coordinates": "Coordinates against time",
     "phase": "Phase portraits",

@@ -68,13 +68,13 @@ class SimulationResult:
     scene: Scene | None = None  # the numeric.scene.Scene of the run's rods, surfaces and wires (None without particles)
 
 
-def _scene(problem: Any, parameters: Any, trajectory: Any) -> Any:
-    """The problem's rods, surfaces and wires (``mechanics/geometry.py``) along the trajectory."""
-    from lagsolve.mechanics.geometry import geometry
+def _scene(form: Any, parameters: Any, trajectory: Any) -> Any:
+    """What the sketch draws (``mechanics/geometry.py``: rods, surfaces, wires, strings, springs, bodies and the
+    forces as arrows) along the trajectory."""
+    from lagsolve.mechanics.geometry import sketch
     from lagsolve.numeric.scene import evaluate
 
-    return evaluate(geometry(problem), problem, parameters, trajectory.t, trajectory.q, trajectory.qd,
-                    trajectory.positions)
+    return evaluate(sketch(form), form.problem, parameters, trajectory)
 
 
 def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progress: Progress | None = None,
@@ -147,7 +147,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     figures: dict[str, bytes] = {}
     # what the sketch draws (a classification and a few compiled shapes), for figures or on request
     wanted = options.plots or options.animate or options.scene
-    scene = _scene(problem, system.parameters, trajectory) if trajectory.particles and wanted else None
+    scene = _scene(form, system.parameters, trajectory) if wanted else None
     if options.plots or options.animate:
         from lagsolve.render import plots
         from lagsolve.render.notation import Notation
@@ -157,7 +157,7 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
         if options.plots:
             for key, figure in plots.figures(trajectory, name, labels, scene=scene, units=axis_units).items():
                 figures[key] = plots.png_bytes(figure)
-        if options.animate and trajectory.particles:
+        if options.animate and (trajectory.particles or scene):
             figures["animation"] = plots.animation_gif(trajectory, name, scene=scene, units=axis_units)
     from lagsolve.files import safe_slug
 

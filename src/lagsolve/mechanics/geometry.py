@@ -1,41 +1,48 @@
-"""What a problem looks like: rods, pivots, surfaces and wires, read from its constraints.
+"""What a problem looks like: what its sketch (and each frame of its animation) draws, read from its structure.
 
-The sketch of a system (and each frame of its animation) draws what this module
-decides; ``numeric/scene.py`` evaluates it along a trajectory and ``render/plots.py``
-only draws. Three kinds of shape are recognised, symbolically:
+This module decides, symbolically and from the problem alone (never from the file's name), what each part of
+the system is; ``numeric/scene.py`` evaluates it along a trajectory and ``render/sketch.py`` only draws. The
+record, :class:`Geometry`, lists every element (:meth:`Geometry.elements`):
 
-* **rods** — a distance that stays fixed:
+* **rods** — a distance that stays fixed: a holonomic constraint :math:`k\\,(|\\mathbf r_i-\\mathbf r_j|^2-l^2)`
+  between two particles or :math:`k\\,(|\\mathbf r_i-\\mathbf c|^2-l^2)` from a fixed point (the pivot), with
+  the particles in Cartesian coordinates; a distance the coordinates keep fixed (:math:`|\\mathbf r_i-\\mathbf
+  a_i|` free of the coordinates, :math:`\\mathbf a_i` the part of :math:`\\mathbf r_i` without coordinates:
+  the pivot of a pendulum in angles, which may be driven); an integrated velocity constraint that keeps two
+  members' offset fixed (the axle of a cart's wheel);
+* **surfaces** — a constraint linear in a particle's Cartesian position with constant coefficients (a floor, a
+  wall, an incline, possibly carried by another particle: the face of a wedge), a straight line a constraint
+  leaves a particle on, the straight locus of a body's contact point (``at:``), and the **support** the
+  coordinates imply: a particle that only moves across gravity and is held by nothing else rests on a floor
+  or table through it. ``solid`` says on which side the material is (where a unilateral constraint forbids,
+  or the side gravity presses on);
+* **curves** (wires, tubes, hoops) — the constraints on one particle, solved together, leave its position a
+  function of one coordinate; a curve that holds the time or another coordinate moves (a rotating tube or
+  hoop is drawn where it is at each instant); a closed one is drawn whole; a unilateral distance constraint or
+  the circle a body's contact point keeps to is a solid (a sphere, a cylinder);
+* **surfaces of revolution** (a cone, a bowl) — the constraints leave the position on a surface whose height
+  along a coordinate axis is a function of the distance from that axis (``geometry_curves.py``);
+* **strings**, **springs**, **dampers**, **centres of force** and **knife edges** (``geometry_links.py``);
+* **bodies** — discs, bars and plates in the plane, and bodies in space with their orientation
+  (``geometry_bodies.py``);
+* **arrows** — each force of constraint and each friction force at its point (``geometry_forces.py``, from
+  the matrix form: :func:`sketch`).
 
-  - a holonomic constraint :math:`k\\,(|\\mathbf r_i-\\mathbf r_j|^2-l^2)` between two
-    particles, or :math:`k\\,(|\\mathbf r_i-\\mathbf c|^2-l^2)` from a fixed point
-    :math:`\\mathbf c` (the pivot), with the particles in Cartesian coordinates;
-  - a distance the coordinates themselves keep fixed: :math:`|\\mathbf r_i-\\mathbf r_j|`
-    or :math:`|\\mathbf r_i-\\mathbf a_i|` free of the coordinates, where
-    :math:`\\mathbf a_i` is the part of :math:`\\mathbf r_i` without coordinates (the
-    pivot of a pendulum in angles, which may move with time);
-
-* **surfaces** — a constraint linear in a particle's Cartesian position with constant
-  coefficients and no explicit time (a floor, a wall, an incline, possibly carried by
-  another particle: the block on a wedge); drawn as the line through ``point`` across
-  ``normal``;
-* **curves** — a constraint that, solved for one coordinate, leaves the particle's
-  position a function of a single other coordinate ``u`` and not of time (a wire
-  :math:`y=f(x)`, a circle :math:`r=R` in polar coordinates); a unilateral distance
-  constraint (a particle on a sphere) is a curve too, the circle it must stay outside
-  or inside of, not a rod.
-
-Anything else (velocity constraints, constraints that move with time, bodies) is not
-drawn; the sketch then shows the particles alone.
+A problem without particles or bodies whose kinetic energy is that of a mass on a line (the driven
+oscillator) is drawn as one: a *marker* for each such coordinate.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING, Any
 
 import sympy
 
-from lagsolve.problem.schema import Problem
+from lagsolve.problem.schema import ConstraintKind, Problem
+
+if TYPE_CHECKING:
+    from lagsolve.mechanics.matrix_form import MatrixForm
 
 #: an expression larger than this (in operations) is not simplified to look for a fixed distance
 SIZE_LIMIT = 400
@@ -43,8 +50,9 @@ SIZE_LIMIT = 400
 
 @dataclass(frozen=True)
 class Anchor:
-    """One end of a rod: the particle ``particle``, or (``particle`` None) the point ``point``,
-    whose components hold time and parameters only (a pivot, fixed or driven)."""
+    """One end of a rod, string or spring: the particle (or body) ``particle``, or (``particle`` None) the point
+    ``point``, whose components hold time and parameters only (a pivot, fixed or driven), or the coordinates of
+    what it moves with (the foot of a spring on a wall)."""
 
     particle: str | None
     point: tuple[Any, ...] = ()
@@ -64,13 +72,20 @@ class Rod:
 @dataclass(frozen=True)
 class Surface:
     """The line (a plane in 3-D) through ``point`` across ``normal`` on which ``particle`` stays.
-    ``point`` may hold the coordinates of the particle that carries the surface."""
+
+    ``point`` may hold the coordinates of ``carrier``, the particle that carries the surface (the wedge). The
+    material is on the side of the line that ``solid`` points to (its component along the normal decides; empty:
+    nothing is solid). ``implied``: no constraint names it, the coordinates hold the particle across gravity (a
+    floor or table), and ``constraint`` is its equation."""
 
     constraint: str
     particle: str
     point: tuple[Any, ...]
     normal: tuple[Any, ...]
     unilateral: bool = False
+    solid: tuple[Any, ...] = ()
+    carrier: str | None = None
+    implied: bool = False
 
 
 @dataclass(frozen=True)
@@ -78,7 +93,10 @@ class Curve:
     """The curve ``shape(u)`` (one expression per component of ``particle``'s position) along
     which the constraint ``constraint`` lets the particle move; ``coordinate`` is u.
     A circle of a unilateral distance constraint has ``coordinate`` None and ``centre``,
-    ``radius`` set instead."""
+    ``radius`` set instead.
+
+    ``shape`` may hold the time or other coordinates (``moving``: drawn where it is at each sample); ``closed``:
+    periodic in u (an angle), drawn over a whole turn; ``solid``: the inside is material (a sphere, a cylinder)."""
 
     constraint: str
     particle: str
@@ -86,6 +104,106 @@ class Curve:
     shape: tuple[Any, ...]
     centre: tuple[Any, ...] = ()
     radius: Any = None
+    moving: bool = False
+    closed: bool = False
+    solid: bool = False
+
+
+@dataclass(frozen=True)
+class Revolution:
+    """A surface of revolution on which ``particle`` stays: ``shape`` is its position with the constraints
+    solved, a function of the two ``coordinates``; its axis is the coordinate axis ``axis`` (0, 1, 2) through
+    ``centre``, and its height along the axis is a function of the distance from it."""
+
+    constraint: str
+    particle: str
+    shape: tuple[Any, ...]
+    coordinates: tuple[Any, ...]
+    axis: int
+    centre: tuple[Any, ...]
+
+
+@dataclass(frozen=True)
+class String:
+    """A string of constant length from ``ends[0]`` to its pulley point ``anchors[0]``, on to ``anchors[1]`` and
+    down to ``ends[1]``: the constraint's force on each end has the same magnitude and lies along the strand.
+    ``slides[i]`` is the strand's fixed direction where the pulley's place along the strand is not given (the
+    run places it so that no strand has a negative length); empty where the strand turns about the anchor."""
+
+    constraint: str
+    ends: tuple[str, str]
+    anchors: tuple[tuple[Any, ...], tuple[Any, ...]]
+    slides: tuple[tuple[Any, ...], tuple[Any, ...]]
+
+
+@dataclass(frozen=True)
+class Spring:
+    """A ``spring`` (a potential term quadratic in a distance), a ``damper`` (a dissipation term quadratic in its
+    rate) or a ``centre`` of force (any other potential of a distance) between ``start`` and ``end``; ``wall``
+    is the normal of the plane ``start`` lies on (a spring fixed to a wall), else empty. ``length`` is the
+    spring's natural length (None for the others)."""
+
+    label: str
+    kind: str
+    start: Anchor
+    end: Anchor
+    wall: tuple[Any, ...] = ()
+    length: Any = None
+
+
+@dataclass(frozen=True)
+class Blade:
+    """A knife edge (a skate) of ``particle``: the velocity constraint ``constraint`` lets it move only along
+    ``direction``."""
+
+    constraint: str
+    particle: str
+    direction: tuple[Any, ...]
+
+
+@dataclass(frozen=True)
+class Body:
+    """How a rigid body is drawn (``geometry_bodies.py``).
+
+    ``shape``: ``disc`` (round, of ``radius``: its contact point keeps its direction from the centre while the
+    body turns), ``bar`` (it hangs from ``pivot``, a point or a member, and the line to it turns with the body),
+    ``plate`` (anything else), or in space ``disc``/``top``. In the plane ``angle`` is its angle as an expression
+    of the coordinates, or None where only its rate ``rate`` is known (integrated along the run). In space
+    ``rotation`` holds the 3 × 3 matrix from body axes to space axes, ``axis`` the body axis of symmetry and
+    ``spin`` the rate of turn about it not in ``rotation`` (None: none). ``contact`` is the point where a disc
+    touches what it rolls or slides on (in the plane); ``rolls``: a disc in space rolls on a floor across gravity
+    at the lowest point of its rim."""
+
+    name: str
+    shape: str
+    centre: tuple[Any, ...]
+    radius: Any = None
+    angle: Any = None
+    rate: Any = None
+    pivot: Anchor | None = None
+    rotation: tuple[tuple[Any, ...], ...] = ()
+    axis: int = 0
+    spin: Any = None
+    contact: tuple[Any, ...] = ()
+    rolls: bool = False
+
+
+@dataclass(frozen=True)
+class Arrow:
+    """A force drawn as an arrow: of the constraint (``kind`` ``constraint``, index ``index`` into the
+    multipliers) or friction contact (``friction``, index into the contacts) named ``label``, on ``member`` at
+    ``point``. A constraint's force is the multiplier times ``direction``; a friction force is the run's friction
+    value times ``direction`` (the unit tangent) or, where ``planar``, that magnitude along minus ``direction``
+    (the sliding velocity) normalised. ``sign`` is −1 for the second member of a pair (the opposite force)."""
+
+    label: str
+    kind: str
+    index: int
+    member: str
+    point: tuple[Any, ...]
+    direction: tuple[Any, ...]
+    sign: int = 1
+    planar: bool = False
 
 
 @dataclass(frozen=True)
@@ -95,62 +213,149 @@ class Geometry:
     rods: tuple[Rod, ...]
     surfaces: tuple[Surface, ...]
     curves: tuple[Curve, ...]
+    revolutions: tuple[Revolution, ...] = ()
+    strings: tuple[String, ...] = ()
+    springs: tuple[Spring, ...] = ()
+    blades: tuple[Blade, ...] = ()
+    bodies: tuple[Body, ...] = ()
+    arrows: tuple[Arrow, ...] = ()
+    markers: tuple[tuple[str, tuple[Any, ...]], ...] = ()
+    gravity: tuple[Any, ...] = field(default=())
 
     @property
     def pivots(self) -> tuple[Anchor, ...]:
-        """The rods' ends that are points, not particles, each once."""
+        """The fixed or driven points things hang from or turn about (rods' ends that are points, bodies'
+        pivots, springs' fixed ends that are not on a wall), each once."""
         out: list[Anchor] = []
+        ends = [end for rod in self.rods for end in (rod.start, rod.end)]
+        ends += [b.pivot for b in self.bodies if b.pivot is not None]
+        ends += [s.start for s in self.springs if not s.wall and s.kind != "centre"]
+        for end in ends:
+            if end.particle is None and end not in out:
+                out.append(end)
+        return tuple(out)
+
+    def elements(self) -> tuple[tuple[str, str, tuple[str, ...]], ...]:
+        """Every element as (kind, label, members): ``("rod", "", ("upper", "lower"))``, ``("surface", "floor",
+        ("foot",))``, ``("string", "string", ("m1", "m2"))``, ... in a fixed order (what the tests check)."""
+        out: list[tuple[str, str, tuple[str, ...]]] = []
         for rod in self.rods:
-            for end in (rod.start, rod.end):
-                if end.particle is None and end not in out:
-                    out.append(end)
+            out.append(("rod", rod.constraint or "", tuple(e.particle or "pivot" for e in (rod.start, rod.end))))
+        out += [("pivot", "", ()) for _ in self.pivots]
+        for s in self.surfaces:
+            kind = "support" if s.implied else "surface"
+            out.append((kind, s.constraint, (s.particle,) + ((s.carrier,) if s.carrier else ())))
+        for c in self.curves:
+            kind = "solid" if c.solid else ("moving wire" if c.moving else "wire")
+            out.append((kind, c.constraint, (c.particle,)))
+        out += [("revolution", r.constraint, (r.particle,)) for r in self.revolutions]
+        out += [("string", s.constraint, s.ends) for s in self.strings]
+        out += [(s.kind, s.label, tuple(e.particle or "fixed" for e in (s.start, s.end))) for s in self.springs]
+        out += [("blade", b.constraint, (b.particle,)) for b in self.blades]
+        out += [(f"body {b.shape}", b.name, (b.pivot.particle or "pivot",) if b.pivot else ()) for b in self.bodies]
+        out += [(f"arrow {a.kind}", a.label, (a.member,)) for a in self.arrows]
+        out += [("marker", name, ()) for name, _ in self.markers]
         return tuple(out)
 
 
 def geometry(problem: Problem) -> Geometry:
-    """Classify the problem's constraints and particles into rods, surfaces and curves.
+    """Classify the problem's constraints, particles, bodies and energies into the elements of its sketch.
 
     >>> from lagsolve.problem.load import load_problem
     >>> g = geometry(load_problem("problems/double_pendulum.yaml"))
     >>> [(r.start.particle, r.end.particle) for r in g.rods]
     [(None, 'upper'), ('upper', 'lower')]
     """
+    from lagsolve.mechanics import geometry_bodies, geometry_curves, geometry_links
+
     coordinates = [c.symbol for c in problem.coordinates]
     variables = {*coordinates, problem.time}
     rods: list[Rod] = []
     surfaces: list[Surface] = []
     curves: list[Curve] = []
+    strings: list[String] = []
     particles = {p.name: p for p in problem.particles}
+    rest: dict[str, list[Any]] = {}  # per particle, the constraints on it alone that are no rod or plane
     for constraint in problem.constraints:
-        if constraint.kind != "holonomic":
-            continue
         on = [name for name in constraint.on if name in particles]
         if not on and not constraint.on and len(particles) == 1:
             on = list(particles)  # the one particle a constraint without "on" can act on
         if not on or len(on) > 2 or len(on) != len(constraint.on or on):
             continue
+        if constraint.kind != ConstraintKind.HOLONOMIC:
+            if len(on) == 1 and geometry_curves.holds(constraint, problem) is not None:
+                rest.setdefault(on[0], []).append(constraint)
+            continue
         shape = _classify(constraint, [particles[name] for name in on], coordinates, variables)
         if isinstance(shape, Rod):
             rods.append(shape)
         elif isinstance(shape, Surface):
-            surfaces.append(shape)
+            surfaces.append(replace(shape, solid=_solid(shape, problem)))
         elif isinstance(shape, Curve):
             curves.append(shape)
-    rods += _implied_rods(problem, coordinates, variables, rods)
-    return Geometry(tuple(rods), tuple(surfaces), tuple(curves))
+        elif len(on) == 1:
+            rest.setdefault(on[0], []).append(constraint)
+        else:
+            string = geometry_links.string(problem, constraint, [particles[n] for n in on], coordinates)
+            if string is not None:
+                strings.append(string)
+    revolutions: list[Revolution] = []
+    for name, constraints in rest.items():
+        shape = geometry_curves.joint(problem, particles[name], constraints, coordinates, variables)
+        if isinstance(shape, Surface):
+            surfaces.append(replace(shape, solid=_solid(shape, problem)))
+        elif isinstance(shape, Curve):
+            curves.append(shape)
+        elif isinstance(shape, Revolution):
+            revolutions.append(shape)
+    held = {c.particle for c in curves} | {r.particle for r in revolutions}
+    rods += _implied_rods(problem, coordinates, variables, rods, held)
+    rods += geometry_links.axles(problem, coordinates)
+    bodies, contact_surfaces, contact_curves, rods = geometry_bodies.bodies(problem, coordinates, variables, rods)
+    surfaces += [replace(s, solid=_solid(s, problem)) for s in contact_surfaces]
+    curves += contact_curves
+    markers = geometry_links.markers(problem)
+    springs = geometry_links.springs(problem, coordinates, markers)
+    blades = geometry_links.blades(problem, coordinates)
+    # what can hold a particle against gravity besides a floor: a rod from a fixed point, a wire, a surface
+    holding = {r.end.particle for r in rods if r.start.particle is None} | held | {s.particle for s in surfaces}
+    surfaces += [replace(s, solid=_solid(s, problem))
+                 for s in geometry_links.supports(problem, coordinates, holding, surfaces)]
+    gravity = tuple(problem.gravity) if problem.gravity is not None else ()
+    return Geometry(tuple(rods), tuple(surfaces), tuple(curves), tuple(revolutions), tuple(strings),
+                    tuple(springs), tuple(blades), tuple(bodies), (), markers, gravity)
+
+
+def sketch(form: MatrixForm) -> Geometry:
+    """:func:`geometry` of the form's problem, with an arrow for each force of constraint and friction force
+    whose point and direction the matrix form knows (``geometry_forces.py``)."""
+    from lagsolve.mechanics.geometry_forces import arrows
+
+    return replace(geometry(form.problem), arrows=arrows(form))
+
+
+def _solid(surface: Surface, problem: Problem) -> tuple[Any, ...]:
+    """The side of a surface that is material: as decided already (beyond a body's contact point), where a
+    unilateral constraint forbids (against its force), else the side gravity presses a particle on it against;
+    none without gravity."""
+    if surface.solid:
+        return surface.solid
+    if surface.unilateral:
+        return tuple(-n for n in surface.normal)
+    if problem.gravity is not None and len(problem.gravity) == len(surface.normal):
+        return tuple(problem.gravity)
+    return ()
 
 
 def _classify(constraint: Any, particles: list[Any], coordinates: list[Any], variables: set[Any]) -> Any:
     psi = constraint.expression
-    if sympy.diff(psi, next(iter(variables - set(coordinates)))) != 0:  # moves with time: not drawn
+    if sympy.diff(psi, next(iter(variables - set(coordinates)))) != 0:  # moves with time: a curve, if any
         return None
     cartesian = [_cartesian_symbols(p.position, coordinates) for p in particles]
     if all(c is not None for c in cartesian):
         shape = _cartesian_shape(constraint, particles, cartesian, coordinates)
         if shape is not None:
             return shape
-    if len(particles) == 1:
-        return _curve(constraint, particles[0], coordinates, variables)
     return None
 
 
@@ -187,7 +392,8 @@ def _cartesian_shape(constraint: Any, particles: list[Any], cartesian: list[Any]
             return None
         size = sum((g * g for g in gradient), sympy.Integer(0))
         point = tuple(sympy.simplify(b - rest * g / size) for g, b in zip(gradient, base, strict=True))
-        return Surface(constraint.name, first.name, point, tuple(gradient), constraint.unilateral)
+        carrier = particles[1].name if len(particles) == 2 else None
+        return Surface(constraint.name, first.name, point, tuple(gradient), constraint.unilateral, carrier=carrier)
     # quadratic: psi = k |r - c|^2 + const with the same k for every component
     if any(s is None for s in cartesian[0]):
         return None
@@ -221,50 +427,31 @@ def _cartesian_shape(constraint: Any, particles: list[Any], cartesian: list[Any]
     for s, v in zip(cartesian[0], first.position, strict=True):
         full.append(next(it) if s is not None else v)
     if constraint.unilateral:
-        return Curve(constraint.name, first.name, None, (), tuple(full), length)
+        return Curve(constraint.name, first.name, None, (), tuple(full), length, closed=True, solid=True)
     return Rod(Anchor(None, tuple(full)), Anchor(first.name), length, constraint.name)
 
 
-def _curve(constraint: Any, particle: Any, coordinates: list[Any], variables: set[Any]) -> Curve | None:
-    """Solve the constraint for the last coordinate it gives linearly with a constant coefficient;
-    a curve when one coordinate is left in the particle's position."""
-    psi = constraint.expression
-    position = particle.position
-    used = [q for q in coordinates if any(r.has(q) for r in position)]
-    for q in reversed(used):
-        a = sympy.diff(psi, q)
-        if a == 0 or a.free_symbols & variables or a.atoms(sympy.core.function.AppliedUndef):
-            continue
-        value = sympy.expand(q - psi / a)
-        shape = tuple(r.xreplace({q: value}) for r in position)
-        left = [u for u in coordinates if any(r.has(u) for r in shape)]
-        if len(left) == 1 and not any(r.has(next(iter(variables - set(coordinates)))) for r in shape):
-            return Curve(constraint.name, particle.name, left[0], shape)
-        return None
-    return None
-
-
-def _implied_rods(problem: Problem, coordinates: list[Any], variables: set[Any], explicit: list[Rod]) -> list[Rod]:
+def _implied_rods(problem: Problem, coordinates: list[Any], variables: set[Any], explicit: list[Rod],
+                  held: set[str]) -> list[Rod]:
     """Distances the coordinates keep fixed: from each particle's coordinate-free part (its pivot),
-    and between pairs of particles."""
+    and between pairs of particles. A particle on a wire or surface of revolution is held by it, not by a rod
+    (the bead on a hoop keeps its distance from the centre because the hoop is round)."""
     known = {frozenset((r.start.particle, r.end.particle)) for r in explicit}
     out: list[Rod] = []
     particles = problem.particles
     for i, p in enumerate(particles):
-        if not any(r.free_symbols & set(coordinates) for r in p.position):
+        if p.name in held or not any(r.free_symbols & set(coordinates) for r in p.position):
             continue
         for other in particles[:i]:
             if frozenset((other.name, p.name)) in known or len(other.position) != len(p.position):
                 continue
-            length = _fixed_distance([a - b for a, b in zip(p.position, other.position, strict=True)], coordinates)
+            length = fixed_distance([a - b for a, b in zip(p.position, other.position, strict=True)], coordinates)
             if length is not None:
                 out.append(Rod(Anchor(other.name), Anchor(p.name), length, None))
         if any(r.end.particle == p.name for r in out) or frozenset((None, p.name)) in known:
             continue  # hangs from another particle already
-        expanded = [sympy.expand(r) for r in p.position]
-        pivot = tuple(sum((t for t in sympy.Add.make_args(r) if not t.free_symbols & set(coordinates)),
-                          sympy.Integer(0)) for r in expanded)
-        length = _fixed_distance([r - c for r, c in zip(expanded, pivot, strict=True)], coordinates)
+        pivot = free_part(p.position, coordinates)
+        length = fixed_distance([r - c for r, c in zip(p.position, pivot, strict=True)], coordinates)
         if length is not None:
             out.append(Rod(Anchor(None, pivot), Anchor(p.name), length, None))
     names = [x.name for x in particles]
@@ -272,7 +459,14 @@ def _implied_rods(problem: Problem, coordinates: list[Any], variables: set[Any],
     return out
 
 
-def _fixed_distance(difference: list[Any], coordinates: list[Any]) -> Any:
+def free_part(position: tuple[Any, ...], coordinates: list[Any]) -> tuple[Any, ...]:
+    """The terms of each (expanded) component that hold no coordinate: the point a pendulum hangs from."""
+    expanded = [sympy.expand(r) for r in position]
+    return tuple(sum((t for t in sympy.Add.make_args(r) if not t.free_symbols & set(coordinates)), sympy.Integer(0))
+                 for r in expanded)
+
+
+def fixed_distance(difference: list[Any], coordinates: list[Any]) -> Any:
     """|difference| when it depends on coordinates component-wise but its length does not; else None."""
     if not any(d.free_symbols & set(coordinates) for d in difference):
         return None

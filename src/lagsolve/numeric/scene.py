@@ -1,13 +1,15 @@
 """The geometry of a problem (``mechanics/geometry.py``) evaluated along a trajectory: plain arrays to draw.
 
-Mechanics decides what is a rod, a surface or a wire; this module only puts numbers in
-(the run's parameter values and concrete functions) and evaluates at every sample, so the
-figures can draw each frame without SymPy.
+Mechanics decides what is a rod, a surface, a wire, a string, a spring, a body or a force; this module only
+puts numbers in (the run's parameter values and concrete functions) and evaluates at every sample, so the
+figures can draw each frame without SymPy. What depends on the whole run is placed here too: how far a line or
+an incline is drawn (the members' extent), where a pulley sits along a strand whose pulley the problem does
+not place (so that no strand has a negative length), the wall a spring is fixed to, the base of a wedge.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -21,6 +23,37 @@ CURVE_POINTS = 400
 
 
 @dataclass(frozen=True)
+class Shape:
+    """A polyline to draw: ``points`` of shape (samples, k, dims) (it moves) or (k, dims) (it does not); rows of
+    NaN break it into pieces. ``kind`` says how it is drawn (``wire``, ``ground``, ``solid``, ``string``,
+    ``pulley``, ``hole``, ``spring``, ``damper``, ``wall``, ``blade``, ``body``, ``spoke``, ``profile``, ``ring``,
+    ``centre``); ``views`` the components a view must show to draw it (a plane seen edge-on, the profile of a
+    surface of revolution), empty for every view."""
+
+    kind: str
+    label: str
+    points: np.ndarray
+    closed: bool = False
+    views: tuple[int, ...] = ()
+
+    def at(self, sample: int) -> np.ndarray:
+        """The polyline at one sample, shape (k, dims)."""
+        return self.points[sample] if self.points.ndim == 3 else self.points
+
+
+@dataclass(frozen=True)
+class Force:
+    """A force drawn as an arrow: on ``member``, at ``point``, the vector ``vector`` (both (samples, dims));
+    ``label`` names its constraint or contact, ``kind`` is ``constraint`` or ``friction``."""
+
+    label: str
+    kind: str
+    member: str
+    point: np.ndarray
+    vector: np.ndarray
+
+
+@dataclass(frozen=True)
 class Scene:
     """What a sketch draws besides the particles, in physical components.
 
@@ -28,99 +61,138 @@ class Scene:
     arrays (samples, dims); ``surfaces``: (label, point, normal), arrays (samples, dims),
     drawn as the line through the point across the normal; ``curves``: (label, points),
     a fixed polyline of shape (k, dims). Labels name the constraint, or are empty where
-    the coordinates fix a distance.
+    the coordinates fix a distance. ``shapes``: everything else (:class:`Shape`); ``forces``: the arrows;
+    ``markers``: the members drawn as labelled dots besides the particles (bodies' centres, a mass on a line),
+    (name, (samples, dims)); ``gravity``: its direction, or empty; ``scale``: the size of the system (the
+    largest extent of the members and pivots over the run), which sizes blocks, coils and pulleys.
     """
 
     rods: tuple[tuple[str, np.ndarray, np.ndarray], ...] = ()
     pivots: tuple[np.ndarray, ...] = ()
     surfaces: tuple[tuple[str, np.ndarray, np.ndarray], ...] = ()
     curves: tuple[tuple[str, np.ndarray], ...] = ()
+    shapes: tuple[Shape, ...] = ()
+    forces: tuple[Force, ...] = ()
+    markers: tuple[tuple[str, np.ndarray], ...] = ()
+    gravity: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    scale: float = 1.0
 
     def __bool__(self) -> bool:
-        return bool(self.rods or self.pivots or self.surfaces or self.curves)
+        return bool(self.rods or self.pivots or self.surfaces or self.curves or self.shapes or self.forces
+                    or self.markers)
 
 
-def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, t: np.ndarray, q: np.ndarray,
-             qd: np.ndarray, positions: np.ndarray) -> Scene:
-    """Evaluate ``geometry`` at the samples ``t``, ``q``, ``qd`` (shape (samples, n)), with ``parameters``
-    in the problem's order; ``positions`` are the particles' positions (the trajectory's, shape
-    (samples, total components)). Shapes that do not evaluate to finite numbers are left out."""
-    concrete = {}
-    if problem.simulation is not None:
-        for fn in problem.functions:
-            given = problem.simulation.functions.get(fn.name)
-            if given is not None:
-                concrete[fn.function] = (given.arguments, given.expression)
-    arguments = {"time": problem.time, "coordinates": [c.symbol for c in problem.coordinates],
-                 "velocities": [c.velocity for c in problem.coordinates],
-                 "parameters": [p.symbol for p in problem.parameters]}
+class Run:
+    """A trajectory with the problem's expressions compiled against it: ``along(expressions)`` evaluates at
+    every sample, ``member(name)`` is a particle's, body's or marker's position, ``anchor`` an end's."""
 
-    def along(exprs: tuple[Any, ...]) -> np.ndarray | None:
-        prepared = [substitute_functions(sympy.Integer(e) if isinstance(e, int) else e, concrete) for e in exprs]
-        fn = compile_state_function(prepared, **arguments, backend="python")
-        values = np.array([fn(ti, qi, qdi, parameters) for ti, qi, qdi in zip(t, q, qd, strict=True)])
+    def __init__(self, problem: Any, parameters: np.ndarray, trajectory: Any,
+                 markers: tuple[tuple[str, tuple[Any, ...]], ...] = ()) -> None:
+        self.problem, self.parameters, self.trajectory = problem, parameters, trajectory
+        self.t, self.q, self.qd = trajectory.t, trajectory.q, trajectory.qd
+        self.concrete = {}
+        if problem.simulation is not None:
+            for fn in problem.functions:
+                given = problem.simulation.functions.get(fn.name)
+                if given is not None:
+                    self.concrete[fn.function] = (given.arguments, given.expression)
+        self.arguments = {"time": problem.time, "coordinates": [c.symbol for c in problem.coordinates],
+                          "velocities": [c.velocity for c in problem.coordinates],
+                          "parameters": [p.symbol for p in problem.parameters]}
+        self.members: dict[str, np.ndarray] = {}
+        offset = 0
+        for name, d in trajectory.particles:
+            self.members[name] = trajectory.positions[:, offset:offset + d]
+            offset += d
+        for body in problem.bodies:
+            values = self.along(tuple(body.position))
+            if values is not None:
+                self.members[body.name] = values
+        for name, position in markers:
+            values = self.along(position)
+            if values is not None:
+                self.members[name] = values
+
+    def compiled(self, exprs: tuple[Any, ...]) -> Any:
+        prepared = [substitute_functions(sympy.Integer(e) if isinstance(e, int) else e, self.concrete) for e in exprs]
+        return compile_state_function(prepared, **self.arguments, backend="python")
+
+    def along(self, exprs: tuple[Any, ...]) -> np.ndarray | None:
+        """The expressions at every sample, shape (samples, len(exprs)); None where one is not finite."""
+        if not exprs:
+            return None
+        fn = self.compiled(exprs)
+        values = np.array([fn(ti, qi, qdi, self.parameters) for ti, qi, qdi in zip(self.t, self.q, self.qd,
+                                                                                   strict=True)], dtype=float)
         return values if values.size and np.all(np.isfinite(values)) else None
 
-    columns: dict[str, np.ndarray] = {}
-    offset = 0
-    for particle in problem.particles:
-        d = len(particle.position)
-        columns[particle.name] = positions[:, offset:offset + d]
-        offset += d
+    def member(self, name: str | None) -> np.ndarray | None:
+        return self.members.get(name) if name is not None else None
 
-    def end(anchor: Anchor) -> np.ndarray | None:
-        return columns.get(anchor.particle) if anchor.particle is not None else along(anchor.point)
+    def anchor(self, anchor: Anchor) -> np.ndarray | None:
+        return self.member(anchor.particle) if anchor.particle is not None else self.along(anchor.point)
 
+    def scale(self, pivots: list[np.ndarray]) -> float:
+        """The size of the system: the largest extent of the members and pivots at one sample (a cart's two
+        wheels apart, not how far it rolls); for a single member, its extent over the run (1 when nothing moves)."""
+        groups = [v for v in self.members.values()] + pivots
+        if not groups:
+            return 1.0
+        dims = max(v.shape[1] for v in groups)
+        stacked = np.stack([np.pad(v, ((0, 0), (0, dims - v.shape[1]))) for v in groups], axis=1)  # (s, k, d)
+        size = float(np.max(np.ptp(stacked, axis=1))) if len(groups) > 1 else 0.0
+        if size < 1e-9:
+            size = float(np.max(np.ptp(stacked.reshape(-1, dims), axis=0)))
+        if size < 1e-9:
+            size = float(np.max(np.abs(stacked))) or 1.0
+        return size
+
+
+def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, trajectory: Any) -> Scene:
+    """Evaluate ``geometry`` along ``trajectory`` (a :class:`~lagsolve.numeric.integrate.Trajectory`) with
+    ``parameters`` in the problem's order. Shapes that do not evaluate to finite numbers are left out."""
+    from lagsolve.numeric import scene_shapes
+
+    run = Run(problem, parameters, trajectory, geometry.markers)
     rods: list[tuple[str, np.ndarray, np.ndarray]] = []
     pivots: list[np.ndarray] = []
+
+    def add_pivot(values: np.ndarray) -> None:
+        if not any(v.shape == values.shape and np.allclose(values, v) for v in pivots):
+            pivots.append(values)
+
     for rod in geometry.rods:
-        start, stop = end(rod.start), end(rod.end)
+        start, stop = run.anchor(rod.start), run.anchor(rod.end)
         if start is None or stop is None or start.shape != stop.shape:
             continue
         rods.append((rod.constraint or "", start, stop))
-        for anchor, values in ((rod.start, start), (rod.end, stop)):
-            if anchor.particle is None and not any(np.array_equal(values, p) for p in pivots):
-                pivots.append(values)
-    surfaces = []
-    for surface in geometry.surfaces:
-        point, normal = along(surface.point), along(surface.normal)
-        if point is not None and normal is not None:
-            surfaces.append((surface.constraint, point, normal))
-    curves = []
-    for curve in geometry.curves:
-        points = _curve_points(curve, along, t, q, qd, parameters, arguments, concrete)
-        if points is not None:
-            curves.append((curve.constraint, points))
-    return Scene(tuple(rods), tuple(pivots), tuple(surfaces), tuple(curves))
-
-
-def _curve_points(curve: Any, along: Any, t: np.ndarray, q: np.ndarray, qd: np.ndarray, parameters: np.ndarray,
-                  arguments: dict[str, Any], concrete: dict[Any, Any]) -> np.ndarray | None:
-    """A circle (centre, radius at the first sample) or the shape r(u) over three times the range of u
-    the motion covers (the figure's limits cut it)."""
-    if curve.coordinate is None:
-        centre = along((*curve.centre, curve.radius))
-        if centre is None:
-            return None
-        *c, radius = centre[0]
-        angle = np.linspace(0.0, 2 * np.pi, CURVE_POINTS)
-        circle = np.zeros((CURVE_POINTS, len(c)))
-        circle[:, 0] = c[0] + radius * np.cos(angle)
-        circle[:, 1] = c[1] + radius * np.sin(angle)
-        for k in range(2, len(c)):
-            circle[:, k] = c[k]
-        return circle
-    k = arguments["coordinates"].index(curve.coordinate)
-    low, high = float(np.min(q[:, k])), float(np.max(q[:, k]))
-    span = high - low if high > low else 1.0
-    u = np.linspace(low - span, high + span, CURVE_POINTS)
-    prepared = [substitute_functions(e, concrete) for e in curve.shape]
-    fn = compile_state_function(prepared, **arguments, backend="python")
-    base = np.array(q[0], dtype=float)
-    points = []
-    for value in u:
-        base[k] = value
-        points.append(fn(t[0], base, qd[0], parameters))
-    out = np.array(points, dtype=float)
-    finite = np.all(np.isfinite(out), axis=1)
-    return out[finite] if finite.sum() >= 2 else None
+        for anchor, end in ((rod.start, start), (rod.end, stop)):
+            if anchor.particle is None:
+                add_pivot(end)
+    for body in geometry.bodies:
+        if body.pivot is not None and body.pivot.particle is None:
+            pin = run.anchor(body.pivot)
+            if pin is not None:
+                add_pivot(pin)
+    scale = run.scale(pivots)
+    build = scene_shapes.Builder(run, geometry, scale)
+    curves, shapes = build.curves(add_pivot)
+    shapes += build.revolutions()
+    surfaces, ground = build.surfaces()
+    shapes += ground
+    shapes += build.strings()
+    for values in build.pivots:
+        add_pivot(values)
+    springs, fixed = build.springs()
+    shapes += springs
+    for values in fixed:
+        add_pivot(values)
+    shapes += build.blades()
+    bodies, floors = build.bodies()
+    shapes += bodies
+    surfaces += floors
+    forces = build.forces()
+    markers = tuple((name, run.members[name]) for name, _ in geometry.markers if name in run.members)
+    markers += tuple((b.name, run.members[b.name]) for b in geometry.bodies if b.name in run.members)
+    return Scene(tuple(rods), tuple(pivots), tuple(surfaces), tuple(curves), tuple(shapes), tuple(forces), markers,
+                 build.gravity, scale)

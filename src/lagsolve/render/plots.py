@@ -26,29 +26,30 @@ import numpy as np
 
 from lagsolve.numeric.integrate import EventKind, Trajectory
 from lagsolve.numeric.scene import Scene
+from lagsolve.render.sketch import WIDTH, animation_gif, sketch_figure  # noqa: F401 (the sketch: render/sketch.py)
 
 Units = Mapping[str, str] | None
 
-#: surfaces in muted colours, told apart in the legend
-SURFACE_COLOURS = ("0.45", "#9c7a4a", "#5b8a9a", "#8a6a9a")
+#: the tallest figure, inches (a page of the LaTeX report less its caption)
+MAX_HEIGHT = 8.2
 
 #: relative size below which a coordinate counts as constant, or its rate as uniform
 FLAT = 1e-9
 
 
-def _fit(text: str, width_inches: float, fontsize: float = 12.0) -> str:
+def fit(text: str, width_inches: float, fontsize: float = 12.0) -> str:
     """``text`` wrapped to lines that fit ``width_inches`` at ``fontsize`` points (about 0.55 em a character)."""
     chars = max(16, int(width_inches * 72 / (0.55 * fontsize)))
     return "\n".join(textwrap.wrap(text, chars)) or text
 
 
-def _figure(title: str, rows: int = 1, cols: int = 1, **kwargs: Any) -> tuple[Any, Any]:
+def figure(title: str, rows: int = 1, cols: int = 1, **kwargs: Any) -> tuple[Any, Any]:
     from lagsolve.render.picture import Picture
 
-    size = kwargs.pop("figsize", (7.5, 2.2 + 2.4 * rows))
+    size = kwargs.pop("figsize", (WIDTH, min(1.15 + 1.45 * rows, MAX_HEIGHT)))
     fig = Picture(figsize=size, layout="constrained")
     axes = fig.subplots(rows, cols, squeeze=False, **kwargs)
-    fig.suptitle(_fit(title, size[0] - 0.3), parse_math=False)  # user text: a "$" in a name is not mathtext
+    fig.suptitle(fit(title, size[0] - 0.3), parse_math=False)  # user text: a "$" in a name is not mathtext
     return fig, axes
 
 
@@ -56,7 +57,7 @@ def _note(fig: Any, lines: list[str]) -> None:
     """What the figure leaves out, and why, in small text under it."""
     if lines:
         width = fig.get_figwidth() - 0.3
-        fig.supxlabel("\n".join(_fit(line, width, 8.5) for line in lines), fontsize="small", color="0.3",
+        fig.supxlabel("\n".join(fit(line, width, 8.5) for line in lines), fontsize="small", color="0.3",
                       parse_math=False)
 
 
@@ -103,131 +104,6 @@ def _padded(values: np.ndarray) -> tuple[float, float]:
     return low - pad, high + pad
 
 
-# --- the sketch and the animation share one drawing ------------------------------------------------------
-
-
-class _Drawing:
-    """The system drawn in the plane of components (i, j) at one sample: particles (labelled dots), rods,
-    pivots, surfaces and wires; :meth:`show` moves everything to another sample."""
-
-    def __init__(self, ax: Any, trajectory: Trajectory, scene: Scene | None, i: int = 0, j: int = 1,
-                 units: Units = None, trails: bool = False) -> None:
-        self.ax, self.trajectory, self.scene = ax, trajectory, scene or Scene()
-        self.i, self.j = i, j
-        self.units = units or {}
-        plane = [_plane(trajectory, o, d, i, j) for o, d in _offsets(trajectory)]
-        self.plane = plane
-        pivots = [p[:, [i, j]] for p in self.scene.pivots if p.shape[1] > j]
-        points = np.vstack([*plane, *pivots]) if plane or pivots else np.zeros((1, 2))
-        (x0, x1), (y0, y1) = _padded(points[:, 0]), _padded(points[:, 1])
-        # square-ish limits with room for the labels
-        cx, cy, half = (x0 + x1) / 2, (y0 + y1) / 2, max(x1 - x0, y1 - y0) / 2 * 1.08
-        ax.set_xlim(cx - half, cx + half)
-        ax.set_ylim(cy - half, cy + half)
-        self.reach = 4 * half
-        ax.set_aspect("equal", adjustable="box")
-        ax.grid(alpha=0.25)
-        length = self.units.get("length")
-        ax.set_xlabel(_with_unit("xyz"[i], length))
-        ax.set_ylabel(_with_unit("xyz"[j], length))
-        three = any(d > 2 for _, d in trajectory.particles)
-        for label, points in self.scene.curves:
-            if points.shape[1] > j:
-                ax.plot(points[:, i], points[:, j], "-", color="0.55", linewidth=2.2, alpha=0.8, zorder=1,
-                        label=label or "wire")
-        self.surfaces = []
-        if not three:
-            for k, (label, point, _) in enumerate(self.scene.surfaces):
-                if point.shape[1] != 2:
-                    continue
-                line, = ax.plot([], [], "-", color=SURFACE_COLOURS[k % len(SURFACE_COLOURS)], linewidth=2.5,
-                                zorder=1, label=label)
-                self.surfaces.append(line)
-        self.rod_ends = [(a, b) for _, a, b in self.scene.rods if a.shape[1] > j and b.shape[1] > j]
-        self.rods = [ax.plot([], [], "-", color="0.15", linewidth=2.0, solid_capstyle="round", zorder=2)[0]
-                     for _ in self.rod_ends]
-        self.pivots = [ax.plot([], [], "^", color="0.15", markersize=9, zorder=3)[0] for _ in pivots]
-        self.pivot_points = pivots
-        self.trails = [ax.plot([], [], "-", linewidth=0.8, alpha=0.5, zorder=2)[0] for _ in plane] if trails else []
-        self.dots, self.labels = [], []
-        for k, (name, _) in enumerate(trajectory.particles):
-            dot, = ax.plot([], [], "o", markersize=10, color=f"C{k % 10}", markeredgecolor="white", zorder=4)
-            self.dots.append(dot)
-            self.labels.append(ax.annotate(name, (0, 0), xytext=(7, 7), textcoords="offset points",
-                                           fontsize="small", zorder=5, annotation_clip=False))
-        if trails:
-            for dot, trail in zip(self.dots, self.trails, strict=True):
-                trail.set_color(dot.get_color())
-        if self.scene.curves or self.surfaces:
-            ax.legend(loc="lower right", fontsize="small", framealpha=0.85)
-        self.stamp = ax.text(0.03, 0.96, "", transform=ax.transAxes, ha="left", va="top", fontsize="medium",
-                             bbox={"boxstyle": "round", "facecolor": "white", "edgecolor": "0.7", "alpha": 0.85},
-                             zorder=6)
-
-    def show(self, sample: int) -> list[Any]:
-        for (a, b), rod in zip(self.rod_ends, self.rods, strict=True):
-            rod.set_data([a[sample, self.i], b[sample, self.i]], [a[sample, self.j], b[sample, self.j]])
-        planar = [(p, n) for _, p, n in self.scene.surfaces if p.shape[1] == 2]  # none drawn in 3-D
-        for (point, normal), line in zip(planar, self.surfaces, strict=False):
-            p, n = point[sample], normal[sample]
-            direction = np.array([-n[1], n[0]]) / max(float(np.hypot(n[0], n[1])), 1e-300)
-            ends = np.array([p[:2] - self.reach * direction, p[:2] + self.reach * direction])
-            line.set_data(ends[:, 0], ends[:, 1])
-        for values, marker in zip(self.pivot_points, self.pivots, strict=True):
-            marker.set_data([values[sample, 0]], [values[sample, 1]])
-        for xy, dot, label in zip(self.plane, self.dots, self.labels, strict=True):
-            dot.set_data([xy[sample, 0]], [xy[sample, 1]])
-            label.xy = (xy[sample, 0], xy[sample, 1])
-        for xy, trail in zip(self.plane, self.trails, strict=False):
-            trail.set_data(xy[: sample + 1, 0], xy[: sample + 1, 1])
-        unit = self.units.get("t")
-        self.stamp.set_text(f"t = {self.trajectory.t[sample]:.2f}" + (f" {unit}" if unit else ""))
-        return [*self.rods, *self.surfaces, *self.pivots, *self.trails, *self.dots, *self.labels, self.stamp]
-
-
-def sketch_figure(trajectory: Trajectory, scene: Scene | None, title: str, units: Units = None,
-                  sample: int = 0) -> Any:
-    """The system at one sample (the start by default): particles, rods, pivots, surfaces and wires;
-    for motion in 3-D, the x–y and x–z views side by side."""
-    three = any(d > 2 for _, d in trajectory.particles)
-    fig, axes = _figure(f"{title}: sketch", 1, 2 if three else 1, figsize=(10 if three else 5.5, 5.4))
-    for ax, (i, j) in zip(axes[0], [(0, 1), (0, 2)] if three else [(0, 1)], strict=False):
-        _Drawing(ax, trajectory, scene, i, j, units).show(sample)
-    return fig
-
-
-def animation_gif(trajectory: Trajectory, title: str, frames: int = 120, scene: Scene | None = None,
-                  units: Units = None) -> bytes:
-    """An animated GIF of the motion (Pillow): the sketch, moving, with the paths so far and a time stamp;
-    the first frame is the sketch at t = 0. The layout is worked out on the first frame and then kept
-    (the axes do not move), and each frame is drawn once."""
-    units = axis_units(units)
-    import io
-
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from PIL import Image
-
-    from lagsolve.render.picture import Picture
-
-    fig = Picture(figsize=(5, 5), layout="constrained")
-    canvas = FigureCanvasAgg(fig)
-    ax = fig.subplots()
-    ax.set_title(_fit(title, 4.7), parse_math=False)
-    drawing = _Drawing(ax, trajectory, scene, units=units, trails=True)
-    index = np.linspace(0, len(trajectory.t) - 1, max(frames, 1)).astype(int)
-    images = []
-    for k, i in enumerate(index):
-        drawing.show(int(i))
-        canvas.draw()
-        if k == 0:
-            fig.set_layout_engine("none")  # laid out once: the same axes on every frame, at a fraction of the cost
-        width, height = canvas.get_width_height()
-        images.append(Image.frombuffer("RGBA", (width, height), bytes(canvas.buffer_rgba()), "raw", "RGBA", 0, 1))
-    out = io.BytesIO()
-    images[0].save(out, format="GIF", save_all=True, append_images=images[1:], duration=int(1000 / 24), loop=0)
-    return out.getvalue()
-
-
 # --- curves against time -------------------------------------------------------------------------------
 
 
@@ -239,7 +115,7 @@ def path_figure(trajectory: Trajectory, title: str,
     to the first particle's positions, shape (samples, components)."""
     dims = {d for _, d in trajectory.particles}
     three = 3 in dims
-    fig, axes = _figure(f"{title}: paths", 1, 2 if three else 1, figsize=(11 if three else 6.5, 5.5))
+    fig, axes = figure(f"{title}: paths", 1, 2 if three else 1, figsize=(WIDTH, 3.5 if three else 4.1))
     planes = [(0, 1, "x", "y")] + ([(0, 2, "x", "z")] if three else [])
     length = (units or {}).get("length")
     for ax, (i, j, xl, yl) in zip(axes[0], planes, strict=True):
@@ -292,7 +168,7 @@ def _informative(trajectory: Trajectory) -> tuple[list[int], dict[int, str]]:
 def coordinates_figure(trajectory: Trajectory, title: str, labels: Mapping[str, str], units: Units = None) -> Any:
     """Each coordinate that changes in a way worth seeing, against time."""
     keep, notes = _informative(trajectory)
-    fig, axes = _figure(f"{title}: coordinates", len(keep), 1, sharex=True)
+    fig, axes = figure(f"{title}: coordinates", len(keep), 1, sharex=True)
     for row, k in enumerate(keep):
         name = trajectory.coordinates[k]
         ax = axes[row][0]
@@ -315,7 +191,8 @@ def phase_figure(trajectory: Trajectory, title: str, labels: Mapping[str, str], 
     moving, notes = _informative(trajectory)
     cols = min(3, len(moving))
     rows = -(-len(moving) // cols)
-    fig, axes = _figure(f"{title}: phase portraits", rows, cols, figsize=(3.8 * cols + 1, 3.6 * rows + 0.8))
+    fig, axes = figure(f"{title}: phase portraits", rows, cols,
+                       figsize=(WIDTH, min(0.9 + (5.6 / max(cols, 2) + 0.3) * rows, MAX_HEIGHT)))
     for idx, k in enumerate(moving):
         ax = axes[idx // cols][idx % cols]
         name = trajectory.coordinates[k]
@@ -341,7 +218,7 @@ def forces_figure(trajectory: Trajectory, title: str, units: Units = None) -> An
         measured = []
     panels = ["lambda"] + (["magnitude"] if measured else []) + (["friction"] if contacts else [])
     title_text = f"{title}: forces of constraint" + (" and friction" if contacts else "")
-    fig, axes = _figure(title_text, len(panels), 1, sharex=True)
+    fig, axes = figure(title_text, len(panels), 1, sharex=True)
     ax = dict(zip(panels, (row[0] for row in axes), strict=True))
     force = (units or {}).get("force")
     for j, name in enumerate(trajectory.constraints):
@@ -389,7 +266,7 @@ def conservation_figure(trajectory: Trajectory, title: str, units: Units = None)
     panels = (["drift"] if series else []) + (["energy"] if changing else []) + (["residual"] if residual else [])
     panels = panels or ["energy"]
     what = "conservation and constraints" if trajectory.constraints else "conservation"
-    fig, axes = _figure(f"{title}: {what}", len(panels), 1, sharex=True)
+    fig, axes = figure(f"{title}: {what}", len(panels), 1, sharex=True)
     ax = dict(zip(panels, (row[0] for row in axes), strict=True))
     notes = []
     if "drift" in ax:
@@ -449,8 +326,9 @@ def figures(trajectory: Trajectory, title: str, labels: Mapping[str, str],
     and ``energy`` (or the trajectory table's columns: ``position``, ``F_c``, ``lambda_c``) to a unit."""
     units = axis_units(units)
     out: dict[str, Any] = {}
-    if trajectory.particles:
+    if trajectory.particles or scene:
         out["sketch"] = sketch_figure(trajectory, scene, title, units)
+    if trajectory.particles:
         out["path"] = path_figure(trajectory, title, curve, scene, units)
     out["coordinates"] = coordinates_figure(trajectory, title, labels, units)
     out["phase"] = phase_figure(trajectory, title, labels, units)
