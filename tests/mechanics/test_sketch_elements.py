@@ -69,6 +69,11 @@ ELEMENTS: dict[str, set[tuple[str, str, tuple[str, ...]]]] = {
         ("body disc", "disc", ()),
         ("solid", "surface", ("disc",)),
     },
+    "differential_drive": {  # seen from above; the axle's no-slip constraint turns with the cart: no line to roll on
+        ("body plate", "chassis", ()),
+        ("body plate", "left", ()),
+        ("body plate", "right", ()),
+    },
     "double_pendulum": {
         ("pivot", "", ()),
         ("rod", "", ("pivot", "upper")),
@@ -102,6 +107,12 @@ ELEMENTS: dict[str, set[tuple[str, str, tuple[str, ...]]]] = {
         ("arrow friction", "rough", ("block",)),
         ("string", "string", ("block", "weight")),
         ("surface", "plane", ("block",)),
+    },
+    "multidof_holonomic": {
+        ("body bar", "pendulum", ("block",)),
+        ("damper", "damper (c*q1_dot**2/2)", ("fixed", "block")),
+        ("spring", "spring (k*q1**2/2)", ("fixed", "block")),
+        ("support", "surface under block", ("block",)),
     },
     "knife_edge": {
         ("arrow constraint", "skate", ("p1",)),
@@ -178,6 +189,11 @@ ELEMENTS: dict[str, set[tuple[str, str, tuple[str, ...]]]] = {
     "sliding_off_sphere": {
         ("arrow constraint", "surface", ("p",)),
         ("solid", "surface", ("p",)),
+    },
+    "spherical_pendulum_cartesian": {
+        ("arrow constraint", "rod", ("bob",)),
+        ("pivot", "", ()),
+        ("rod", "rod", ("pivot", "bob")),
     },
     "spherical_pendulum": {
         ("pivot", "", ()),

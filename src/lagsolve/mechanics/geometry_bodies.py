@@ -177,8 +177,8 @@ def _rolling(problem: Problem, body: Any, coordinates: list[Any]) -> tuple[Any, 
         values = [sympy.sympify(e).subs({n1: 0, n2: 0, m: 0}) for e in solutions.args[0]]
         n = values[:2]
         size = sympy.simplify(n[0] ** 2 + n[1] ** 2)
-        if size == 0 or size.free_symbols & set(coordinates):
-            continue
+        if size == 0 or any(x.free_symbols & set(coordinates) for x in n):
+            continue  # a normal that turns with the body is a blade's (a cart's axle), not a line rolled on
         rho = [sympy.simplify(-values[2] * n[1] / size), sympy.simplify(values[2] * n[0] / size)]
         radius = sympy.simplify(sympy.sqrt(rho[0] ** 2 + rho[1] ** 2))
         if radius == 0 or radius.free_symbols & set(coordinates):
