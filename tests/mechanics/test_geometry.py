@@ -91,3 +91,15 @@ def test_pendulums_hanging_from_a_moving_block_or_support() -> None:
     for name, top in (("block_two_pendulums", "block"), ("moving_support", "support")):
         (rod,) = geometry(problem_file(name)).rods
         assert rod.start == Anchor(top) and rod.end.particle == "bob"
+
+
+def test_a_bob_hangs_from_a_joint_at_the_end_of_a_bar() -> None:
+    """PyDy's system: the bob (q1 + l sin q2 + l sin(q2 + q3), -l cos q2 - l cos(q2 + q3)) hangs by a rod of
+    length l from the bar's lower end (q1 + l sin q2, -l cos q2), a point that moves with the bar (the scene draws
+    it as a joint, an open circle, not as a fixed pivot)."""
+    problem = problem_file("multidof_holonomic")
+    q1, q2, length = _symbols(problem, "q1", "q2", "l")
+    (rod,) = geometry(problem).rods
+    assert rod.end == Anchor("bob") and rod.length == length
+    assert [sympy.simplify(a - b) for a, b in zip(rod.start.point, (q1 + length * sympy.sin(q2),
+                                                                     -length * sympy.cos(q2)), strict=True)] == [0, 0]

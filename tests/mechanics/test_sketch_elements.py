@@ -108,8 +108,10 @@ ELEMENTS: dict[str, set[tuple[str, str, tuple[str, ...]]]] = {
         ("string", "string", ("block", "weight")),
         ("surface", "plane", ("block",)),
     },
-    "multidof_holonomic": {
+    "multidof_holonomic": {  # the bob hangs by its rod from a joint at the bar's lower end
         ("body bar", "pendulum", ("block",)),
+        ("pivot", "", ()),
+        ("rod", "", ("pivot", "bob")),
         ("damper", "damper (c*q1_dot**2/2)", ("fixed", "block")),
         ("spring", "spring (k*q1**2/2)", ("fixed", "block")),
         ("support", "surface under block", ("block",)),

@@ -454,9 +454,38 @@ def _implied_rods(problem: Problem, coordinates: list[Any], variables: set[Any],
         length = fixed_distance([r - c for r, c in zip(p.position, pivot, strict=True)], coordinates)
         if length is not None:
             out.append(Rod(Anchor(None, pivot), Anchor(p.name), length, None))
+        elif not any(r.end.particle == p.name for r in explicit):
+            out += _jointed_rod(problem, p, coordinates)
     names = [x.name for x in particles]
     out.sort(key=lambda r: names.index(r.end.particle or ""))
     return out
+
+
+def _jointed_rod(problem: Problem, particle: Any, coordinates: list[Any]) -> list[Rod]:
+    """A rod that hangs ``particle`` from a joint on another member: the other member whose coordinates are the
+    most of the particle's (the compound pendulum a bob hangs from), the particle's offset from it split into the
+    terms in the particle's own further coordinates (a vector of fixed length: the rod) and the rest, free of them
+    (the joint, which moves with the member). PyDy's bob a length l below the end of a bar: a rod from the bar's
+    end. Nothing when no member leaves such a split."""
+    own = set().union(*(r.free_symbols for r in particle.position)) & set(coordinates)
+    candidates: list[Any] = [*problem.particles, *problem.bodies]
+    members = [m for m in candidates if m.name != particle.name and len(m.position) == len(particle.position)]
+    ranked = []
+    for m in members:
+        theirs = set().union(*(r.free_symbols for r in m.position)) & set(coordinates)
+        if theirs and theirs < own:
+            ranked.append((-len(theirs), m.name, m, own - theirs))
+    for _, _, member, further in sorted(ranked, key=lambda x: (x[0], x[1])):
+        offset = [sympy.expand(a - b) for a, b in zip(particle.position, member.position, strict=True)]
+        rod = [sum((t for t in sympy.Add.make_args(d) if t.free_symbols & further), sympy.Integer(0)) for d in offset]
+        rest = [d - r for d, r in zip(offset, rod, strict=True)]
+        if any(r.free_symbols & further for r in rest) or all(r == 0 for r in rest):
+            continue
+        length = fixed_distance(rod, coordinates)
+        if length is not None:
+            joint = tuple(sympy.simplify(b + r) for b, r in zip(member.position, rest, strict=True))
+            return [Rod(Anchor(None, joint), Anchor(particle.name), length, None)]
+    return []
 
 
 def free_part(position: tuple[Any, ...], coordinates: list[Any]) -> tuple[Any, ...]:

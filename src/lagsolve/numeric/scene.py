@@ -76,6 +76,7 @@ class Scene:
     markers: tuple[tuple[str, np.ndarray], ...] = ()
     gravity: np.ndarray = field(default_factory=lambda: np.zeros(0))
     scale: float = 1.0
+    joints: tuple[np.ndarray, ...] = ()  # hinges on a moving member (a bob's rod on the end of a bar), (samples, dims)
 
     def __bool__(self) -> bool:
         return bool(self.rods or self.pivots or self.surfaces or self.curves or self.shapes or self.forces
@@ -156,6 +157,7 @@ def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, trajector
     run = Run(problem, parameters, trajectory, geometry.markers)
     rods: list[tuple[str, np.ndarray, np.ndarray]] = []
     pivots: list[np.ndarray] = []
+    joints: list[np.ndarray] = []
 
     def add_pivot(values: np.ndarray) -> None:
         if not any(v.shape == values.shape and np.allclose(values, v) for v in pivots):
@@ -167,7 +169,9 @@ def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, trajector
             continue
         rods.append((rod.constraint or "", start, stop))
         for anchor, end in ((rod.start, start), (rod.end, stop)):
-            if anchor.particle is None:
+            if anchor.particle is None and _on_member(anchor, problem):
+                joints.append(end)
+            elif anchor.particle is None:
                 add_pivot(end)
     for body in geometry.bodies:
         if body.pivot is not None and body.pivot.particle is None:
@@ -195,4 +199,10 @@ def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, trajector
     markers = tuple((name, run.members[name]) for name, _ in geometry.markers if name in run.members)
     markers += tuple((b.name, run.members[b.name]) for b in geometry.bodies if b.name in run.members)
     return Scene(tuple(rods), tuple(pivots), tuple(surfaces), tuple(curves), tuple(shapes), tuple(forces), markers,
-                 build.gravity, scale)
+                 build.gravity, scale, tuple(joints))
+
+
+def _on_member(anchor: Anchor, problem: Any) -> bool:
+    """A rod's end at a point that moves with the coordinates (a joint on a member), not a fixed or driven pivot."""
+    coordinates = {c.symbol for c in problem.coordinates}
+    return any(sympy.sympify(p).free_symbols & coordinates for p in anchor.point)

@@ -163,6 +163,9 @@ class Drawing:
                      for _ in self.rod_ends]
         self.pivot_points = [_cut(p, i, j) for p in scene.pivots]
         self.pivots = [ax.plot([], [], "^", color="0.15", markersize=10, zorder=3.6)[0] for _ in self.pivot_points]
+        self.joint_points = [_cut(p, i, j) for p in scene.joints]
+        self.joints = [ax.plot([], [], "o", markerfacecolor="white", markeredgecolor="0.15", markersize=6,
+                               zorder=3.6)[0] for _ in self.joint_points]
         members = self.plane + [v for _, v in self.markers]
         self.trails = [ax.plot([], [], "-", linewidth=0.9, alpha=0.55, zorder=2)[0] for _ in members] if trails else []
         self.dots, self.labels = [], []
@@ -324,7 +327,7 @@ class Drawing:
                 artist.set_xy(pts if np.all(np.isfinite(pts)) else np.zeros((3, 2)))
             else:
                 artist.set_data(pts[:, 0], pts[:, 1])
-        for values, marker in zip(self.pivot_points, self.pivots, strict=True):
+        for values, marker in zip(self.pivot_points + self.joint_points, self.pivots + self.joints, strict=True):
             marker.set_data([values[sample, 0]], [values[sample, 1]])
         members = self.plane + [v for _, v in self.markers]
         placed: list[np.ndarray] = []
@@ -347,7 +350,7 @@ class Drawing:
         unit = self.units.get("t")
         self.stamp.set_text(f"t = {self.trajectory.t[sample]:.2f}" + (f" {unit}" if unit else ""))
         return [*self.rods, *(line for _, _, line in self.surfaces), *(a for _, a in self.artists), *self.pivots,
-                *self.trails, *self.dots, *self.labels, *self.arrows, self.stamp]
+                *self.joints, *self.trails, *self.dots, *self.labels, *self.arrows, self.stamp]
 
 
 def _figure_size(panels: int) -> tuple[float, float]:
