@@ -186,7 +186,6 @@ def simulate_derivation(derivation: Derivation, options: SimulationOptions,
         The derivation has no matrix form (and the errors of :func:`run_simulation`).
     """
     from lagsolve.errors import Issue, SpecError
-    from lagsolve.mechanics.analysis import energy_reason
     from lagsolve.mechanics.minimal_chart import minimal_chart
 
     if derivation.form is None:
@@ -195,4 +194,4 @@ def simulate_derivation(derivation: Derivation, options: SimulationOptions,
         return simulate_form(derivation.form, options, progress)
     chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
     return run_simulation(derivation.form, derivation.conserved or {}, options, progress, chart=chart,
-                          chart_note=chart_note, energy_note=energy_reason(derivation.analysis.conservation))
+                          chart_note=chart_note, energy_note=derivation.analysis.conservation.energy.reason())

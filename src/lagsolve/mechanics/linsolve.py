@@ -35,7 +35,7 @@ import sympy
 
 from lagsolve.mechanics.algebra import cancel, ops
 from lagsolve.mechanics.ringsolve import MAX_TERMS, cancelled, in_sympy_order, normalized, solve_in_ring
-from lagsolve.mechanics.stages import StageSkipped
+from lagsolve.mechanics.stages import StageTooLarge
 
 #: an explicit result (or an intermediate of the elimination) with more operations than this is not produced
 SIZE_LIMIT = 1500
@@ -50,7 +50,7 @@ def _guard(exprs: list[Any], limit: int | None) -> None:
         return
     largest = max((_size(e) for e in exprs), default=0)
     if largest > limit:
-        raise StageSkipped(f"too large: the explicit solution grows past {limit} operations per expression "
+        raise StageTooLarge(f"the explicit solution grows past {limit} operations per expression "
                            f"(one has {largest}); the matrix form M q̈ = F + Aᵀλ above is the result")
 
 
@@ -191,7 +191,7 @@ def _solve_blocks(M: sympy.Matrix, rhs: sympy.Matrix, limit: int | None) -> symp
     for group in groups:
         varying = sum(1 for i in group for k in group if i != k and M[i, k].free_symbols)
         if limit is not None and len(group) >= DENSE_LIMIT and varying > len(group) * (len(group) - 1) // 2:
-            raise StageSkipped(f"too large: M has a dense {len(group)}×{len(group)} block whose entries vary, so "
+            raise StageTooLarge(f"M has a dense {len(group)}×{len(group)} block whose entries vary, so "
                                "the explicit solution would be far too long to read; the matrix form M q̈ = F + Aᵀλ "
                                "above is the result")
     for group in groups:

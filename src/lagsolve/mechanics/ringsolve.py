@@ -33,7 +33,7 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.algebra import known_cancelled
-from lagsolve.mechanics.stages import StageSkipped
+from lagsolve.mechanics.stages import StageTooLarge
 
 #: a coupled block of more unknowns (coordinates and multipliers) than this is not bounded (the bound costs
 #: 2^k steps) nor solved explicitly when a bound on the size is asked for
@@ -91,7 +91,7 @@ def solve_in_ring(M: Any, F: Any, A: Any, beta: Any, cap: int | None = MAX_TERMS
     groups = [tuple(g) for g in coupled(K)]
     if cap is not None and max(len(g) for g in groups) > MAX_BLOCK:
         largest = max(len(g) for g in groups)
-        raise StageSkipped(f"too large: {largest} unknowns (accelerations and multipliers) are coupled, more than the "
+        raise StageTooLarge(f"{largest} unknowns (accelerations and multipliers) are coupled, more than the "
                            f"{MAX_BLOCK} an explicit solution is sought for; the matrix form M q̈ = F + Aᵀλ above is "
                            "the result")
     found = _ring_matrix(K.row_join(rhs))
@@ -102,8 +102,8 @@ def solve_in_ring(M: Any, F: Any, A: Any, beta: Any, cap: int | None = MAX_TERMS
         for group in groups:
             bound = support_bound(matrix, group, cap)
             if bound is None:
-                raise StageSkipped(
-                    f"too large: the explicit solution's determinant or numerators would have more than {cap} terms "
+                raise StageTooLarge(
+                    f"the explicit solution's determinant or numerators would have more than {cap} terms "
                     f"({len(group)} coupled unknowns), far too long to read; the matrix form M q̈ = F + Aᵀλ above is "
                     "the result")
     solution = _solve_blocks(matrix, back, groups)
