@@ -26,7 +26,6 @@ REDESIGNED = (
 
 #: functions over a limit today, to be split by a later step of issue 30 ("module.py::function")
 LATER = {
-    "mechanics/derivation.py::derive",
     "mechanics/geometry.py::_cartesian_shape",
     "problem/load.py::problem",
     "numeric/integrate.py::integrate_motion",
