@@ -1,8 +1,9 @@
-"""The package's shape stays true: no import cycle between lagsolve modules, no module too long.
+"""The package's shape stays true: no import cycle between lagsolve modules, no import that climbs
+the pipeline, no module too long.
 
-Imports are read with `ast` from the source, not by importing: only module-level imports count (an
-import inside a function is a deliberate late dependency, e.g. a notebook display), and imports under
-`if TYPE_CHECKING:` count too, since a type checker follows them.
+Imports are read with `ast` from the source, not by importing, and every one counts: at module level,
+under `if TYPE_CHECKING:` (a type checker follows them) and inside functions (a late import is still a
+dependency; a notebook display, for one, is registered from `render/` instead, see `lagsolve/notebook.py`).
 """
 
 from __future__ import annotations
@@ -13,6 +14,12 @@ from pathlib import Path
 SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = "lagsolve"
 MAX_LINES = 750
+
+#: the layers, first to last (docs/architecture.md): a module imports its own package and earlier layers
+#: only. The data flows problem → mechanics → numeric → render; check reads a derivation (render shows its
+#: reports), app runs the commands, sweep many runs; the library (api), the CLI and the package come last.
+LAYERS = ("errors", "enums", "notebook", "ranges", "files", "problem", "mechanics", "numeric", "check", "render",
+          "app", "sweep", "schemas", "api", "cli", "__main__", "")
 
 
 def _module_name(path: Path) -> str:
@@ -38,32 +45,21 @@ def _resolve(module: str, path: Path, node: ast.ImportFrom) -> list[str]:
 
 
 def _imports(module: str, path: Path, known: set[str]) -> set[str]:
+    """The lagsolve modules ``module`` imports anywhere in its source (every node of its tree)."""
     tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
     found: set[str] = set()
-
-    def visit(body: list[ast.stmt]) -> None:
-        for node in body:
-            names: list[str] = []
-            if isinstance(node, ast.Import):
-                names = [alias.name for alias in node.names]
-            elif isinstance(node, ast.ImportFrom):
-                names = _resolve(module, path, node)
-            elif isinstance(node, ast.If | ast.Try):
-                visit(node.body)
-                visit(node.orelse)
-                for handler in getattr(node, "handlers", []):
-                    visit(handler.body)
-                if isinstance(node, ast.Try):
-                    visit(node.finalbody)
-                continue
-            for name in names:
-                # `import a.b.c` or `from a.b import c` depends on the deepest known module it names
-                while name and name not in known:
-                    name = name.rpartition(".")[0]
-                if name and name != module and name.startswith(PACKAGE + "."):
-                    found.add(name)
-
-    visit(tree.body)
+    for node in ast.walk(tree):
+        names: list[str] = []
+        if isinstance(node, ast.Import):
+            names = [alias.name for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            names = _resolve(module, path, node)
+        for name in names:
+            # `import a.b.c` or `from a.b import c` depends on the deepest known module it names
+            while name and name not in known:
+                name = name.rpartition(".")[0]
+            if name and name != module and name.startswith(PACKAGE + "."):
+                found.add(name)
     return found
 
 
@@ -110,7 +106,37 @@ def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
 
 def test_no_import_cycle_between_lagsolve_modules():
     cycles = _cycles(_graph())
-    assert cycles == [], f"import cycles at module level: {cycles}"
+    assert cycles == [], f"import cycles: {cycles}"
+
+
+def _layer(module: str) -> str:
+    """The layer of a module: its top-level package or module under lagsolve ("" for the package itself)."""
+    return module.split(".")[1] if "." in module else ""
+
+
+def _climbs(graph: dict[str, set[str]]) -> list[str]:
+    """Every import of a later layer (or of a module in no layer), as "importer -> imported"."""
+    out = []
+    for module, imported in sorted(graph.items()):
+        for name in sorted(imported):
+            here, there = _layer(module), _layer(name)
+            if here != there and (here not in LAYERS or there not in LAYERS
+                                  or LAYERS.index(there) > LAYERS.index(here)):
+                out.append(f"{module} -> {name}")
+    return out
+
+
+def test_no_import_climbs_the_pipeline():
+    climbs = _climbs(_graph())
+    assert climbs == [], f"imports of a later layer (see LAYERS): {climbs}"
+
+
+def test_function_local_imports_count():
+    """An import inside a function is a dependency like any other."""
+    graph = _graph()
+    assert "lagsolve.render.display" in graph["lagsolve"]  # imported only in _notebook_display
+    assert _climbs({"lagsolve.mechanics.results": {"lagsolve.render.display"}}) == [
+        "lagsolve.mechanics.results -> lagsolve.render.display"]
 
 
 def test_the_cycle_finder_finds_a_cycle():

@@ -17,6 +17,8 @@ import sys
 import types
 from typing import TYPE_CHECKING, Any
 
+from lagsolve import notebook
+
 __version__ = "0.1.0"
 
 if TYPE_CHECKING:
@@ -77,3 +79,13 @@ class _Package(types.ModuleType):
 
 
 sys.modules[__name__].__class__ = _Package
+
+
+def _notebook_display() -> None:
+    """The renderers of derivations and check reports, registered when the first result is shown."""
+    from lagsolve.render.display import register
+
+    register()
+
+
+notebook.on_first_use(_notebook_display)

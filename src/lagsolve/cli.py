@@ -12,6 +12,7 @@ import codecs
 import os
 import sys
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
 
@@ -216,12 +217,53 @@ def derive(files: tuple[Path, ...], output: Path | None, fmts: tuple[str, ...], 
     lagsolve derive problems/bead.yaml --simulate      # the report with the simulation's figures
     """
     from lagsolve.app.pipeline import SimulationOptions, derive_file
-    from lagsolve.files import safe_slug, write_file
 
+    plan = _derive_plan(files, output, fmts, golden, update_golden, with_simulation)
+    texts: list[str] = []
+    status = 0
+    for path in files:
+        _note(f"lagsolve: deriving {path}", err=True, level=2)
+        try:
+            simulate = SimulationOptions(values={}, initial={}, plots=True) if with_simulation else None
+            reports = derive_file(path, plan.formats, templates=templates, timeout=timeout, simulate=simulate)
+        except LagsolveError as error:
+            status = max(status, _fail(error))
+            continue
+        for warning in reports.warnings:
+            _note(f"warning: {reports.source}: {warning}", err=True)
+        status = max(status, _deliver(reports, plan, output, golden, update_golden, texts))
+    if plan.stream:
+        from lagsolve.render.machine import json_stream
+
+        click.echo(json_stream(texts, lines=plan.fmt == "jsonl"), nl=False)
+    sys.exit(status)
+
+
+@dataclass(frozen=True)
+class _DerivePlan:
+    """Where ``derive``'s reports go: ``fmt`` the one format asked for (None for none or several), ``formats``
+    those rendered, ``stream`` JSON to stdout (jsonl, or json of several files), ``single_file`` -o names a file."""
+
+    fmt: str | None
+    formats: tuple[str, ...]
+    stream: bool
+    single_file: bool
+
+
+def _derive_plan(files: tuple[Path, ...], output: Path | None, fmts: tuple[str, ...], golden: Path | None,
+                 update_golden: bool, with_simulation: bool) -> _DerivePlan:
+    """The options of ``derive`` read together; a combination that cannot be honoured is a usage error."""
     if update_golden and golden is None:
         raise click.UsageError("--update-golden needs --golden DIR")
-
     chosen = tuple(dict.fromkeys(fmts))
+    fmt = _one_format(chosen, output, golden)
+    formats = ("json",) if fmt == "jsonl" else (fmt,) if fmt else chosen or DEFAULT_FORMATS
+    stream = fmt == "jsonl" or (fmt == "json" and output is None and golden is None and len(files) > 1)
+    return _DerivePlan(fmt, formats, stream, _single_file(files, output, fmt, with_simulation))
+
+
+def _one_format(chosen: tuple[str, ...], output: Path | None, golden: Path | None) -> str | None:
+    """The one format asked for (None for none or several), when the formats can go where they are sent."""
     if len(chosen) > 1 and "jsonl" in chosen:
         raise click.UsageError("--format jsonl prints to stdout alone; give it without other formats")
     if len(chosen) > 1 and output is None and golden is None:
@@ -229,9 +271,13 @@ def derive(files: tuple[Path, ...], output: Path | None, fmts: tuple[str, ...], 
     fmt = chosen[0] if len(chosen) == 1 else None
     if fmt == "jsonl" and (output is not None or golden is not None):
         raise click.UsageError("--format jsonl prints to stdout; redirect it, or use --format json with -o")
-    formats = ("json",) if fmt == "jsonl" else (fmt,) if fmt else chosen or DEFAULT_FORMATS
-    stream = fmt == "jsonl" or (fmt == "json" and output is None and golden is None and len(files) > 1)
-    texts: list[str] = []
+    return fmt
+
+
+def _single_file(files: tuple[Path, ...], output: Path | None, fmt: str | None, with_simulation: bool) -> bool:
+    """Whether -o names the one file to write; a usage error when the files' reports cannot all be written."""
+    from lagsolve.files import safe_slug
+
     slugs = [safe_slug(f) for f in files]
     if len(set(slugs)) != len(slugs):
         raise click.UsageError("two problem files have the same name; their reports would overwrite each other")
@@ -240,46 +286,45 @@ def derive(files: tuple[Path, ...], output: Path | None, fmts: tuple[str, ...], 
     single_file = fmt is not None and output is not None and output.suffix == EXTENSIONS[fmt]
     if single_file and len(files) > 1:
         raise click.UsageError(f"-o {output} names one file, but {len(files)} problems were given; give a folder")
-    status = 0
-    for path in files:
-        _note(f"lagsolve: deriving {path}", err=True, level=2)
-        try:
-            simulate = SimulationOptions(values={}, initial={}, plots=True) if with_simulation else None
-            reports = derive_file(path, formats, templates=templates, timeout=timeout, simulate=simulate)
-        except LagsolveError as error:
-            status = max(status, _fail(error))
-            continue
-        for warning in reports.warnings:
-            _note(f"warning: {reports.source}: {warning}", err=True)
-        if stream and golden is None:
-            texts.append(reports.outputs["json"])
-            continue
-        if fmt and output is None and golden is None:
-            click.echo(reports.outputs[fmt], nl=False)
-            continue
-        try:
-            if golden is not None:
-                status = max(status, _golden(reports, golden, update_golden))
-                continue
-            if single_file and output is not None and fmt is not None:
-                root, place = output.parent, Path()
-                names = {fmt: output.name}
-            else:
-                root, place = output or Path("out"), Path() if fmt else Path(reports.slug)
-                names = {f: str(place / f"{reports.slug}{EXTENSIONS[f]}") for f in formats}
-            if not fmt:
-                _note(reports.summary, nl=False)
-            for f, name in names.items():
-                _note(f"  wrote {write_file(root, name, reports.outputs[f])}")
-            for name, data in reports.files.items():
-                _note(f"  wrote {write_file(root, place / name, data)}")
-        except LagsolveError as error:
-            status = max(status, _fail(error))
-    if stream:
-        from lagsolve.render.machine import json_stream
+    return single_file
 
-        click.echo(json_stream(texts, lines=fmt == "jsonl"), nl=False)
-    sys.exit(status)
+
+def _deliver(reports: Any, plan: _DerivePlan, output: Path | None, golden: Path | None, update_golden: bool,
+             texts: list[str]) -> int:
+    """One problem's reports to where ``plan`` sends them (the JSON stream, stdout, the golden files, the output
+    folder); the exit status it asks for."""
+    if plan.stream and golden is None:
+        texts.append(reports.outputs["json"])
+        return 0
+    if plan.fmt and output is None and golden is None:
+        click.echo(reports.outputs[plan.fmt], nl=False)
+        return 0
+    try:
+        if golden is not None:
+            return _golden(reports, golden, update_golden)
+        _write_reports(reports, plan, output)
+    except LagsolveError as error:
+        return _fail(error)
+    return 0
+
+
+def _write_reports(reports: Any, plan: _DerivePlan, output: Path | None) -> None:
+    """The reports and their figures written: to the file -o names, else to out/<problem>/ (or -o DIR)."""
+    from lagsolve.files import write_file
+
+    fmt = plan.fmt
+    if plan.single_file and output is not None and fmt is not None:
+        root, place = output.parent, Path()
+        names = {fmt: output.name}
+    else:
+        root, place = output or Path("out"), Path() if fmt else Path(reports.slug)
+        names = {f: str(place / f"{reports.slug}{EXTENSIONS[f]}") for f in plan.formats}
+    if not fmt:
+        _note(reports.summary, nl=False)
+    for f, name in names.items():
+        _note(f"  wrote {write_file(root, name, reports.outputs[f])}")
+    for name, data in reports.files.items():
+        _note(f"  wrote {write_file(root, place / name, data)}")
 
 
 def _assignments(pairs: tuple[str, ...], option: str) -> dict[str, float]:

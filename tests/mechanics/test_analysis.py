@@ -287,9 +287,7 @@ def test_conserved_quantities_do_not_drift_in_simulation(name):
     derivation = derived_file(name)
     problem = derivation.problem
     assert problem.simulation is not None and problem.simulation.t_end is not None
-    from lagsolve.mechanics.analysis import energy_reason
-
-    note = energy_reason(derivation.analysis.conservation)
+    note = derivation.analysis.conservation.energy.reason()
     system = bind(derivation.form, {}, derivation.conserved, energy_note=note)
     if not derivation.conserved:  # then the run does not claim energy either, and says why
         assert not system.energy_conserved and system.energy_note

@@ -8,7 +8,7 @@ import random
 
 import sympy
 
-from lagsolve.mechanics.conserved import MotionSystem, conserved_quantities
+from lagsolve.mechanics.conserved import Energy, EnergyDecision, MotionSystem, conserved_quantities
 from lagsolve.mechanics.constraints import constraint_terms
 from lagsolve.mechanics.model import build_model
 from lagsolve.mechanics.surface import constraint_surface
@@ -81,6 +81,31 @@ def test_a_candidate_that_fails_verification_is_dropped():
     found = conserved_quantities(system)
     assert found.quantities == ()
     assert any("did not simplify to 0" in n for n in found.notes)
+    assert found.energy.kind == Energy.NOT_PROVED and found.energy.note() in found.notes
+
+
+def test_the_energy_decision_is_a_value_written_as_sentences():
+    """The decision is data (a kind, friction, the moving constraints); its note and reason are written from it."""
+    moving = EnergyDecision(Energy.MOVING, moving=("a", "b"))
+    assert moving.note() == "energy: not conserved, constraint a, b has b != 0, so its force does work"
+    assert moving.reason() == "constraint a, b has b != 0, so its force does work"
+    assert EnergyDecision(Energy.WORK, friction=True).reason() == "friction does work (sum of Q_i q_i_dot is not 0)"
+    assert EnergyDecision(Energy.TIME).reason() == "L depends explicitly on the time"
+    assert EnergyDecision(Energy.CONSERVED).reason() == "" and EnergyDecision(Energy.CONSERVED).note() == ""
+    assert EnergyDecision().reason() == "the analysis finds no conserved energy"  # no decision made
+
+
+def test_shipped_energy_decisions_agree_with_the_quantities_and_notes():
+    """Energy is claimed exactly when the decision is CONSERVED, and the notes carry the decision's note."""
+    kinds = {}
+    for name in ("bead", "driven_oscillator", "rough_incline", "turntable", "moving_support"):
+        conservation = derived_file(name).analysis.conservation
+        kinds[name] = conservation.energy.kind
+        claimed = any(q.name == "energy" for q in conservation.quantities)
+        assert claimed == (conservation.energy.kind == Energy.CONSERVED), name
+        assert [n for n in conservation.notes if n.startswith("energy: ")] == (
+            [conservation.energy.note()] if conservation.energy.note() else []), name
+    assert kinds["bead"] == Energy.CONSERVED and kinds["rough_incline"] == Energy.WORK
 
 
 def test_momentum_of_a_coordinate_only_in_other_coefficients_is_conserved():

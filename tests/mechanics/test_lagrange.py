@@ -313,8 +313,8 @@ def test_symengine_engine_on_the_pendulum_is_exact():
 
 
 def test_cancelled_is_sympys_cancel_of_a_reduced_fraction():
-    """linsolve.cancelled writes a coprime P/Q exactly as sympy.cancel would (same tree)."""
-    from lagsolve.mechanics.linsolve import cancelled
+    """ringsolve.cancelled writes a coprime P/Q exactly as sympy.cancel would (same tree)."""
+    from lagsolve.mechanics.ringsolve import cancelled
 
     a, b, m, ell = sympy.symbols("a b m ell", positive=True)
     s, c = sympy.sin(a), sympy.cos(a - b)

@@ -7,7 +7,7 @@ import time
 
 import pytest
 
-from lagsolve.mechanics.stages import STAGES, StageNote, Stages, StageSkipped, StageTimeout, cpu_limit
+from lagsolve.mechanics.stages import STAGES, StageNote, Stages, StageSkipped, StageTimeout, StageTooLarge, cpu_limit
 
 
 def _burn(seconds: float) -> float:
@@ -49,16 +49,22 @@ def test_a_swallowed_timeout_is_raised_again() -> None:
 
 
 def test_skipped_and_too_large_stages_say_why() -> None:
-    """StageSkipped gives a note of kind 'skipped', or 'size' when its reason starts with 'too large'."""
+    """StageSkipped gives a note of kind 'skipped', StageTooLarge one of kind 'size' whose reason starts with
+    'too large' (the kind is the exception's, never read back from its sentence)."""
     stages = Stages(10.0)
 
     def skip(reason: str) -> None:
         raise StageSkipped(reason)
 
+    def large(what: str) -> None:
+        raise StageTooLarge(what)
+
     stages.run("effective potential", skip, "forces depend on t")
-    stages.run("explicit solve", skip, "too large: 3000 operations")
+    stages.run("explicit solve", large, "3000 operations")
+    stages.run("normal forces", skip, "too large, a sentence that only reads like a size")
     assert [(n.stage, n.kind) for n in stages.notes] == [("effective potential", "skipped"),
-                                                         ("explicit solve", "size")]
+                                                         ("explicit solve", "size"), ("normal forces", "skipped")]
+    assert stages.notes[1].reason == "too large: 3000 operations"
     assert StageNote("explicit solve", "too large", "size").sentence() == "Explicit solve: too large."
 
 

@@ -72,7 +72,7 @@ def _scene(form: Any, parameters: Any, trajectory: Any) -> Any:
     """What the sketch draws (``mechanics/geometry.py``: rods, surfaces, wires, strings, springs, bodies and the
     forces as arrows) along the trajectory."""
     from lagsolve.mechanics.geometry import sketch
-    from lagsolve.numeric.scene import evaluate
+    from lagsolve.numeric.scene_shapes import evaluate
 
     return evaluate(sketch(form), form.problem, parameters, trajectory)
 
@@ -93,33 +93,68 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
     SimulationError
         The integration failed.
     """
-    import numpy as np
-
-    from lagsolve.errors import Issue, SpecError
-    from lagsolve.numeric.initial import complete_initial
-    from lagsolve.numeric.integrate import integrate_motion
+    from lagsolve.files import safe_slug
     from lagsolve.numeric.system import bind
     from lagsolve.render import trajectory as table
 
     problem = form.problem
-    spec = problem.simulation
-    source = problem.source
     if options.coordinates not in tuple(Coordinates):
         raise ValueError(f"unknown coordinates option {options.coordinates!r}")
     minimal = options.coordinates == Coordinates.MINIMAL
     system = bind(form, options.values, conserved, chart if minimal else None, energy_note)
     if minimal and chart is None and chart_note and form.constraints:
         note = f"  not in minimal coordinates: {chart_note}\n" + note
+    trajectory = _integrate(system, problem, options, minimal, progress)
+    units = _column_units(form)
+    tables: dict[str, str | bytes] = {}
+    if "csv" in options.tables:
+        tables["csv"] = table.to_csv(trajectory, units)
+    if "npz" in options.tables:
+        tables["npz"] = table.to_npz(trajectory)
+    # what the sketch draws (a classification and a few compiled shapes), for figures or on request
+    wanted = options.plots or options.animate or options.scene
+    scene = _scene(form, system.parameters, trajectory) if wanted else None
+    axis_units = {**(options.units or {}), **units}  # the file's units win over options.units
+    figures = _figures(problem, trajectory, options, scene, axis_units)
+    return SimulationResult(problem.source, safe_slug(problem.source), problem.name,
+                            table.summary(trajectory, problem.name) + note, tables, figures, trajectory, scene=scene)
+
+
+def _t_end(problem: Any, options: SimulationOptions) -> float:
+    """The end time: the option's, else the file's."""
+    from lagsolve.errors import Issue, SpecError
+
+    spec = problem.simulation
     t_end = options.t_end if options.t_end is not None else (spec.t_end if spec else None)
     if t_end is None:
-        raise SpecError([Issue(source, 0, "simulation.t_end", "no end time",
+        raise SpecError([Issue(problem.source, 0, "simulation.t_end", "no end time",
                                "give simulation.t_end in the file or --t-end")])
+    return t_end
+
+
+def _initial_state(system: Any, problem: Any, options: SimulationOptions) -> tuple[Any, Any]:
+    """q and q̇ at the start: the file's initial values, then the options', completed onto the constraints."""
+    from lagsolve.numeric.initial import complete_initial
+
+    spec = problem.simulation
     given = {**(spec.initial if spec else {}), **options.initial}
     from_file = "simulation.initial" if spec and spec.initial else ""
     field = " and ".join(f for f in (from_file, "--initial" if options.initial else "") if f) or "simulation.initial"
     line = problem.lines.get("simulation.initial", problem.lines.get("simulation", 0)) if from_file else 0
-    q0, qd0 = complete_initial(system, given, source, line=line, field=field)
-    trajectory = integrate_motion(
+    return complete_initial(system, given, problem.source, line=line, field=field)
+
+
+def _integrate(system: Any, problem: Any, options: SimulationOptions, minimal: bool,
+               progress: Progress | None) -> Trajectory:
+    """The run, each setting from the options, else the file, else its default."""
+    import numpy as np
+
+    from lagsolve.numeric.integrate import integrate_motion
+
+    t_end = _t_end(problem, options)
+    q0, qd0 = _initial_state(system, problem, options)
+    spec = problem.simulation
+    return integrate_motion(
         system, q0, qd0, t_end,
         samples=options.samples or (spec.samples if spec and spec.samples else 1001),
         method=options.method or (spec.method if spec and spec.method else DEFAULT_METHOD),
@@ -130,39 +165,38 @@ def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progre
         minimal=minimal,
         progress=progress(t_end) if progress is not None else None,
     )
-    name = problem.name
-    tables: dict[str, str | bytes] = {}
-    units: dict[str, str] = {}
-    if problem.has_units:
-        from lagsolve.mechanics.result_units import column_units
 
-        units = column_units(problem, form.model.kinetic)
-        force = next((u for k, u in units.items() if k.startswith(("F_", "N_"))), None)
-        units.update({f"friction_{f.name}": force for f in problem.friction if force})
-    axis_units = {**(options.units or {}), **units}  # the file's units win over options.units
-    if "csv" in options.tables:
-        tables["csv"] = table.to_csv(trajectory, units)
-    if "npz" in options.tables:
-        tables["npz"] = table.to_npz(trajectory)
+
+def _column_units(form: Any) -> dict[str, str]:
+    """The unit of each table column (none when the file declares no units)."""
+    problem = form.problem
+    if not problem.has_units:
+        return {}
+    from lagsolve.mechanics.result_units import column_units
+
+    units: dict[str, str] = column_units(problem, form.model.kinetic)
+    force = next((u for k, u in units.items() if k.startswith(("F_", "N_"))), None)
+    units.update({f"friction_{f.name}": force for f in problem.friction if force})
+    return units
+
+
+def _figures(problem: Any, trajectory: Any, options: SimulationOptions, scene: Any,
+             axis_units: dict[str, str]) -> dict[str, bytes]:
+    """The requested figures and animation, as PNG and GIF bytes by name."""
     figures: dict[str, bytes] = {}
-    # what the sketch draws (a classification and a few compiled shapes), for figures or on request
-    wanted = options.plots or options.animate or options.scene
-    scene = _scene(form, system.parameters, trajectory) if wanted else None
-    if options.plots or options.animate:
-        from lagsolve.render import plots
-        from lagsolve.render.notation import Notation
+    if not (options.plots or options.animate):
+        return figures
+    from lagsolve.render import plots
+    from lagsolve.render.notation import Notation
 
-        notation = Notation([c.name for c in problem.coordinates])
-        labels = {c.name: notation.latex(c.symbol) for c in problem.coordinates}
-        if options.plots:
-            for key, figure in plots.figures(trajectory, name, labels, scene=scene, units=axis_units).items():
-                figures[key] = plots.png_bytes(figure)
-        if options.animate and (trajectory.particles or scene):
-            figures["animation"] = plots.animation_gif(trajectory, name, scene=scene, units=axis_units)
-    from lagsolve.files import safe_slug
-
-    return SimulationResult(source, safe_slug(source), name, table.summary(trajectory, name) + note, tables,
-                            figures, trajectory, scene=scene)
+    notation = Notation([c.name for c in problem.coordinates])
+    labels = {c.name: notation.latex(c.symbol) for c in problem.coordinates}
+    if options.plots:
+        for key, figure in plots.figures(trajectory, problem.name, labels, scene=scene, units=axis_units).items():
+            figures[key] = plots.png_bytes(figure)
+    if options.animate and (trajectory.particles or scene):
+        figures["animation"] = plots.animation_gif(trajectory, problem.name, scene=scene, units=axis_units)
+    return figures
 
 
 def simulate_form(form: MatrixForm, options: SimulationOptions, progress: Progress | None = None) -> SimulationResult:
@@ -186,7 +220,6 @@ def simulate_derivation(derivation: Derivation, options: SimulationOptions,
         The derivation has no matrix form (and the errors of :func:`run_simulation`).
     """
     from lagsolve.errors import Issue, SpecError
-    from lagsolve.mechanics.analysis import energy_reason
     from lagsolve.mechanics.minimal_chart import minimal_chart
 
     if derivation.form is None:
@@ -195,4 +228,4 @@ def simulate_derivation(derivation: Derivation, options: SimulationOptions,
         return simulate_form(derivation.form, options, progress)
     chart, chart_note = minimal_chart(derivation.analysis, derivation.model)
     return run_simulation(derivation.form, derivation.conserved or {}, options, progress, chart=chart,
-                          chart_note=chart_note, energy_note=energy_reason(derivation.analysis.conservation))
+                          chart_note=chart_note, energy_note=derivation.analysis.conservation.energy.reason())

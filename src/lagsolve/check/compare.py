@@ -44,143 +44,62 @@ constraint. The result is a frozen :class:`CheckReport`; nothing is printed here
 
 from __future__ import annotations
 
-import contextlib
-from dataclasses import dataclass, field
 from typing import Any
 
 import mpmath
 import sympy
 
 from lagsolve.check.diagnose import (
-    SYMBOLIC_LIMIT,
     ReleasedConstraints,
     Row,
     close,
     constant_relation,
     sign_condition,
 )
+from lagsolve.check.modes import mode_verdicts
 from lagsolve.check.states import Compiled, State, StateSpace
-from lagsolve.check.status import Status
+from lagsolve.check.verdicts import (
+    ABSENT,
+    BRACKET,
+    CONSERVED,
+    CONVENTION,
+    DIFFERS,
+    FACTOR,
+    MISMATCH,
+    NOT_BRACKET,
+    NOT_CONSERVED,
+    NOT_DERIVED,
+    NUMERIC,
+    OFFSET,
+    OK,
+    OPPOSITE_SIGN,
+    RELEASED,
+    SAME,
+    SHAPE,
+    SIGN_DEPENDENT,
+    SYMBOLIC,
+    TOO_FEW_STATES,
+    UNCHECKED,
+    UNDEFINED,
+    WARNING,
+    CheckReport,
+    Item,
+    Verdict,
+    Witness,
+    symbolically_equal,
+)
 from lagsolve.mechanics.derivation import Derivation
-from lagsolve.mechanics.simplify import reproducible, tidy
+from lagsolve.mechanics.simplify import reproducible
 from lagsolve.problem.names import momentum_name, momentum_symbol
 
-OK, WARNING, MISMATCH, UNCHECKED = Status.OK, Status.WARNING, Status.MISMATCH, Status.UNCHECKED
-
-#: reasons (``Verdict.reason``)
-SYMBOLIC, NUMERIC = "symbolic", "numeric"
-OPPOSITE_SIGN, CONVENTION = "opposite sign", "multiplier convention"
-FACTOR, OFFSET, SIGN_DEPENDENT = "constant factor", "constant offset", "holds only where"
-UNDEFINED, DIFFERS, ABSENT, SHAPE = "undefined", "differs", "absent", "shape"
-RELEASED = "constraints released"
-CONSERVED, NOT_CONSERVED = "conserved", "not conserved"
-NOT_DERIVED, TOO_FEW_STATES, SAME = "not derived", "too few states", "same"
-BRACKET, NOT_BRACKET = "Poisson bracket", "Poisson bracket not 0"
+__all__ = [  # the verdicts and reasons are defined in verdicts.py; callers may name them here
+    "CheckReport", "Verdict", "Witness", "check", "OK", "WARNING", "MISMATCH", "UNCHECKED", "SYMBOLIC", "NUMERIC",
+    "OPPOSITE_SIGN", "CONVENTION", "FACTOR", "OFFSET", "SIGN_DEPENDENT", "UNDEFINED", "DIFFERS", "ABSENT", "SHAPE",
+    "RELEASED", "CONSERVED", "NOT_CONSERVED", "NOT_DERIVED", "TOO_FEW_STATES", "SAME", "BRACKET", "NOT_BRACKET",
+]
 
 STATES = 24
 MINIMUM_STATES = 8
-
-
-@dataclass(frozen=True)
-class Witness:
-    """A state on the constraint surface where the answers differ.
-
-    ``values``: (name, value) of the time, parameters, coordinates and velocities that
-    matter; ``functions``: (name, :class:`sympy.Lambda`) used for each declared function;
-    ``expected`` and ``derived``: the values there, one per component.
-    """
-
-    values: tuple[tuple[str, float], ...]
-    functions: tuple[tuple[str, Any], ...]
-    expected: tuple[complex | None, ...]
-    derived: tuple[complex | None, ...]
-
-
-@dataclass(frozen=True)
-class Verdict:
-    """The verdict on one expected quantity.
-
-    ``quantity`` is the result key (``accelerations``, ``multipliers``, ``constraint_forces``,
-    ``reduced``, ``conserved``, ``effective_potential``, ``normal_modes``) and ``name`` the entry (``x``,
-    ``wire``, ``wire.vector``, ``energy``, ``expression``, ``equilibria[0].frequency``,
-    ``normal_modes[0].squared_frequencies[1]``). ``status`` is one
-    of ok, warning, mismatch, unchecked; ``reason`` one of the module's reason constants.
-    ``expected`` and ``derived`` hold the components compared (one for a scalar).
-    ``factor`` (E = factor·D), ``offset`` (E = D + offset) and ``condition`` (where the answer
-    holds) are SymPy objects when the diagnosis found them; ``note`` is plain text.
-    """
-
-    quantity: str
-    name: str
-    status: Status
-    reason: str
-    expected: tuple[Any, ...]
-    derived: tuple[Any, ...] | None = None
-    factor: Any = None
-    offset: Any = None
-    condition: Any = None
-    states: int = 0
-    agreeing: int = 0
-    note: str = ""
-    witness: Witness | None = None
-
-    @property
-    def passed(self) -> bool:
-        """True unless the answer is wrong (a warning or an unchecked answer passes)."""
-        return self.status != MISMATCH
-
-    def __repr__(self) -> str:
-        return f"<Verdict on {self.quantity} {self.name}: {self.status}>"
-
-
-@dataclass(frozen=True)
-class CheckReport:
-    """Every verdict on one problem, in the order of the file's ``expected:`` section."""
-
-    name: str
-    source: str
-    coordinates: tuple[str, ...]
-    verdicts: tuple[Verdict, ...]
-
-    def count(self, status: Status) -> int:
-        return sum(1 for v in self.verdicts if v.status == status)
-
-    @property
-    def passed(self) -> bool:
-        """True when no answer is a mismatch."""
-        return all(v.passed for v in self.verdicts)
-
-    def __repr__(self) -> str:
-        counts = ", ".join(f"{self.count(s)} {s}" for s in Status if self.count(s)) or "nothing to check"
-        return f"<CheckReport of {self.name!r}: {counts}>"
-
-    # notebook display (IPython calls these); the renderers are imported only when a report is shown
-
-    def _repr_html_(self) -> str:
-        from lagsolve.render.display import check_html
-
-        return check_html(self)
-
-    def _repr_markdown_(self) -> str:
-        from lagsolve.render.display import check_markdown
-
-        return check_markdown(self)
-
-
-@dataclass(frozen=True)
-class _Item:
-    """One comparison to make: E and D, component by component."""
-
-    quantity: str
-    name: str
-    expected: tuple[Any, ...]
-    derived: tuple[Any, ...] | None
-    note: str = ""
-    shifts: bool = False  # an additive constant is harmless (conserved quantities, potentials)
-    real: bool = True  # values must be real (not so for equilibria, which may not exist everywhere)
-    missing: Status = UNCHECKED  # status when there is nothing derived to compare with
-    rate: bool = False  # a claimed constant of the motion, checked by its rate dC/dt along the equations
-    extra: dict[str, Any] = field(default_factory=dict)
 
 
 def check(derivation: Derivation, *, states: int = STATES, seed: int = 0) -> CheckReport:
@@ -223,8 +142,6 @@ def check(derivation: Derivation, *, states: int = STATES, seed: int = 0) -> Che
     verdicts = [checker.verdict(item) for item in items]
     verdicts += checker.equilibria()
     verdicts += _steady_stability(derivation)
-    from lagsolve.check.modes import mode_verdicts  # it builds on this module's verdicts
-
     verdicts += mode_verdicts(checker, derivation)
     return CheckReport(problem.name, problem.source, tuple(c.name for c in problem.coordinates), tuple(verdicts))
 
@@ -232,37 +149,37 @@ def check(derivation: Derivation, *, states: int = STATES, seed: int = 0) -> Che
 # -- what to compare ----------------------------------------------------------------------------
 
 
-def _items(derivation: Derivation) -> list[_Item]:
+def _items(derivation: Derivation) -> list[Item]:
     expected = derivation.problem.expected
-    items: list[_Item] = []
+    items: list[Item] = []
     missing = "; ".join(n.sentence() for n in derivation.notes) or "not derived"
     accelerations, multipliers = derivation.accelerations, derivation.multipliers
     for q, e in expected.accelerations.items():
-        items.append(_Item("accelerations", q, (e,), None if accelerations is None else (accelerations[q],),
+        items.append(Item("accelerations", q, (e,), None if accelerations is None else (accelerations[q],),
                            missing))
     for c, e in expected.multipliers.items():
-        items.append(_Item("multipliers", c, (e,), None if multipliers is None else (multipliers[c],), missing))
+        items.append(Item("multipliers", c, (e,), None if multipliers is None else (multipliers[c],), missing))
     for c, spec in expected.constraint_forces.items():
         if derivation.constraint_forces is None:
             for key in ("magnitude", "vector"):
                 if key in spec:
-                    items.append(_Item("constraint_forces", c if key == "magnitude" else f"{c}.vector",
+                    items.append(Item("constraint_forces", c if key == "magnitude" else f"{c}.vector",
                                        tuple(spec[key]) if key == "vector" else (spec[key],), None, missing))
             continue
         force = derivation.constraint_forces[c]
         note = force.note or "lagsolve gives no single force for this constraint"
         if "magnitude" in spec:
             derived = None if force.magnitude is None else (force.magnitude,)
-            items.append(_Item("constraint_forces", c, (spec["magnitude"],), derived, note))
+            items.append(Item("constraint_forces", c, (spec["magnitude"],), derived, note))
         if "vector" in spec:
             derived = None if force.vector is None else tuple(force.vector)
-            items.append(_Item("constraint_forces", f"{c}.vector", tuple(spec["vector"]), derived, note))
+            items.append(Item("constraint_forces", f"{c}.vector", tuple(spec["vector"]), derived, note))
     items += _analysis_items(derivation)
     items += _steady_items(derivation)
     return items
 
 
-def _steady_items(derivation: Derivation) -> list[_Item]:
+def _steady_items(derivation: Derivation) -> list[Item]:
     r"""Expected steady motions against the derived ones: the rates as a set (their sum and product, so the
     order and the branch of a square root do not matter), and :math:`\omega^2` at each derived rate (both
     sides written with the rate put in, so either may use the condition or not)."""
@@ -279,10 +196,10 @@ def _steady_items(derivation: Derivation) -> list[_Item]:
         note = (f"expected {spec.coordinate} fixed and {spec.rate} turning; lagsolve keeps {steady.coordinate.name} "
                 f"fixed and takes {steady.rate.name} as the rate")
         steady, missing = None, MISMATCH
-    items = [_Item("steady_motions", "values", _symmetric(values), None if steady is None else
+    items = [Item("steady_motions", "values", _symmetric(values), None if steady is None else
                    _symmetric(steady.roots), note, real=False, missing=missing)]
     if steady is not None and len(steady.roots) != len(values):
-        items[0] = _Item("steady_motions", "values", values, tuple(steady.roots), real=False)
+        items[0] = Item("steady_motions", "values", values, tuple(steady.roots), real=False)
     if spec.frequency is not None:
         derived = None
         expected: tuple[Any, ...] = (spec.frequency**2,)
@@ -290,7 +207,7 @@ def _steady_items(derivation: Derivation) -> list[_Item]:
             omega = steady.velocity
             expected = tuple(spec.frequency.xreplace({omega: r})**2 for r in steady.roots)
             derived = tuple(steady.frequency_squared.xreplace({omega: r}) for r in steady.roots)
-        items.append(_Item("steady_motions", "frequency", expected, derived, note, real=False, missing=missing))
+        items.append(Item("steady_motions", "frequency", expected, derived, note, real=False, missing=missing))
     return items
 
 
@@ -319,11 +236,11 @@ def _steady_stability(derivation: Derivation) -> list[Verdict]:
 NOT_YET = "not derived yet (lagsolve's analysis does not give it for this problem)"
 
 
-def _analysis_items(derivation: Derivation) -> list[_Item]:
+def _analysis_items(derivation: Derivation) -> list[Item]:
     """``reduced``, ``conserved`` and ``effective_potential`` in the shapes of the format's section 2."""
     expected = derivation.problem.expected
     names = _names(derivation)
-    items: list[_Item] = []
+    items: list[Item] = []
     reduced = derivation.reduced
     for q, e in expected.reduced.items():
         table = (reduced or {}).get("accelerations") or {}
@@ -332,17 +249,17 @@ def _analysis_items(derivation: Derivation) -> list[_Item]:
         if reduced is not None and value is None:
             independent = ", ".join(map(str, reduced.get("independent") or ())) or "none"
             note = f"{q} is not an independent coordinate of lagsolve's reduced system (independent: {independent})"
-        items.append(_Item("reduced", q, (e,), None if value is None else (value,), note))
+        items.append(Item("reduced", q, (e,), None if value is None else (value,), note))
     conserved = derivation.conserved
     for name, e in expected.conserved.items():
         value = _as_expr((conserved or {}).get(name), names)
         if value is None:
             found = "no analysis" if conserved is None else ", ".join(conserved) or "nothing"
             # its rate along the equations needs the explicit accelerations; without them it stays unchecked
-            items.append(_Item("conserved", name, (e,), None, f"lagsolve's analysis does not find {name!r} "
+            items.append(Item("conserved", name, (e,), None, f"lagsolve's analysis does not find {name!r} "
                                f"(it finds: {found})", shifts=True, rate=derivation.accelerations is not None))
             continue
-        items.append(_Item("conserved", name, (e,), (value,), shifts=True))
+        items.append(Item("conserved", name, (e,), (value,), shifts=True))
     items += _bracket_items(derivation)
     spec = expected.effective_potential
     if spec and "expression" in spec:
@@ -353,12 +270,12 @@ def _analysis_items(derivation: Derivation) -> list[_Item]:
             note = (f"expected a potential in {spec['coordinate']}, lagsolve reduces to "
                     f"{derived.get('coordinate')}")
             value, missing = None, MISMATCH
-        items.append(_Item("effective_potential", "expression", (spec["expression"],),
+        items.append(Item("effective_potential", "expression", (spec["expression"],),
                            None if value is None else (value,), note, shifts=True, missing=missing))
     return items
 
 
-def _bracket_items(derivation: Derivation) -> list[_Item]:
+def _bracket_items(derivation: Derivation) -> list[Item]:
     """Each claimed constant C checked again in Hamiltonian form, {C, H} + ∂C/∂t = 0, where H applies."""
     h = derivation.hamiltonian
     if h is None or derivation.analysis is None or derivation.analysis.reduced is None:
@@ -369,7 +286,7 @@ def _bracket_items(derivation: Derivation) -> list[_Item]:
     substitution = derivation.analysis.reduced.substitution
     for name, e in derivation.problem.expected.conserved.items():
         rate, status = claimed_rate(h, e, substitution)
-        items.append(_Item("conserved", f"{name}.poisson_bracket", (e,), None, shifts=True,
+        items.append(Item("conserved", f"{name}.poisson_bracket", (e,), None, shifts=True,
                            extra={"bracket": (rate, status)}))
     return items
 
@@ -410,7 +327,7 @@ def _as_expr(value: Any, names: Any) -> Any:
 class _Checker:
     """Shared state of one check: the prepared expressions and, when needed, the random states."""
 
-    def __init__(self, derivation: Derivation, items: list[_Item], count: int, seed: int) -> None:
+    def __init__(self, derivation: Derivation, items: list[Item], count: int, seed: int) -> None:
         self.derivation = derivation
         self.count = count
         self.seed = seed
@@ -470,7 +387,7 @@ class _Checker:
 
     # verdicts
 
-    def verdict(self, item: _Item) -> Verdict:
+    def verdict(self, item: Item) -> Verdict:
         if item.rate:
             return self.conservation(item)
         if "bracket" in item.extra:
@@ -485,11 +402,11 @@ class _Checker:
         if len(expected) != len(derived):
             return Verdict(**base, status=MISMATCH, reason=SHAPE,
                            note=f"expected {len(expected)} components, lagsolve has {len(derived)}")
-        if all(_symbolically_equal(e, d) for e, d in zip(expected, derived, strict=True)):
+        if all(symbolically_equal(e, d) for e, d in zip(expected, derived, strict=True)):
             return Verdict(**base, status=OK, reason=SYMBOLIC)
         return self.numeric(item, expected, derived, base)
 
-    def numeric(self, item: _Item, expected: tuple[Any, ...], derived: tuple[Any, ...],
+    def numeric(self, item: Item, expected: tuple[Any, ...], derived: tuple[Any, ...],
                 base: dict[str, Any]) -> Verdict:
         space = self.space()
         got = [Compiled(e, space) for e in expected]
@@ -548,12 +465,12 @@ class _Checker:
             return Verdict(**base, status=OK if harmless else MISMATCH, reason=OFFSET, offset=offset, note=note)
         return Verdict(**base, status=MISMATCH, reason=DIFFERS)
 
-    def conservation(self, item: _Item) -> Verdict:
+    def conservation(self, item: Item) -> Verdict:
         """A claimed constant of the motion: ok when dC/dt = 0 along the equations, on the constraint surface."""
         rate = self._rates[item.name]
         base: dict[str, Any] = {"quantity": item.quantity, "name": item.name, "expected": item.expected}
         along = "its rate dC/dt along the equations of motion"
-        if _symbolically_equal(rate, sympy.Integer(0)):
+        if symbolically_equal(rate, sympy.Integer(0)):
             return Verdict(**base, status=OK, reason=CONSERVED, note=f"{item.note}; {along} simplifies to 0")
         compiled = Compiled(rate, self.space())
         rows: list[Row] = []
@@ -617,7 +534,7 @@ class _Checker:
                 value = _as_expr(candidate.get("value"), names)
                 if value is None:
                     continue
-                verdict = self.verdict(_Item("effective_potential", f"{label}.value", (eq["value"],), (value,),
+                verdict = self.verdict(Item("effective_potential", f"{label}.value", (eq["value"],), (value,),
                                              real=False))
                 if verdict.status == OK:
                     match = (candidate, verdict)
@@ -642,13 +559,13 @@ class _Checker:
                                        (sympy.true if stable else sympy.false,)))
             if "frequency" in eq:
                 frequency = _as_expr(candidate.get("frequency"), names)
-                out.append(self.verdict(_Item("effective_potential", f"{label}.frequency", (eq["frequency"],),
+                out.append(self.verdict(Item("effective_potential", f"{label}.frequency", (eq["frequency"],),
                                               None if frequency is None else (frequency,),
                                               "lagsolve gives no frequency for this equilibrium", real=False)))
         return out
 
 
-def _bracket_verdict(item: _Item) -> Verdict:
+def _bracket_verdict(item: Item) -> Verdict:
     """The verdict of a claimed constant's Poisson bracket with H (see :func:`_bracket_items`)."""
     rate, status = item.extra["bracket"]
     base: dict[str, Any] = {"quantity": item.quantity, "name": item.name, "expected": item.expected}
@@ -662,20 +579,6 @@ def _bracket_verdict(item: _Item) -> Verdict:
 # -- small numeric helpers -------------------------------------------------------------------------
 
 
-def _symbolically_equal(expected: Any, derived: Any) -> bool:
-    """E − D reduces to zero: structural equality, then ``cancel``, then ``tidy`` (cheap steps first)."""
-    if expected == derived:
-        return True
-    difference = expected - derived
-    if difference == 0:
-        return True
-    if sympy.count_ops(difference) > SYMBOLIC_LIMIT:
-        return False
-    with contextlib.suppress(sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):
-        if sympy.cancel(difference) == 0:
-            return True
-        return bool(tidy(difference) == 0)
-    return False
 
 
 def _complex(value: Any) -> complex | None:

@@ -20,11 +20,11 @@ For each expected item:
 from __future__ import annotations
 
 import random
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import sympy
 
-from lagsolve.check.compare import (
+from lagsolve.check.verdicts import (
     ABSENT,
     DIFFERS,
     MISMATCH,
@@ -34,13 +34,12 @@ from lagsolve.check.compare import (
     SAME,
     SYMBOLIC,
     UNCHECKED,
+    Item,
     Verdict,
-    _Item,
-    _symbolically_equal,
+    symbolically_equal,
 )
 
 if TYPE_CHECKING:
-    from lagsolve.check.compare import _Checker
     from lagsolve.mechanics.derivation import Derivation
     from lagsolve.mechanics.linearize import Mode
 
@@ -53,7 +52,13 @@ QUANTITY = "normal_modes"
 TOLERANCE = 1e-6
 
 
-def mode_verdicts(checker: _Checker, derivation: Derivation) -> list[Verdict]:
+class Comparer(Protocol):
+    """What these verdicts need of :class:`lagsolve.check.compare._Checker`: one comparison, made."""
+
+    def verdict(self, item: Item) -> Verdict: ...
+
+
+def mode_verdicts(checker: Comparer, derivation: Derivation) -> list[Verdict]:
     """The verdicts on every item of ``expected.normal_modes``, in order."""
     expected = derivation.problem.expected.normal_modes
     if not expected:
@@ -101,7 +106,7 @@ def _numeric(values: Any) -> bool:
 class _Context:
     """What the comparisons of one derivation share: its names, the simulation values, the periodic coordinates."""
 
-    def __init__(self, checker: _Checker, derivation: Derivation) -> None:
+    def __init__(self, checker: Comparer, derivation: Derivation) -> None:
         from lagsolve.mechanics.numeric_equilibria import periodic
 
         self.checker = checker
@@ -151,7 +156,7 @@ class _Context:
             if numeric:
                 if not self.close(e, d, angle):
                     return False
-            elif not (_symbolically_equal(e, d) or (angle and _turns(e - d))):
+            elif not (symbolically_equal(e, d) or (angle and _turns(e - d))):
                 return False
         return True
 
@@ -218,7 +223,7 @@ class _Context:
                 if self.close(e, d):
                     return j, Verdict(QUANTITY, name, OK, AT_VALUES, (e,), (d,))
                 continue
-            verdict = self.checker.verdict(_Item(QUANTITY, name, (e,), (d,), real=False))
+            verdict = self.checker.verdict(Item(QUANTITY, name, (e,), (d,), real=False))
             if verdict.status == OK:
                 return j, verdict
         return None, None
@@ -232,7 +237,7 @@ class _Context:
         derived = mode.squared_frequencies or ()
         basis = [u for u, w in zip(mode.shapes, derived, strict=True) if w == square]
         numeric = _numeric(x for u in basis for x in u)
-        if len(basis) == 1 and all(_symbolically_equal(a * y, b * x) for (a, b), (x, y) in _pairs(e, basis[0])):
+        if len(basis) == 1 and all(symbolically_equal(a * y, b * x) for (a, b), (x, y) in _pairs(e, basis[0])):
             return Verdict(QUANTITY, name, OK, SYMBOLIC, e, basis[0])
         inside = self.in_span(e, basis, numeric)
         if inside is None:

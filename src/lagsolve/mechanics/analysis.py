@@ -254,12 +254,4 @@ def monitored(form: MatrixForm, budget: float = 30.0) -> tuple[dict[str, Any], M
         conservation = _with_symmetries(stages, problem, system, conservation, reduced)
     analysis = Analysis(classes or (), reduced, note, system, conservation, None, "", None, "")
     chart, chart_note = minimal_chart(analysis, model)
-    return contract_forms(analysis)["conserved"], chart, chart_note, energy_reason(conservation)
-
-
-def energy_reason(conservation: Conservation) -> str:
-    """Why the energy is not conserved, from the conservation notes ("" when it is)."""
-    if any(c.name == "energy" for c in conservation.quantities):
-        return ""
-    reason = next((n.split(": ", 1)[1] for n in conservation.notes if n.startswith("energy: ")), "")
-    return reason.removeprefix("not conserved, ") or "the analysis finds no conserved energy"
+    return contract_forms(analysis)["conserved"], chart, chart_note, conservation.energy.reason()

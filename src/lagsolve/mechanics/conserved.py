@@ -29,6 +29,7 @@ from typing import Any
 
 import sympy
 
+from lagsolve.enums import TextEnum
 from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.energy import jacobi_integral
 from lagsolve.mechanics.identities import proved_zero
@@ -157,13 +158,59 @@ class Conserved:
     generator: tuple[Any, ...] = ()
 
 
+class Energy(TextEnum):
+    """What the analysis decided about the energy function h (the Jacobi integral)."""
+
+    CONSERVED = "conserved"
+    TIME = "L depends on the time"
+    WORK = "forces do work"
+    MOVING = "a constraint moves"
+    NOT_PROVED = "not proved"
+    UNDECIDED = "undecided"  # the conservation stage gave no answer
+
+
+@dataclass(frozen=True)
+class EnergyDecision:
+    """The energy decision as data: its ``kind``, whether the work is friction's (``WORK``), and the
+    constraints with b != 0 (``MOVING``). :meth:`note` and :meth:`reason` write it as sentences."""
+
+    kind: Energy = Energy.UNDECIDED
+    friction: bool = False
+    moving: tuple[str, ...] = ()
+
+    def why(self) -> str:
+        """Why h is not claimed, as the analysis notes write it ("" when conserved or undecided)."""
+        if self.kind == Energy.TIME:
+            return "not conserved, L depends explicitly on the time"
+        if self.kind == Energy.WORK:
+            what = "friction does" if self.friction else "the non-conservative forces do"
+            return f"not conserved, {what} work (sum of Q_i q_i_dot is not 0)"
+        if self.kind == Energy.MOVING:
+            return f"not conserved, constraint {', '.join(self.moving)} has b != 0, so its force does work"
+        if self.kind == Energy.NOT_PROVED:
+            return "the conditions hold but dh/dt did not simplify to 0; not claimed"
+        return ""
+
+    def note(self) -> str:
+        """The line of ``Conservation.notes`` ("energy: ..."); "" when there is nothing to note."""
+        return f"energy: {self.why()}" if self.why() else ""
+
+    def reason(self) -> str:
+        """Why the energy is not conserved, for a simulation's summary ("" when it is)."""
+        if self.kind == Energy.CONSERVED:
+            return ""
+        return self.why().removeprefix("not conserved, ") or "the analysis finds no conserved energy"
+
+
 @dataclass(frozen=True)
 class Conservation:
-    """The verified quantities, the cyclic coordinates, and notes on what is not conserved."""
+    """The verified quantities, the cyclic coordinates, notes on what is not conserved, and the energy
+    decision (``energy``, whose note is among ``notes`` when there is one)."""
 
     quantities: tuple[Conserved, ...]
     cyclic: tuple[Any, ...]
     notes: tuple[str, ...]
+    energy: EnergyDecision = EnergyDecision()
 
 
 def conserved_quantities(system: MotionSystem, *, friction: bool = False) -> Conservation:
@@ -190,10 +237,12 @@ def conserved_quantities(system: MotionSystem, *, friction: bool = False) -> Con
             f"{q.name} is cyclic: dL/d{q.name} = 0, Q_{q.name} = 0"
             + (f" and no constraint involves {q.name}_dot" if system.constraints else "") + unverified_caveat(system),
         ))
-    energy = _jacobi(system, friction, notes)
+    decision, energy = _jacobi(system, friction)
     if energy is not None:
         quantities.append(energy)
-    return Conservation(tuple(quantities), tuple(cyclic), tuple(notes))
+    if decision.note():
+        notes.append(decision.note())
+    return Conservation(tuple(quantities), tuple(cyclic), tuple(notes), decision)
 
 
 def unverified_caveat(system: MotionSystem) -> str:
@@ -203,26 +252,28 @@ def unverified_caveat(system: MotionSystem) -> str:
     return " (by these conditions alone: the explicit accelerations are not available to verify it)"
 
 
-def _jacobi(system: MotionSystem, friction: bool, notes: list[str]) -> Conserved | None:
+def _jacobi(system: MotionSystem, friction: bool) -> tuple[EnergyDecision, Conserved | None]:
+    """The energy decision, and the Jacobi integral when it is conserved."""
     model = system.model
     L = model.lagrangian
     if not proved_zero(partial(L, model.time)):
-        notes.append("energy: not conserved, L depends explicitly on the time")
-        return None
+        return EnergyDecision(Energy.TIME), None
     power = on_surface(sum((f * v for f, v in zip(system.generalized_forces, model.velocities, strict=True)),
                     sympy.Integer(0)), system.surface)
     if friction or not proved_zero(power):
-        what = "friction does" if friction else "the non-conservative forces do"
-        notes.append(f"energy: not conserved, {what} work (sum of Q_i q_i_dot is not 0)")
-        return None
-    moving = [c.name for c in system.constraints if not proved_zero(c.offset)]
+        return EnergyDecision(Energy.WORK, friction=friction), None
+    moving = tuple(c.name for c in system.constraints if not proved_zero(c.offset))
     if moving:
-        notes.append(f"energy: not conserved, constraint {', '.join(moving)} has b != 0, so its force does work")
-        return None
+        return EnergyDecision(Energy.MOVING, moving=moving), None
     h = jacobi_integral(model)
     if system.accelerations and not system.constant(h):
-        notes.append("energy: the conditions hold but dh/dt did not simplify to 0; not claimed")
-        return None
+        return EnergyDecision(Energy.NOT_PROVED), None
+    return EnergyDecision(Energy.CONSERVED), _jacobi_integral(system, h)
+
+
+def _jacobi_integral(system: MotionSystem, h: Any) -> Conserved:
+    """The conserved Jacobi integral ``h`` with the conditions that held and its reason."""
+    model = system.model
     forces_zero = all(proved_zero(f) for f in system.generalized_forces)
     flags = ["no_time", "no_work" if not forces_zero else "no_forces",
              "eliminated" if system.kind == "reduced" else "workless"]

@@ -77,33 +77,20 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     stages = Stages(DEFAULT_BUDGET if budget is None else budget)
     form = matrix_form(problem, display=False)
     model, constraints, frictions = form.model, form.constraints, form.frictions
-    lagrange, reactions = form.lagrange, form.reactions
+    lagrange = form.lagrange
     if on_core is not None:
         on_core(core(form))
     solved = stages.run("explicit solve", _solve, lagrange)
     raw_acc, raw_lam = solved if solved is not None else (None, None)
     elimination = eliminate(constraints, model)
 
-    found: dict[str, NormalForce] = {}
-    if frictions and raw_lam is None:
-        stages.skip("normal forces", "needs the explicit multipliers, which were not found (see above)")
-    elif frictions:
-        found = stages.run("normal forces", normal_forces, frictions, raw_lam, constraints, reactions, model,
-                           elimination) or {}
-    else:
-        stages.skip("normal forces", "no friction acts", "n/a")
+    found = _normal_forces(stages, form, raw_lam, elimination)
     # every normal force with a closed form is substituted in the results (q̈, λ, the forces); the
     # closed form itself is given once, in the friction results. Only an implicit N stays a symbol.
     # Decoupled ones go in before display simplification (they simplify with the rest); a coupled one
     # after it, into the tidied results, which keeps them readable: λ = λ₀ + Λ N with N written out.
-    substituted = {f.normal: found[f.name].value for f in frictions
-                   if f.name in found and found[f.name].value is not None}
-    decoupled = {N: v for N, v in substituted.items() if not any(found[f.name].valid_while is not None
-                                                                 for f in frictions if f.normal == N)}
-    if raw_lam is not None and raw_acc is not None:
-        raw_lam = tuple(lam.xreplace(decoupled) for lam in raw_lam)
-        raw_acc = tuple(a.xreplace(decoupled) for a in raw_acc)
-
+    substituted, decoupled = _substitutions(found, frictions)
+    raw_acc, raw_lam = _put_in(raw_acc, raw_lam, decoupled)
     # a large system gets a lighter display simplification of its many equation pieces (one rewriting each)
     show_sum = tidy_sum if len(model.coordinates) <= LARGE_SYSTEM else tidy_sum_light
     shown = stages.run("display simplification", _display, form, elimination, raw_acc, raw_lam, tidy, show_sum)
@@ -112,25 +99,80 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     # the forces of constraint are found from the multipliers with a coupled N still a symbol (compact: |λ| |d|),
     # and the closed form is put in afterwards, like everywhere else
     multipliers = shown["multipliers"]
-    closed: dict[Any, Any] = {}
-    if len(decoupled) < len(substituted) and raw_lam is not None and raw_acc is not None:
-        closed = {N: _shown_normal(v, elimination) for N, v in substituted.items() if N not in decoupled}
-        raw_lam = tuple(lam.xreplace(closed) for lam in raw_lam)
-        raw_acc = tuple(a.xreplace(closed) for a in raw_acc)
+    closed = {N: _shown_normal(v, elimination) for N, v in substituted.items() if N not in decoupled}
+    if closed and raw_lam is not None and raw_acc is not None:
+        raw_acc, raw_lam = _put_in(raw_acc, raw_lam, closed)
         for key in ("accelerations", "multipliers"):
             if shown[key] is not None:
                 shown[key] = {k: v.xreplace(closed) for k, v in shown[key].items()}
-    forces: dict[str, ConstraintForce] | None = None
-    if not constraints:
-        forces = {}
-        stages.skip("forces of constraint", "there are no constraints", "n/a")
-    elif multipliers is None:
-        stages.skip("forces of constraint", "needs the explicit multipliers, which were not found (see above)")
     else:
-        forces = stages.run("forces of constraint", lambda: {
-            c.name: _closed_in(_constraint_force(reactions[c.name], multipliers[c.name], c, elimination), closed)
-            for c in constraints})
+        closed = {}
+    forces = _forces_of_constraint(stages, form, multipliers, elimination, closed)
     friction = tuple(_friction_result(f, found.get(f.name), substituted, elimination) for f in frictions)
+    friction = _contacts(stages, form, friction, forces, decoupled, elimination, raw_lam)
+    derivation = Derivation(
+        problem=problem, model=model, constraints=shown["constraints"], force_terms=shown["force_terms"],
+        lagrange=lagrange, elimination=elimination, raw_accelerations=raw_acc, raw_multipliers=raw_lam,
+        constraint_forces=forces, friction=friction, form=form, **{k: v for k, v in shown.items()
+                                                                    if k not in ("constraints", "force_terms")},
+    )
+    _check_free_symbols(derivation)
+    if analysis:
+        derivation = with_hamiltonian(with_analysis(derivation, stages), stages)
+    return dataclasses.replace(derivation, notes=stages.shown())
+
+
+def _substitutions(found: dict[str, NormalForce], frictions: tuple[FrictionTerm, ...]) -> tuple[dict[Any, Any],
+                                                                                         dict[Any, Any]]:
+    """Each normal force N with a closed form → that form; and those of them that hold without a condition
+    (decoupled: a coupled one is valid only while its contact holds)."""
+    substituted = {f.normal: found[f.name].value for f in frictions
+                   if f.name in found and found[f.name].value is not None}
+    decoupled = {N: v for N, v in substituted.items() if not any(found[f.name].valid_while is not None
+                                                                 for f in frictions if f.normal == N)}
+    return substituted, decoupled
+
+
+def _put_in(raw_acc: Any, raw_lam: Any, values: dict[Any, Any]) -> tuple[Any, Any]:
+    """The raw accelerations and multipliers with ``values`` put in (both None when not solved)."""
+    if raw_lam is None or raw_acc is None:
+        return raw_acc, raw_lam
+    return tuple(a.xreplace(values) for a in raw_acc), tuple(lam.xreplace(values) for lam in raw_lam)
+
+
+def _normal_forces(stages: Stages, form: MatrixForm, raw_lam: Any,
+                   elimination: Elimination) -> dict[str, NormalForce]:
+    """The normal forces of the friction contacts in closed form (the stage), by contact name."""
+    if form.frictions and raw_lam is None:
+        stages.skip("normal forces", "needs the explicit multipliers, which were not found (see above)")
+        return {}
+    if not form.frictions:
+        stages.skip("normal forces", "no friction acts", "n/a")
+        return {}
+    return stages.run("normal forces", normal_forces, form.frictions, raw_lam, form.constraints, form.reactions,
+                      form.model, elimination) or {}
+
+
+def _forces_of_constraint(stages: Stages, form: MatrixForm, multipliers: Any, elimination: Elimination,
+                          closed: dict[Any, Any]) -> dict[str, ConstraintForce] | None:
+    """The force of each constraint from its multiplier (the stage); None when the multipliers are not known."""
+    constraints, reactions = form.constraints, form.reactions
+    if not constraints:
+        stages.skip("forces of constraint", "there are no constraints", "n/a")
+        return {}
+    if multipliers is None:
+        stages.skip("forces of constraint", "needs the explicit multipliers, which were not found (see above)")
+        return None
+    return stages.run("forces of constraint", lambda: {
+        c.name: _closed_in(_constraint_force(reactions[c.name], multipliers[c.name], c, elimination), closed)
+        for c in constraints})
+
+
+def _contacts(stages: Stages, form: MatrixForm, friction: tuple[FrictionResult, ...],
+              forces: dict[str, ConstraintForce] | None, decoupled: dict[Any, Any], elimination: Elimination,
+              raw_lam: Any) -> tuple[FrictionResult, ...]:
+    """The friction results with their contact forces and whether each contact holds (the stages)."""
+    frictions = form.frictions
     if not frictions:
         stages.skip("contact forces", "no friction acts", "n/a")
     elif forces is None:
@@ -143,16 +185,7 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
         stages.skip("sticking", "no friction acts", "n/a")
     elif raw_lam is None:
         stages.skip("sticking", "needs the explicit multipliers, which were not found (see above)")
-    derivation = Derivation(
-        problem=problem, model=model, constraints=shown["constraints"], force_terms=shown["force_terms"],
-        lagrange=lagrange, elimination=elimination, raw_accelerations=raw_acc, raw_multipliers=raw_lam,
-        constraint_forces=forces, friction=friction, form=form, **{k: v for k, v in shown.items()
-                                                                    if k not in ("constraints", "force_terms")},
-    )
-    _check_free_symbols(derivation)
-    if analysis:
-        derivation = with_hamiltonian(with_analysis(derivation, stages), stages)
-    return dataclasses.replace(derivation, notes=stages.shown())
+    return friction
 
 
 def core(form: MatrixForm, note: str = "", *, analysis: bool = True) -> Derivation:

@@ -34,8 +34,8 @@ from typing import Any
 import numpy as np
 import sympy
 
-from lagsolve.mechanics.geometry import Anchor, Body, Curve, Rod, Surface, fixed_distance, free_part
 from lagsolve.mechanics.geometry_curves import line_or_curve, solve_together
+from lagsolve.mechanics.geometry_records import Anchor, Body, Curve, Rod, Surface, fixed_distance, free_part
 from lagsolve.problem.schema import ConstraintKind, Problem
 
 #: random states at which a candidate orientation is compared with the given angular velocity

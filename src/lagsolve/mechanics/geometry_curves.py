@@ -20,7 +20,7 @@ from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.geometry import SIZE_LIMIT, Curve, Revolution, Surface, fixed_distance, free_part
+from lagsolve.mechanics.geometry_records import SIZE_LIMIT, Curve, Revolution, Surface, fixed_distance, free_part
 from lagsolve.problem.schema import ConstraintKind, Problem
 
 

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Any
 
 import sympy
 
-from lagsolve.mechanics.geometry import Arrow
+from lagsolve.mechanics.geometry_records import Arrow
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.matrix_form import MatrixForm

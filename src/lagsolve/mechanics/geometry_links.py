@@ -29,7 +29,7 @@ from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.geometry import SIZE_LIMIT, Anchor, Blade, Rod, Spring, String, Surface, free_part
+from lagsolve.mechanics.geometry_records import SIZE_LIMIT, Anchor, Blade, Rod, Spring, String, Surface, free_part
 from lagsolve.problem.schema import ConstraintKind, Problem
 
 

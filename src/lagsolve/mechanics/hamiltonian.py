@@ -56,7 +56,7 @@ from lagsolve.mechanics.linsolve import SIZE_LIMIT, blocks, solve_structured
 from lagsolve.mechanics.model import Model, time_derivative
 from lagsolve.mechanics.partials import partial
 from lagsolve.mechanics.simplify import measure, smallest, tidy, tidy_sum
-from lagsolve.mechanics.stages import Stages, StageSkipped
+from lagsolve.mechanics.stages import Stages, StageSkipped, StageTooLarge
 from lagsolve.problem.names import momentum_symbol
 
 if TYPE_CHECKING:
@@ -270,7 +270,7 @@ def _long_inverse(A: sympy.Matrix, w: sympy.Matrix) -> tuple[Any, ...] | None:
     try:
         solution, _ = solve_structured(A, w, sympy.zeros(0, A.rows), sympy.zeros(0, 1), SIZE_LIMIT)
     except StageSkipped as exc:
-        raise StageSkipped(f"too large: inverting p = A q_dot + b grows past {SIZE_LIMIT} operations per "
+        raise StageTooLarge(f"inverting p = A q_dot + b grows past {SIZE_LIMIT} operations per "
                            "expression") from exc
     if max(ops(e) for e in solution) <= INVERSE_LIMIT:
         return None
@@ -352,7 +352,7 @@ def _square_term(pair: tuple[Any, Any]) -> Any:
 def _guard(exprs: tuple[Any, ...], limit: int) -> None:
     largest = max((ops(e) for e in exprs if isinstance(e, sympy.Basic)), default=0)
     if largest > limit:
-        raise StageSkipped(f"too large: inverting p = A q_dot + b grows past {limit} operations per expression")
+        raise StageTooLarge(f"inverting p = A q_dot + b grows past {limit} operations per expression")
 
 
 def _joined(terms: tuple[Any, ...], rest: Any) -> Any:

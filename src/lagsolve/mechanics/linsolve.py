@@ -29,14 +29,13 @@ result, as textbooks write big systems.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.algebra import cancel, known_cancelled, ops
-from lagsolve.mechanics.ringsolve import MAX_TERMS, solve_in_ring
-from lagsolve.mechanics.stages import StageSkipped
+from lagsolve.mechanics.algebra import cancel, ops
+from lagsolve.mechanics.ringsolve import MAX_TERMS, cancelled, in_sympy_order, normalized, solve_in_ring
+from lagsolve.mechanics.stages import StageTooLarge
 
 #: an explicit result (or an intermediate of the elimination) with more operations than this is not produced
 SIZE_LIMIT = 1500
@@ -51,7 +50,7 @@ def _guard(exprs: list[Any], limit: int | None) -> None:
         return
     largest = max((_size(e) for e in exprs), default=0)
     if largest > limit:
-        raise StageSkipped(f"too large: the explicit solution grows past {limit} operations per expression "
+        raise StageTooLarge(f"the explicit solution grows past {limit} operations per expression "
                            f"(one has {largest}); the matrix form M q̈ = F + Aᵀλ above is the result")
 
 
@@ -153,12 +152,12 @@ def _solve_in_ring(system: sympy.Matrix, rhs: sympy.Matrix) -> sympy.Matrix | No
         return None
     back = {v: f for f, v in variables.items()}
     if ring.is_PolynomialRing and ring.domain.is_ZZ:
-        ordered = _in_sympy_order(ring.ring, back)
+        ordered = in_sympy_order(ring.ring, back)
 
         def fraction(i: int, j: int) -> Any:
             numer, denom = free[i, size + j].element.cancel(denominator)
             if ordered is not None:
-                return _normalized(*(ordered(e) for e in (numer, denom)))
+                return normalized(*(ordered(e) for e in (numer, denom)))
             return cancelled(numer.as_expr().xreplace(back), denom.as_expr().xreplace(back))
 
         return sympy.Matrix(size, rhs.cols, fraction)
@@ -172,65 +171,6 @@ def _solve_in_ring(system: sympy.Matrix, rhs: sympy.Matrix) -> sympy.Matrix | No
         return cancel(to_sympy(element).xreplace(back))
 
     return sympy.Matrix(size, rhs.cols, entry)
-
-
-def cancelled(numer: Any, denom: Any) -> Any:
-    """``sympy.cancel(numer / denom)`` for polynomials ``numer`` and ``denom`` (in symbols and function
-    atoms, integer coefficients) already without a common factor, as elimination over a fraction field
-    leaves them: ``cancel`` writes P/Q with P and Q coprime over the integers and the leading coefficient
-    of Q (in the order of its generators) positive, and that is all that is left to do here; the gcd that
-    ``cancel`` would look for again is 1. Falls back on ``sympy.cancel`` outside that case."""
-    from sympy.polys.rings import sring
-
-    try:
-        ring, (P, Q) = sring((numer, denom))
-    except (sympy.polys.polyerrors.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):
-        return sympy.cancel(numer / denom)
-    atoms = {a for e in (numer, denom) for a in e.atoms(sympy.Function, sympy.Derivative)}
-    if not ring.ngens or not ring.domain.is_ZZ or not Q or not atoms <= set(ring.symbols):
-        # (an atom the ring writes through another, exp(2 x) as exp(x)², may share a factor with it)
-        return sympy.cancel(numer / denom)
-    return _normalized(P, Q)
-
-
-def _in_sympy_order(ring: Any, back: dict[Any, Any]) -> Callable[[Any], Any] | None:
-    """A map of the polynomials of ``ring`` (over the integers, its generators symbols and the Dummies of
-    ``back``) into the ring ``sympy.cancel`` would write them in: the same generators, the Dummies replaced by
-    the function atoms they stand for, in SymPy's order of generators. :func:`cancelled` finds that ring by
-    reading the expressions again, at a cost many times that of the elimination's own cancelling; here the
-    monomials are only permuted. None when that ring may have other generators (an ``exp``, which SymPy
-    writes through another: exp(2 x) as exp(x)²; anything but symbols and function atoms)."""
-    from sympy.polys.polyutils import _sort_gens
-    from sympy.polys.rings import PolyRing
-
-    gens = [back.get(g, g) for g in ring.symbols]
-    if not all(g.is_Symbol or (isinstance(g, sympy.Function | sympy.Derivative) and not isinstance(g, sympy.exp))
-               for g in gens) or len(set(gens)) != len(gens):
-        return None
-    order = _sort_gens(gens)
-    if len(order) != len(gens):
-        return None
-    target = PolyRing(order, ring.domain, ring.order)
-    place = [gens.index(g) for g in order]
-
-    def ordered(element: Any) -> Any:
-        return target.from_dict({tuple(m[k] for k in place): c for m, c in element.items()})
-
-    return ordered
-
-
-def _normalized(P: Any, Q: Any) -> Any:
-    """P/Q as ``sympy.cancel`` writes it, for coprime P and Q over the integers in the ring it uses: no common
-    integer content, the leading coefficient of Q positive (the last steps of :func:`cancelled`)."""
-    if not P:
-        return sympy.Integer(0)
-    ring = P.ring
-    content = ring.domain.gcd(P.content(), Q.content())
-    if content != 1:
-        P, Q = P.quo_ground(content), Q.quo_ground(content)
-    if Q.LC < 0:
-        P, Q = -P, -Q
-    return known_cancelled(P.as_expr() / Q.as_expr())
 
 
 def _nonzero(value: Any) -> bool:
@@ -251,7 +191,7 @@ def _solve_blocks(M: sympy.Matrix, rhs: sympy.Matrix, limit: int | None) -> symp
     for group in groups:
         varying = sum(1 for i in group for k in group if i != k and M[i, k].free_symbols)
         if limit is not None and len(group) >= DENSE_LIMIT and varying > len(group) * (len(group) - 1) // 2:
-            raise StageSkipped(f"too large: M has a dense {len(group)}×{len(group)} block whose entries vary, so "
+            raise StageTooLarge(f"M has a dense {len(group)}×{len(group)} block whose entries vary, so "
                                "the explicit solution would be far too long to read; the matrix form M q̈ = F + Aᵀλ "
                                "above is the result")
     for group in groups:

@@ -18,9 +18,14 @@ from lagsolve.mechanics.conserved import MotionSystem
 from lagsolve.mechanics.lagrange import lagrange_terms
 from lagsolve.mechanics.linearize import MAX_EQUILIBRIA, Linearization, Mode, _damping_at_rest
 from lagsolve.mechanics.mode_shapes import numeric_shapes
+from lagsolve.mechanics.stages import StageSkipped
 
 #: how many starting points the numeric search for equilibria tries
 STARTS = 64
+
+
+class NoEquilibriumFound(StageSkipped):  # noqa: N818 - a reason, not an error
+    """The numeric search ran and found no equilibrium (not a search that could not run)."""
 
 
 def numeric_linearization(system: MotionSystem, values: dict[str, float], initial: dict[str, float]) -> Linearization:
@@ -34,12 +39,10 @@ def numeric_linearization(system: MotionSystem, values: dict[str, float], initia
     Raises
     ------
     StageSkipped
-        When a parameter has no value, or no equilibrium is found.
+        When a parameter has no value; :class:`NoEquilibriumFound` when no equilibrium is found.
     """
     import numpy as np
     from scipy.optimize import root
-
-    from lagsolve.mechanics.stages import StageSkipped
 
     model = system.model
     q, qd = list(model.coordinates), list(model.velocities)
@@ -84,7 +87,7 @@ def numeric_linearization(system: MotionSystem, values: dict[str, float], initia
             continue  # the multi-start lands anywhere on a continuum: one point of it is shown
         found.append(point)
     if not found:
-        raise StageSkipped(f"no equilibrium found numerically from {STARTS} starting points")
+        raise NoEquilibriumFound(f"no equilibrium found numerically from {STARTS} starting points")
     found.sort(key=lambda p: (float(np.sum(p**2)), tuple(p)))
     modes = []
     for point in found[:MAX_EQUILIBRIA]:
@@ -130,14 +133,12 @@ def complete_numerically(linear: Linearization, system: MotionSystem, values: di
     :func:`numeric_linearization` run at the simulation ``values``: each equilibrium it finds that is none of
     ``linear``'s there (angles modulo 2π; a continuum's points count as it) is added after them, numeric and
     labelled so, and ``search`` says what the numeric search found."""
-    from lagsolve.mechanics.stages import StageSkipped
-
     try:
         numeric = numeric_linearization(system, values, initial)
-    except StageSkipped as reason:
-        if not str(reason).startswith("no equilibrium found"):
-            return dataclasses.replace(linear, search=f"{linear.search}; no numeric search for them: {reason}")
+    except NoEquilibriumFound:
         numeric = Linearization(linear.coordinates, ())
+    except StageSkipped as reason:
+        return dataclasses.replace(linear, search=f"{linear.search}; no numeric search for them: {reason}")
     q = list(linear.coordinates)
     terms = lagrange_terms(system.model, (), system.generalized_forces, engine="symengine")
     at_rest = {v: 0 for v in system.model.velocities}

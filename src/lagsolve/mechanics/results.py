@@ -11,6 +11,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from lagsolve.notebook import shown
+
 if TYPE_CHECKING:
     from lagsolve.mechanics.conserved import Conservation, MotionSystem
     from lagsolve.mechanics.constraints import ConstraintTerms
@@ -149,22 +151,16 @@ class Derivation:
         return (f"<Derivation of {problem.name!r}: {n} coordinate{'s' * (n != 1)}, {m} constraint{'s' * (m != 1)}; "
                 f"{state}>")
 
-    # notebook display (IPython calls these); the renderers are imported only when a result is shown
+    # notebook display (IPython calls these): the renderers are registered by render/display.py (see notebook.py)
 
-    def _repr_latex_(self) -> str:
-        from lagsolve.render.display import derivation_latex
+    def _repr_latex_(self) -> str | None:
+        return shown(self, "latex")
 
-        return derivation_latex(self)
+    def _repr_markdown_(self) -> str | None:
+        return shown(self, "markdown")
 
-    def _repr_markdown_(self) -> str:
-        from lagsolve.render.display import derivation_markdown
-
-        return derivation_markdown(self)
-
-    def _repr_html_(self) -> str:
-        from lagsolve.render.display import derivation_html
-
-        return derivation_html(self)
+    def _repr_html_(self) -> str | None:
+        return shown(self, "html")
 
 
 

@@ -27,11 +27,13 @@ a block past :data:`MAX_TERMS` is not started: the solve declines at once, with 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.stages import StageSkipped
+from lagsolve.mechanics.algebra import known_cancelled
+from lagsolve.mechanics.stages import StageTooLarge
 
 #: a coupled block of more unknowns (coordinates and multipliers) than this is not bounded (the bound costs
 #: 2^k steps) nor solved explicitly when a bound on the size is asked for
@@ -89,7 +91,7 @@ def solve_in_ring(M: Any, F: Any, A: Any, beta: Any, cap: int | None = MAX_TERMS
     groups = [tuple(g) for g in coupled(K)]
     if cap is not None and max(len(g) for g in groups) > MAX_BLOCK:
         largest = max(len(g) for g in groups)
-        raise StageSkipped(f"too large: {largest} unknowns (accelerations and multipliers) are coupled, more than the "
+        raise StageTooLarge(f"{largest} unknowns (accelerations and multipliers) are coupled, more than the "
                            f"{MAX_BLOCK} an explicit solution is sought for; the matrix form M q̈ = F + Aᵀλ above is "
                            "the result")
     found = _ring_matrix(K.row_join(rhs))
@@ -100,8 +102,8 @@ def solve_in_ring(M: Any, F: Any, A: Any, beta: Any, cap: int | None = MAX_TERMS
         for group in groups:
             bound = support_bound(matrix, group, cap)
             if bound is None:
-                raise StageSkipped(
-                    f"too large: the explicit solution's determinant or numerators would have more than {cap} terms "
+                raise StageTooLarge(
+                    f"the explicit solution's determinant or numerators would have more than {cap} terms "
                     f"({len(group)} coupled unknowns), far too long to read; the matrix form M q̈ = F + Aᵀλ above is "
                     "the result")
     solution = _solve_blocks(matrix, back, groups)
@@ -177,10 +179,8 @@ def _integral(matrix: Any) -> Any:
 def _solve_blocks(matrix: Any, back: dict[Any, Any], groups: list[tuple[int, ...]]) -> list[Any]:
     """Each block of the integral augmented ``matrix`` solved fraction-free, each unknown cancelled and written
     as ``sympy.cancel`` writes it. Raises ``ValueError`` when a block is singular."""
-    from lagsolve.mechanics.linsolve import _in_sympy_order, _normalized, cancelled
-
     domain = matrix.domain
-    ordered = _in_sympy_order(domain.ring, back) if domain.is_PolynomialRing else None
+    ordered = in_sympy_order(domain.ring, back) if domain.is_PolynomialRing else None
     size = matrix.shape[0]
     out: list[Any] = [sympy.Integer(0)] * size
     for group in groups:
@@ -195,7 +195,7 @@ def _solve_blocks(matrix: Any, back: dict[Any, Any], groups: list[tuple[int, ...
                 continue
             numer, denom = num.cancel(den)
             if ordered is not None:
-                out[i] = _normalized(ordered(numer), ordered(denom))
+                out[i] = normalized(ordered(numer), ordered(denom))
             else:
                 out[i] = cancelled(numer.as_expr().xreplace(back), denom.as_expr().xreplace(back))
     return out
@@ -236,3 +236,62 @@ def support_bound(matrix: Any, group: tuple[int, ...], cap: int) -> int | None:
                         return None
         ways = step
     return max((len(s) for s in ways.values()), default=0)
+
+
+def cancelled(numer: Any, denom: Any) -> Any:
+    """``sympy.cancel(numer / denom)`` for polynomials ``numer`` and ``denom`` (in symbols and function
+    atoms, integer coefficients) already without a common factor, as elimination over a fraction field
+    leaves them: ``cancel`` writes P/Q with P and Q coprime over the integers and the leading coefficient
+    of Q (in the order of its generators) positive, and that is all that is left to do here; the gcd that
+    ``cancel`` would look for again is 1. Falls back on ``sympy.cancel`` outside that case."""
+    from sympy.polys.rings import sring
+
+    try:
+        ring, (P, Q) = sring((numer, denom))
+    except (sympy.polys.polyerrors.PolynomialError, sympy.CoercionFailed, ValueError, TypeError):
+        return sympy.cancel(numer / denom)
+    atoms = {a for e in (numer, denom) for a in e.atoms(sympy.Function, sympy.Derivative)}
+    if not ring.ngens or not ring.domain.is_ZZ or not Q or not atoms <= set(ring.symbols):
+        # (an atom the ring writes through another, exp(2 x) as exp(x)², may share a factor with it)
+        return sympy.cancel(numer / denom)
+    return normalized(P, Q)
+
+
+def in_sympy_order(ring: Any, back: dict[Any, Any]) -> Callable[[Any], Any] | None:
+    """A map of the polynomials of ``ring`` (over the integers, its generators symbols and the Dummies of
+    ``back``) into the ring ``sympy.cancel`` would write them in: the same generators, the Dummies replaced by
+    the function atoms they stand for, in SymPy's order of generators. :func:`cancelled` finds that ring by
+    reading the expressions again, at a cost many times that of the elimination's own cancelling; here the
+    monomials are only permuted. None when that ring may have other generators (an ``exp``, which SymPy
+    writes through another: exp(2 x) as exp(x)²; anything but symbols and function atoms)."""
+    from sympy.polys.polyutils import _sort_gens
+    from sympy.polys.rings import PolyRing
+
+    gens = [back.get(g, g) for g in ring.symbols]
+    if not all(g.is_Symbol or (isinstance(g, sympy.Function | sympy.Derivative) and not isinstance(g, sympy.exp))
+               for g in gens) or len(set(gens)) != len(gens):
+        return None
+    order = _sort_gens(gens)
+    if len(order) != len(gens):
+        return None
+    target = PolyRing(order, ring.domain, ring.order)
+    place = [gens.index(g) for g in order]
+
+    def ordered(element: Any) -> Any:
+        return target.from_dict({tuple(m[k] for k in place): c for m, c in element.items()})
+
+    return ordered
+
+
+def normalized(P: Any, Q: Any) -> Any:
+    """P/Q as ``sympy.cancel`` writes it, for coprime P and Q over the integers in the ring it uses: no common
+    integer content, the leading coefficient of Q positive (the last steps of :func:`cancelled`)."""
+    if not P:
+        return sympy.Integer(0)
+    ring = P.ring
+    content = ring.domain.gcd(P.content(), Q.content())
+    if content != 1:
+        P, Q = P.quo_ground(content), Q.quo_ground(content)
+    if Q.LC < 0:
+        P, Q = -P, -Q
+    return known_cancelled(P.as_expr() / Q.as_expr())

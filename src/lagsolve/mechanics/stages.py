@@ -64,7 +64,19 @@ class StageTimeout(BaseException):  # noqa: N818 - like KeyboardInterrupt: not c
 
 
 class StageSkipped(Exception):  # noqa: N818 - a reason, not an error
-    """A stage that does not apply, or would not be useful: the message says why."""
+    """A stage that does not apply, or would not be useful: the message says why, ``kind`` is its note's."""
+
+    kind = "skipped"
+
+
+class StageTooLarge(StageSkipped):
+    """A result that would be too large to be useful (a note of kind ``"size"``); the message says what grows
+    past which limit, after "too large: "."""
+
+    kind = "size"
+
+    def __init__(self, what: str) -> None:
+        super().__init__(f"too large: {what}")
 
 
 @dataclass(frozen=True)
@@ -132,8 +144,7 @@ class Stages:
                 self.notes.append(StageNote(stage, f"ran out of its share of the CPU budget ({seconds:.1f} s of "
                                                    f"{self.budget:g} s); raise it with --timeout", "budget"))
         except StageSkipped as reason:
-            kind = "size" if str(reason).startswith("too large") else "skipped"
-            self.notes.append(StageNote(stage, str(reason), kind))
+            self.notes.append(StageNote(stage, str(reason), reason.kind))
         return None
 
     def settle(self, stage: str) -> None:

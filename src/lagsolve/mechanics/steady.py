@@ -50,7 +50,7 @@ from lagsolve.mechanics.algebra import ops
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.signs import relation, sign_core
 from lagsolve.mechanics.simplify import measure, tidy
-from lagsolve.mechanics.stages import StageSkipped
+from lagsolve.mechanics.stages import StageTooLarge
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.conserved import MotionSystem
@@ -126,7 +126,7 @@ def steady_motions(system: MotionSystem, effective: EffectivePotential) -> tuple
     model = system.model
     L = model.lagrangian
     if ops(L) > SIZE_LIMIT or ops(effective.expression) > SIZE_LIMIT:
-        raise StageSkipped(f"too large: L or V_eff has more than {SIZE_LIMIT} operations")
+        raise StageTooLarge(f"L or V_eff has more than {SIZE_LIMIT} operations")
     q = effective.coordinate
     qd = model.velocities[model.coordinates.index(q)]
     velocities = [model.velocities[model.coordinates.index(c)] for c in cyclic]

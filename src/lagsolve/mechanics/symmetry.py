@@ -46,7 +46,7 @@ from lagsolve.mechanics.conserved import Conservation, Conserved, MotionSystem, 
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.partials import partial
 from lagsolve.mechanics.simplify import tidy
-from lagsolve.mechanics.stages import StageSkipped
+from lagsolve.mechanics.stages import StageSkipped, StageTooLarge
 from lagsolve.mechanics.surface import on_surface
 from lagsolve.problem.names import symmetry_name
 
@@ -92,7 +92,7 @@ def symmetries(problem: Problem, system: MotionSystem, conservation: Conservatio
     if len(dims) != 1:
         raise StageSkipped("the positions have different numbers of components")
     if sum(ops(e) for p in points for e in p.position) > SIZE_LIMIT:
-        raise StageSkipped(f"too large: the positions have more than {SIZE_LIMIT} operations")
+        raise StageTooLarge(f"the positions have more than {SIZE_LIMIT} operations")
     dim = dims.pop()
     generators = [Generator("translation", a) for a in AXES[:dim]]
     generators += [Generator("rotation", a) for a in (AXES if dim == 3 else ("z",) if dim == 2 else ())]
@@ -124,7 +124,8 @@ def symmetries(problem: Problem, system: MotionSystem, conservation: Conservatio
                                symmetry=generator.text, generator=flow))
     energy = [i for i, q in enumerate(quantities) if q.kind == "jacobi"]
     at = energy[0] if energy else len(quantities)
-    return Conservation(tuple(quantities[:at] + found + quantities[at:]), conservation.cyclic, tuple(notes))
+    return Conservation(tuple(quantities[:at] + found + quantities[at:]), conservation.cyclic, tuple(notes),
+                        conservation.energy)
 
 
 def _reason(system: MotionSystem, generator: Generator) -> str:

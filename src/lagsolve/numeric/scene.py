@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 import sympy
 
-from lagsolve.mechanics.geometry import Anchor, Geometry
+from lagsolve.mechanics.geometry import Anchor
 from lagsolve.numeric.compile import compile_state_function, substitute_functions
 
 #: points along a drawn curve
@@ -147,62 +147,3 @@ class Run:
         if size < 1e-9:
             size = float(np.max(np.abs(stacked))) or 1.0
         return size
-
-
-def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, trajectory: Any) -> Scene:
-    """Evaluate ``geometry`` along ``trajectory`` (a :class:`~lagsolve.numeric.integrate.Trajectory`) with
-    ``parameters`` in the problem's order. Shapes that do not evaluate to finite numbers are left out."""
-    from lagsolve.numeric import scene_shapes
-
-    run = Run(problem, parameters, trajectory, geometry.markers)
-    rods: list[tuple[str, np.ndarray, np.ndarray]] = []
-    pivots: list[np.ndarray] = []
-    joints: list[np.ndarray] = []
-
-    def add_pivot(values: np.ndarray) -> None:
-        if not any(v.shape == values.shape and np.allclose(values, v) for v in pivots):
-            pivots.append(values)
-
-    for rod in geometry.rods:
-        start, stop = run.anchor(rod.start), run.anchor(rod.end)
-        if start is None or stop is None or start.shape != stop.shape:
-            continue
-        rods.append((rod.constraint or "", start, stop))
-        for anchor, end in ((rod.start, start), (rod.end, stop)):
-            if anchor.particle is None and _on_member(anchor, problem):
-                joints.append(end)
-            elif anchor.particle is None:
-                add_pivot(end)
-    for body in geometry.bodies:
-        if body.pivot is not None and body.pivot.particle is None:
-            pin = run.anchor(body.pivot)
-            if pin is not None:
-                add_pivot(pin)
-    scale = run.scale(pivots)
-    build = scene_shapes.Builder(run, geometry, scale)
-    curves, shapes = build.curves(add_pivot)
-    shapes += build.revolutions()
-    surfaces, ground = build.surfaces()
-    shapes += ground
-    shapes += build.strings()
-    for values in build.pivots:
-        add_pivot(values)
-    springs, fixed = build.springs()
-    shapes += springs
-    for values in fixed:
-        add_pivot(values)
-    shapes += build.blades()
-    bodies, floors = build.bodies()
-    shapes += bodies
-    surfaces += floors
-    forces = build.forces()
-    markers = tuple((name, run.members[name]) for name, _ in geometry.markers if name in run.members)
-    markers += tuple((b.name, run.members[b.name]) for b in geometry.bodies if b.name in run.members)
-    return Scene(tuple(rods), tuple(pivots), tuple(surfaces), tuple(curves), tuple(shapes), tuple(forces), markers,
-                 build.gravity, scale, tuple(joints))
-
-
-def _on_member(anchor: Anchor, problem: Any) -> bool:
-    """A rod's end at a point that moves with the coordinates (a joint on a member), not a fixed or driven pivot."""
-    coordinates = {c.symbol for c in problem.coordinates}
-    return any(sympy.sympify(p).free_symbols & coordinates for p in anchor.point)

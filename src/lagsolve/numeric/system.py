@@ -37,7 +37,7 @@ from lagsolve.mechanics.minimal_chart import MinimalChart
 from lagsolve.mechanics.reactions import force_scale
 from lagsolve.numeric.compile import StateFunction, compile_state_function, substitute_functions
 from lagsolve.numeric.minimal_state import NumericChart, compile_chart
-from lagsolve.problem.schema import ConstraintKind
+from lagsolve.problem.schema import ConstraintKind, Problem
 
 
 @dataclass(frozen=True)
@@ -266,9 +266,30 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
         A parameter used by the equations has no value, a declared function has no
         concrete form, or an override names an unknown parameter.
     """
-    problem, model, lagrange = form.problem, form.model, form.lagrange
-    source = problem.source
     overrides = dict(overrides or {})
+    conserved = dict(conserved or {})
+    issues = _override_issues(form.problem, overrides)
+    concrete = _concrete_functions(form.problem, issues)
+
+    def prepare(expr: Any) -> Any:
+        return substitute_functions(sympy.Integer(expr) if isinstance(expr, int) else expr, concrete)
+
+    contacts, groups = _expressions(form, conserved)
+    prepared = {key: [prepare(e) for e in group] for key, group in groups.items()}
+    values = _values(form, overrides)
+    issues += _value_issues(form.problem, prepared, values)
+    if issues:
+        raise SpecError(issues)
+    try:
+        compiled_chart = None if chart is None else compile_chart(chart, prepare, **_arguments(form))
+        return _compiled(form, prepared, values, contacts, conserved, compiled_chart, energy_note)
+    except (ValueError, TypeError, NameError) as exc:  # pragma: no cover - lambdify of a derived expression
+        raise SimulationError(f"could not compile the equations of {form.problem.source}: {exc}") from None
+
+
+def _override_issues(problem: Problem, overrides: Mapping[str, float]) -> list[Issue]:
+    """An override of an unknown parameter, or a negative value of a positive one."""
+    source = problem.source
     issues: list[Issue] = []
     known = {p.name for p in problem.parameters}
     for name, value in overrides.items():
@@ -280,25 +301,29 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
                                 f"{name!r} is positive (parameters are, unless declared with positive: false), "
                                 "which the derivation relies on",
                                 f"give a value >= 0, or declare {name} with positive: false in {source}"))
-    values = _values(form, overrides)
+    return issues
+
+
+def _concrete_functions(problem: Problem, issues: list[Issue]) -> dict[Any, Any]:
+    """Each declared function → (arguments, expression) of its concrete form; an issue for each without one."""
     concrete = {}
     simulation = problem.simulation
     for fn in problem.functions:
         given = simulation.functions.get(fn.name) if simulation is not None else None
         if given is None:
-            issues.append(Issue(source, problem.lines.get("functions", 0), "simulation.functions",
+            issues.append(Issue(problem.source, problem.lines.get("functions", 0), "simulation.functions",
                                 f"function {fn.name!r} has no concrete form",
                                 f'add e.g. "{fn.name}(u)": "u**2/2" under simulation.functions'))
         else:
             concrete[fn.function] = (given.arguments, given.expression)
+    return concrete
 
-    def prepare(expr: Any) -> Any:
-        return substitute_functions(sympy.Integer(expr) if isinstance(expr, int) else expr, concrete)
 
-    normals = [f.normal for f in form.frictions]
-    forcing = lagrange.forcing
-    zero = {N: 0 for N in normals}
-    columns = [forcing.xreplace(zero)]
+def _friction_columns(form: MatrixForm) -> tuple[list[Any], list[Any]]:
+    """The forcing's columns (F at N = 0, then F's part per unit normal force of each contact) and the
+    sliding rates, their drift and unit directions of the contacts that slide along one line."""
+    model, forcing = form.model, form.lagrange.forcing
+    columns = [forcing.xreplace({f.normal: 0 for f in form.frictions})]
     sliding: list[Any] = []
     for f in form.frictions:
         if f.unit_generalized is None:
@@ -310,40 +335,63 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
         rate_change = [model.time_derivative(w) for w in f.rate]
         drift = sum((c * v for c, v in zip(rate_change, model.velocities, strict=True)), sympy.Integer(0))
         sliding += [*f.rate, drift, *f.unit_generalized]
-    contact_values = [value for f in form.frictions for value in (f.static, f.coefficient)]
+    return columns, sliding
+
+
+def _holonomic(form: MatrixForm) -> tuple[int, ...]:
+    return tuple(j for j, c in enumerate(form.constraints) if c.kind == ConstraintKind.HOLONOMIC)
+
+
+def _expressions(form: MatrixForm, conserved: Mapping[str, Any]) -> tuple[list[Any], dict[str, list[Any]]]:
+    """The contacts, and every group of expressions the system compiles, by name."""
+    problem, model, lagrange = form.problem, form.model, form.lagrange
+    columns, sliding = _friction_columns(form)
     forcing_columns = [columns[c][i] for i in range(len(model.coordinates)) for c in range(len(columns))]
     matrices = [*lagrange.mass_matrix, *forcing_columns, *lagrange.constraint_jacobian, *lagrange.constraint_rhs]
     contacts, directions = contact_directions(problem, form.frictions, form.constraints, form.reactions)
-    scales = [force_scale(form.reactions[c.name]) for c in form.constraints]
-    holonomic = tuple(j for j, c in enumerate(form.constraints) if c.kind == ConstraintKind.HOLONOMIC)
-    psi = [form.constraints[j].expression for j in holonomic]
-    energy = jacobi_integral(model)
-    groups = {
-        "matrices": matrices, "directions": directions, "scales": scales, "psi": psi,
+    psi = [form.constraints[j].expression for j in _holonomic(form)]
+    return contacts, {
+        "matrices": matrices, "directions": directions,
+        "scales": [force_scale(form.reactions[c.name]) for c in form.constraints], "psi": psi,
         "psi_jacobian": [sympy.diff(e, q) for e in psi for q in model.coordinates],
         "velocity_jacobian": list(lagrange.constraint_jacobian),
-        "offsets": [c.offset for c in form.constraints], "energy": [energy],
+        "offsets": [c.offset for c in form.constraints], "energy": [jacobi_integral(model)],
         "positions": [r for p in problem.particles for r in p.position],
-        "conserved": list((conserved or {}).values()),
-        "contact_values": contact_values, "sliding": sliding,
+        "conserved": list(conserved.values()),
+        "contact_values": [value for f in form.frictions for value in (f.static, f.coefficient)], "sliding": sliding,
     }
-    prepared = {key: [prepare(e) for e in group] for key, group in groups.items()}
-    parameter_symbols = [p.symbol for p in problem.parameters]
+
+
+def _value_issues(problem: Problem, prepared: dict[str, list[Any]], values: dict[str, float]) -> list[Issue]:
+    """A parameter the equations use without a value, and a value that is not finite."""
+    issues = []
     needed = set().union(*(getattr(e, "free_symbols", set()) for group in ("matrices", "psi", "offsets", "directions")
                            for e in prepared[group]))
     missing = sorted(p.name for p in problem.parameters if p.symbol in needed and p.name not in values)
     if missing:
-        issues.append(Issue(source, problem.lines.get("simulation", 0), "simulation.values",
+        issues.append(Issue(problem.source, problem.lines.get("simulation", 0), "simulation.values",
                             "no value for parameter" + ("s " if len(missing) > 1 else " ") + ", ".join(missing),
                             "give it under simulation.values or with --set NAME=VALUE"))
     for name, value in values.items():
         if not np.isfinite(value):
-            issues.append(Issue(source, 0, f"parameter {name}", f"value {value} is not a finite number"))
-    if issues:
-        raise SpecError(issues)
+            issues.append(Issue(problem.source, 0, f"parameter {name}", f"value {value} is not a finite number"))
+    return issues
 
-    arguments = {"time": model.time, "coordinates": model.coordinates, "velocities": model.velocities,
-                 "parameters": parameter_symbols}
+
+def _arguments(form: MatrixForm) -> dict[str, Any]:
+    """The arguments of every compiled function: time, coordinates, velocities, parameters."""
+    model = form.model
+    return {"time": model.time, "coordinates": model.coordinates, "velocities": model.velocities,
+            "parameters": [p.symbol for p in form.problem.parameters]}
+
+
+def _compiled(form: MatrixForm, prepared: dict[str, list[Any]], values: dict[str, float], contacts: list[Any],
+              conserved: Mapping[str, Any], chart: NumericChart | None, energy_note: str) -> NumericSystem:
+    """The :class:`NumericSystem` of the prepared expressions (an expression with a symbol that is not an
+    argument compiles to NaN; a conserved quantity with one is left out)."""
+    problem, model = form.problem, form.model
+    arguments = _arguments(form)
+    parameter_symbols = arguments["parameters"]
     allowed = {model.time, *model.coordinates, *model.velocities, *parameter_symbols}
 
     def usable_group(group: str) -> list[Any]:
@@ -352,44 +400,39 @@ def bind(form: MatrixForm, overrides: Mapping[str, float] | None = None,
     def compile_group(group: str) -> StateFunction:
         return compile_state_function(usable_group(group), **arguments)
 
-    conserved_names = list(conserved or {})
+    conserved_names = list(conserved)
     usable = [i for i, e in enumerate(prepared["conserved"]) if e.free_symbols <= allowed]
     # mechanics decides (mechanics.analysis.monitored, or the derivation's analysis); this only evaluates
-    energy_conserved = "energy" in (conserved or {})
-    note = energy_note or "the analysis finds no conserved energy"
-    try:
-        return NumericSystem(
-            coordinates=tuple(c.name for c in problem.coordinates),
-            constraints=tuple(c.name for c in form.constraints),
-            holonomic=holonomic,
-            unilateral=tuple(j for j, c in enumerate(problem.constraints) if c.unilateral),
-            parameter_names=tuple(p.name for p in problem.parameters),
-            parameters=np.array([values.get(p.name, np.nan) for p in problem.parameters], dtype=float),
-            matrices=compile_group("matrices"),
-            contacts=tuple(contacts),
-            contact_names=tuple(f.name for f in form.frictions),
-            sticks=tuple(f.rate is not None for f in form.frictions),
-            contact_values=compile_group("contact_values"),
-            sliding=compile_group("sliding"),
-            directions=compile_group("directions"),
-            scales=compile_group("scales"),
-            position_residual=compile_group("psi"),
-            position_jacobian=compile_group("psi_jacobian"),
-            velocity_jacobian=compile_group("velocity_jacobian"),
-            velocity_offset=compile_group("offsets"),
-            energy=compile_group("energy"),
-            positions=compile_group("positions"),
-            particles=tuple((p.name, len(p.position)) for p in problem.particles),
-            conserved_names=tuple(conserved_names[i] for i in usable),
-            conserved=compile_state_function([prepared["conserved"][i] for i in usable], **arguments),
-            energy_conserved=energy_conserved,
-            energy_note=note,
-            chart=None if chart is None else compile_chart(chart, prepare, **arguments),
-            expressions={**{group: tuple(usable_group(group)) for group in prepared if group != "conserved"},
-                         "conserved": tuple(prepared["conserved"][i] for i in usable)},
-            arguments=(model.time, tuple(model.coordinates), tuple(model.velocities), tuple(parameter_symbols)),
-        )
-    except (ValueError, TypeError, NameError) as exc:  # pragma: no cover - lambdify of a derived expression
-        raise SimulationError(f"could not compile the equations of {source}: {exc}") from None
+    return NumericSystem(
+        coordinates=tuple(c.name for c in problem.coordinates),
+        constraints=tuple(c.name for c in form.constraints),
+        holonomic=_holonomic(form),
+        unilateral=tuple(j for j, c in enumerate(problem.constraints) if c.unilateral),
+        parameter_names=tuple(p.name for p in problem.parameters),
+        parameters=np.array([values.get(p.name, np.nan) for p in problem.parameters], dtype=float),
+        matrices=compile_group("matrices"),
+        contacts=tuple(contacts),
+        contact_names=tuple(f.name for f in form.frictions),
+        sticks=tuple(f.rate is not None for f in form.frictions),
+        contact_values=compile_group("contact_values"),
+        sliding=compile_group("sliding"),
+        directions=compile_group("directions"),
+        scales=compile_group("scales"),
+        position_residual=compile_group("psi"),
+        position_jacobian=compile_group("psi_jacobian"),
+        velocity_jacobian=compile_group("velocity_jacobian"),
+        velocity_offset=compile_group("offsets"),
+        energy=compile_group("energy"),
+        positions=compile_group("positions"),
+        particles=tuple((p.name, len(p.position)) for p in problem.particles),
+        conserved_names=tuple(conserved_names[i] for i in usable),
+        conserved=compile_state_function([prepared["conserved"][i] for i in usable], **arguments),
+        energy_conserved="energy" in conserved,
+        energy_note=energy_note or "the analysis finds no conserved energy",
+        chart=chart,
+        expressions={**{group: tuple(usable_group(group)) for group in prepared if group != "conserved"},
+                     "conserved": tuple(prepared["conserved"][i] for i in usable)},
+        arguments=(model.time, tuple(model.coordinates), tuple(model.velocities), tuple(parameter_symbols)),
+    )
 
 

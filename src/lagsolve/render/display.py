@@ -6,7 +6,9 @@ A derivation shows its key results as one LaTeX block,
 
 (the matrix form :math:`M\ddot q = F + A^T\lambda` when the explicit solve did not finish), its
 Markdown report, or HTML holding both a title and that block. A trajectory shows a table of its
-final state and its run summary. Everything returns strings; nothing is displayed here.
+final state and its run summary. Everything returns strings; nothing is displayed here. :func:`register`
+puts the derivation's and the check report's forms in :mod:`lagsolve.notebook`, which their ``_repr_*_``
+hooks ask (the results do not import this module).
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 
 import sympy
 
+from lagsolve import notebook
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.render.checks import MARKS, describe, label
 from lagsolve.render.notation import Notation
@@ -112,3 +115,14 @@ def check_markdown(report: CheckReport) -> str:
              "|---|---|---|---|"]
     lines += ["| " + " | ".join(cell(c) for c in row) + " |" for row in _check_rows(report)]
     return "\n".join(lines) + "\n"
+
+
+def register() -> None:
+    """Show derivations and check reports in notebooks with the functions above (see :mod:`lagsolve.notebook`)."""
+    from lagsolve.check.compare import CheckReport
+
+    notebook.register(Derivation, "latex", derivation_latex)
+    notebook.register(Derivation, "markdown", derivation_markdown)
+    notebook.register(Derivation, "html", derivation_html)
+    notebook.register(CheckReport, "html", check_html)
+    notebook.register(CheckReport, "markdown", check_markdown)

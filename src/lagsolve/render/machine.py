@@ -80,7 +80,7 @@ def xml_safe(text: str) -> str:
 
 def checks_junit(results: list[Any]) -> str:
     """Check results as JUnit XML: ``testsuites`` / ``testsuite`` per file / ``testcase`` per answer."""
-    from lagsolve.app.pipeline import safe_slug
+    from lagsolve.files import safe_slug
 
     root = ET.Element("testsuites", name="lagsolve check")
     totals = {"tests": 0, "failures": 0, "errors": 0, "skipped": 0}

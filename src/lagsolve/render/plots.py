@@ -18,7 +18,6 @@ a line of text under the figure instead of drawn.
 
 from __future__ import annotations
 
-import textwrap
 from collections.abc import Callable, Mapping
 from typing import Any
 
@@ -26,31 +25,11 @@ import numpy as np
 
 from lagsolve.numeric.integrate import EventKind, Trajectory
 from lagsolve.numeric.scene import Scene
-from lagsolve.render.sketch import WIDTH, animation_gif, sketch_figure  # noqa: F401 (the sketch: render/sketch.py)
-
-Units = Mapping[str, str] | None
-
-#: the tallest figure, inches (a page of the LaTeX report less its caption)
-MAX_HEIGHT = 8.2
+from lagsolve.render.canvas import MAX_HEIGHT, WIDTH, Units, axis_units, figure, fit  # noqa: F401 (used by callers)
+from lagsolve.render.sketch import animation_gif, sketch_figure  # noqa: F401 (the sketch: render/sketch.py)
 
 #: relative size below which a coordinate counts as constant, or its rate as uniform
 FLAT = 1e-9
-
-
-def fit(text: str, width_inches: float, fontsize: float = 12.0) -> str:
-    """``text`` wrapped to lines that fit ``width_inches`` at ``fontsize`` points (about 0.55 em a character)."""
-    chars = max(16, int(width_inches * 72 / (0.55 * fontsize)))
-    return "\n".join(textwrap.wrap(text, chars)) or text
-
-
-def figure(title: str, rows: int = 1, cols: int = 1, **kwargs: Any) -> tuple[Any, Any]:
-    from lagsolve.render.picture import Picture
-
-    size = kwargs.pop("figsize", (WIDTH, min(1.15 + 1.45 * rows, MAX_HEIGHT)))
-    fig = Picture(figsize=size, layout="constrained")
-    axes = fig.subplots(rows, cols, squeeze=False, **kwargs)
-    fig.suptitle(fit(title, size[0] - 0.3), parse_math=False)  # user text: a "$" in a name is not mathtext
-    return fig, axes
 
 
 def _note(fig: Any, lines: list[str]) -> None:
@@ -303,20 +282,6 @@ def conservation_figure(trajectory: Trajectory, title: str, units: Units = None)
     axes[-1][0].set_xlabel(_time_label(units))
     _note(fig, notes)
     return fig
-
-
-def axis_units(units: Units) -> Units:
-    """The figures' unit keys from a table's column units: ``length`` from ``position``, ``force`` from the
-    first force column (``F_c``, ``N_c`` or ``friction_c``); keys already given win."""
-    if not units:
-        return units
-    out = dict(units)
-    if "position" in units:
-        out.setdefault("length", units["position"])
-    force = next((u for k, u in units.items() if k.startswith(("F_", "N_", "friction_"))), None)
-    if force is not None:
-        out.setdefault("force", force)
-    return out
 
 
 def figures(trajectory: Trajectory, title: str, labels: Mapping[str, str],

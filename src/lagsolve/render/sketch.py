@@ -9,18 +9,14 @@ to one scale (given in the legend), and moves everything to any sample (:meth:`D
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
 from lagsolve.numeric.integrate import Trajectory
 from lagsolve.numeric.scene import Scene, Shape
+from lagsolve.render.canvas import WIDTH, Units, axis_units, figure, fit
 
-Units = Mapping[str, str] | None
-
-#: width of every figure, inches (the text width of the LaTeX report, so figures print at one scale)
-WIDTH = 6.5
 #: surfaces in muted colours, told apart in the legend
 SURFACE_COLOURS = ("0.35", "#9c7a4a", "#5b8a9a", "#8a6a9a")
 #: the arrows of the forces of constraint, then of friction, by label
@@ -361,8 +357,6 @@ def _figure_size(panels: int) -> tuple[float, float]:
 def sketch_figure(trajectory: Trajectory, scene: Scene | None, title: str, units: Units = None,
                   sample: int = 0) -> Any:
     """The system at one sample (the start by default), in its views (:func:`views`), with one legend."""
-    from lagsolve.render.plots import figure
-
     planes = views(trajectory, scene)
     if len(planes) == 1:  # the view, and beside it a column (an axes turned off) for the legend
         fig, axes = figure(f"{title}: sketch", 1, 2, figsize=_figure_size(1), width_ratios=[2.6, 1])
@@ -421,8 +415,6 @@ def animation_gif(trajectory: Trajectory, title: str, frames: int = 120, scene: 
     from PIL import Image
 
     from lagsolve.render.picture import Picture
-    from lagsolve.render.plots import axis_units, fit
-
     units = axis_units(units)
     planes = views(trajectory, scene)
     size = (6.6, 4.8) if len(planes) == 1 else (8.6, 4.9)

@@ -17,11 +17,9 @@ from typing import Any
 from lagsolve import ranges
 from lagsolve.errors import Issue, SpecError
 from lagsolve.problem.methods import DEFAULT as DEFAULT_METHOD
+from lagsolve.sweep import INSTALL
 
 ProgressCallback = Callable[[int, int], None]  # (runs done, runs in all)
-
-#: how to install what the distributed runs need, for messages
-INSTALL = "pip install 'lagsolve[sweep]' (or: pip install 'dask[distributed]' pyarrow)"
 
 
 def _text(path_or_text: str | Path | bytes) -> tuple[str, str]:

@@ -27,6 +27,7 @@ from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 from lagsolve.errors import Issue, SpecError
+from lagsolve.sweep import INSTALL
 
 #: seconds to connect to an existing scheduler, for it to send its handshake, and for it to have a worker
 CONNECT_TIMEOUT = 10.0
@@ -67,8 +68,6 @@ def check_scheduler(scheduler: str, timeout: float | None = None) -> str:
     try:
         from distributed.comm.addressing import parse_address, parse_host_port
     except ImportError as exc:
-        from lagsolve.sweep.api import INSTALL
-
         raise ImportError(f"--workers and --scheduler need dask.distributed: {INSTALL}") from exc
     seconds = CONNECT_TIMEOUT if timeout is None else timeout
     try:
@@ -142,8 +141,6 @@ def run_distributed(function: Callable[..., Any], tasks: Sequence[tuple[Any, ...
     try:
         from distributed import Client, LocalCluster, as_completed
     except ImportError as exc:
-        from lagsolve.sweep.api import INSTALL
-
         raise ImportError(f"--workers and --scheduler need dask.distributed: {INSTALL}") from exc
     cluster = None
     try:

@@ -10,6 +10,7 @@ import json
 from typing import Any
 
 from lagsolve.errors import Issue, SpecError
+from lagsolve.sweep import INSTALL
 
 SUFFIXES = (".parquet", ".csv")
 
@@ -34,8 +35,6 @@ def table_bytes(frame: Any, suffix: str) -> bytes:
         try:
             import pyarrow  # noqa: F401
         except ImportError as exc:
-            from lagsolve.sweep.api import INSTALL
-
             raise ImportError(f"Parquet output needs pyarrow: {INSTALL}; or write .csv") from exc
         import io
 
