@@ -680,3 +680,9 @@ def _symbolically_equal(expected: Any, derived: Any) -> bool:
 
 def _complex(value: Any) -> complex | None:
     return None if value is None else complex(value)
+
+
+#: ``lagsolve grade`` (:mod:`lagsolve.grade.grader`) compares a student's steps with the key's the way a check
+#: compares expected answers with the derivation: one comparison, and the shared states of all of them
+Comparison = _Item
+Comparer = _Checker
