@@ -448,6 +448,51 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
 
 
 @main.command()
+@click.argument("key", type=click.Path(path_type=Path))
+@click.argument("submissions", nargs=-1, required=True, type=click.Path(path_type=Path))
+@click.option("--format", "fmt", type=click.Choice(["text", "json", "csv", "junit", "gradescope"]), default="text",
+              show_default=True, help="csv: a gradebook, one row per student; junit: one test per step; "
+                                      "gradescope: the autograder's results.json.")
+@click.option("-o", "--output", type=click.Path(path_type=Path), default=None,
+              help="Write the grades into this folder (gradescope: one folder per student) instead of printing.")
+@_number("--timeout", key="timeout", default=120.0, show_default=True, help="CPU seconds for the key's derivation.")
+def grade(key: Path, submissions: tuple[Path, ...], fmt: str, output: Path | None, timeout: float) -> None:
+    """Grade each student SUBMISSION step by step against the problem file KEY (docs/grading.md).
+
+    Exit 2 when KEY is invalid or a submission file cannot be read at all (the others are still graded).
+
+    \b
+    lagsolve grade problems/bead.yaml examples/grading/*.yaml --format csv
+    """
+    from lagsolve.app.grading import grade_files
+    from lagsolve.files import safe_slug, write_file
+    from lagsolve.render.grades import FILES, RENDER, gradescope_result
+
+    try:
+        grades = grade_files(key, submissions, budget=timeout)
+    except LagsolveError as error:
+        sys.exit(_fail(error))
+    for g in grades.grades:
+        if g.error:
+            click.echo(f"error: {g.error}", err=True)
+    text = RENDER[fmt](grades)
+    try:
+        if output is None:
+            click.echo(text, nl=False)
+        elif fmt == "gradescope":
+            import json
+
+            for g in grades.grades:
+                write_file(output, Path(safe_slug(g.student)) / FILES[fmt],
+                           json.dumps(gradescope_result(g), indent=2, ensure_ascii=False) + "\n")
+        else:
+            write_file(output, FILES[fmt], text)
+    except LagsolveError as error:
+        sys.exit(_fail(error))
+    sys.exit(2 if grades.unreadable else 0)
+
+
+@main.command()
 @click.argument("kind", type=click.Choice(["input", "output"]))
 def schema(kind: str) -> None:
     """Print the JSON Schema (draft 2020-12) of the problem file (input) or of the JSON result (output).

@@ -123,6 +123,11 @@ def input_schema() -> dict[str, Any]:
             "atol": _POSITIVE,
         }),
         "independent": {"type": "array", "items": {"$ref": "#/$defs/name"}, "minItems": 1},
+        "grading": _closed({  # lagsolve grade (docs/grading.md)
+            "weights": {"type": "object", "additionalProperties": {"type": "number", "minimum": 0, "maximum": 1000}},
+            "follow_through": {"type": "number", "minimum": 0, "maximum": 1},
+            "lambda_sign": {"enum": ["strict", "either"]},
+        }),
     }
     return {
         "$schema": DRAFT,

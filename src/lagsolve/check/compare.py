@@ -583,3 +583,9 @@ def _bracket_verdict(item: Item) -> Verdict:
 
 def _complex(value: Any) -> complex | None:
     return None if value is None else complex(value)
+
+
+#: ``lagsolve grade`` (:mod:`lagsolve.grade.grader`) compares a student's steps with the key's the way a check
+#: compares expected answers with the derivation: one comparison, and the shared states of all of them
+Comparison = Item
+Comparer = _Checker

@@ -39,7 +39,7 @@ __all__ = ["MAX_DESCRIPTION_LENGTH", "MAX_PROBLEM_DESCRIPTION_LENGTH", "MAX_TITL
 TOP_LEVEL = (
     "name", "description", "time", "parameters", "functions", "coordinates", "particles", "bodies",
     "gravity", "kinetic", "potential", "dissipation", "forces", "constraints", "friction",
-    "expected", "simulation", "independent",
+    "expected", "simulation", "independent", "grading",
 )
 
 

@@ -1,0 +1,46 @@
+"""``lagsolve grade``: the key derived once, every submission read and graded (:mod:`lagsolve.grade`).
+
+A submission that cannot be read at all gets a grade with every step ``unreadable`` and its error; the rest of
+the class is graded. A bad key raises :class:`~lagsolve.errors.SpecError` (exit 2).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from lagsolve.errors import SpecError
+
+if TYPE_CHECKING:
+    from lagsolve.grade.grader import ClassGrades
+
+
+def grade_files(key: str | Path, submissions: Sequence[str | Path], *, budget: float | None = None,
+                seed: int = 0) -> ClassGrades:
+    """Grade each submission file against the key problem file ``key``.
+
+    Raises
+    ------
+    SpecError
+        The key is not a valid problem file, or its ``grading:`` section is malformed.
+    """
+    from lagsolve.grade.grader import ClassGrades, grade, unreadable_grade
+    from lagsolve.grade.key import read_grading
+    from lagsolve.grade.submission import read_submission
+    from lagsolve.mechanics.derivation import derive
+    from lagsolve.problem.load import load_problem
+
+    problem = load_problem(key)
+    grading = read_grading(key, problem)
+    derivation = derive(problem, budget=budget)
+    normals = {f.term.normal.name: f.term.normal for f in derivation.friction}
+    grades = []
+    for path in submissions:
+        try:
+            submission = read_submission(path, problem, normals)
+        except SpecError as error:
+            grades.append(unreadable_grade(Path(path).stem, str(path), str(error.issues[0]), grading))
+            continue
+        grades.append(grade(derivation, grading, submission, seed=seed))
+    return ClassGrades(problem.name, str(key), tuple(grades))

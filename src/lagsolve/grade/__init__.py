@@ -1,0 +1,7 @@
+"""``lagsolve grade``: worked solutions graded step by step against a key problem (issue 31).
+
+:mod:`.submission` reads a submission (the contract: ``docs/grading.md``) through the problem format's
+expression gateway; :mod:`.key` reads the key's ``grading:`` section; :mod:`.grader` grades the steps
+with ``lagsolve check``'s comparisons (:mod:`lagsolve.check.compare`); :mod:`.output` writes the grades.
+Nothing here prints or exits.
+"""

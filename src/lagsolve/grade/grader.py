@@ -1,0 +1,568 @@
+r"""Grade one submission step by step against the key's derivation (``lagsolve grade``).
+
+Each entry of a step (a coordinate's momentum, a constraint's multiplier, ...) is judged in this order:
+
+1. **correct** — equivalent to the key's answer as ``lagsolve check`` judges it
+   (:class:`lagsolve.check.compare.Comparer`: on the constraint surface, at random consistent states; up to
+   a constant in the potential, the Lagrangian, V_eff and conserved quantities). An equation
+   (``equations``, ``constraints``) is correct up to a constant factor; equations are compared as functions
+   of the coordinates, velocities, accelerations and multipliers (the last two drawn at random too).
+2. **follows** — not the key's answer, but what follows from the student's own earlier steps: their
+   Lagrangian (their T − V when they give no L) gives their momenta, ∂L/∂q and equations
+   (:func:`lagsolve.mechanics.lagrange.lagrange_terms`, with the key's constraints and applied forces); their
+   equations, with the key's constraints at acceleration level, give their q̈ and λ; their λ gives their
+   forces of constraint (|λ|·|u|, :func:`lagsolve.mechanics.reactions.force_scale`).
+3. **incorrect** — with a named mistake when one explains the difference: check's own diagnoses
+   (opposite sign, constant factor, λ convention, a constraint released, a magnitude without ``Abs``), then
+   the key's answer changed in one known way (:func:`_candidates`): the potential's sign, one term's sign,
+   the velocity-squared terms dropped, one kinetic term dropped, λ's sign in an equation.
+
+A step's points are its weight shared among its entries: full for correct, ``follow_through`` times it for
+follows. Nothing is printed here.
+"""
+
+from __future__ import annotations
+
+import contextlib
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from typing import Any
+
+import mpmath
+import sympy
+
+from lagsolve.check.compare import (
+    CONVENTION,
+    DIFFERS,
+    FACTOR,
+    MINIMUM_STATES,
+    OFFSET,
+    OPPOSITE_SIGN,
+    RELEASED,
+    SIGN_DEPENDENT,
+    STATES,
+    Comparer,
+    Comparison,
+    Verdict,
+)
+from lagsolve.check.diagnose import close, constant_relation
+from lagsolve.check.states import Compiled, StateSpace
+from lagsolve.check.status import Status
+from lagsolve.enums import TextEnum
+from lagsolve.errors import DerivationError
+from lagsolve.grade.key import Grading
+from lagsolve.grade.submission import NOT_GRADED, STEPS, Submission
+from lagsolve.mechanics.constraints import velocity_form
+from lagsolve.mechanics.derivation import Derivation
+from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms
+from lagsolve.mechanics.linsolve import solve_linear
+from lagsolve.mechanics.model import Model
+from lagsolve.mechanics.reactions import force_scale
+from lagsolve.mechanics.simplify import reproducible
+
+
+class GradeStatus(TextEnum):
+    """A step's status (the contract's five)."""
+
+    CORRECT = "correct"
+    INCORRECT = "incorrect"
+    FOLLOWS = "follows"
+    MISSING = "missing"
+    UNREADABLE = "unreadable"
+
+
+CORRECT, INCORRECT, FOLLOWS = GradeStatus.CORRECT, GradeStatus.INCORRECT, GradeStatus.FOLLOWS
+MISSING, UNREADABLE = GradeStatus.MISSING, GradeStatus.UNREADABLE
+
+#: the mistake names of the contract (those this version can find are marked in docs/grading.md)
+MISTAKES = ("sign_error", "missing_factor", "lambda_sign_convention", "missing_velocity_squared_terms",
+            "missing_moving_constraint_term", "dropped_constraint", "wrong_potential_sign", "missing_kinetic_term",
+            "wrong_dimension", "missing_abs")
+SIGN, FACTOR_MISSING, LAMBDA = "sign_error", "missing_factor", "lambda_sign_convention"
+VELOCITY_SQUARED, DROPPED = "missing_velocity_squared_terms", "dropped_constraint"
+POTENTIAL_SIGN = "wrong_potential_sign"
+KINETIC_TERM, ABS = "missing_kinetic_term", "missing_abs"
+
+#: steps whose answers may differ from the key's by a constant
+SHIFTS = ("potential", "lagrangian", "conserved", "effective_potential")
+#: most terms tried one at a time in a diagnosis (a larger answer gets only the whole-answer candidates)
+MAX_TERMS = 24
+
+
+@dataclass(frozen=True)
+class StepGrade:
+    """The grade of one step: ``status``, ``mistake`` (a name of :data:`MISTAKES` or None), points."""
+
+    step: str
+    status: GradeStatus
+    mistake: str | None
+    points: float
+    max_points: float
+    message: str
+
+
+@dataclass(frozen=True)
+class SubmissionGrade:
+    """The grades of one submission; ``error`` is set (and every step unreadable) when the file could not be
+    read at all."""
+
+    student: str
+    source: str
+    steps: tuple[StepGrade, ...]
+    error: str = ""
+
+    @property
+    def points(self) -> float:
+        return round(sum(s.points for s in self.steps), 6)
+
+    @property
+    def max_points(self) -> float:
+        return round(sum(s.max_points for s in self.steps), 6)
+
+
+@dataclass(frozen=True)
+class ClassGrades:
+    """The key (its name and file) and one grade per submission, in the order given."""
+
+    key: str
+    source: str
+    grades: tuple[SubmissionGrade, ...]
+
+    @property
+    def unreadable(self) -> int:
+        """How many submission files could not be read at all."""
+        return sum(1 for g in self.grades if g.error)
+
+
+@dataclass(frozen=True)
+class _Entry:
+    """The verdict on one entry of a step."""
+
+    name: str
+    status: GradeStatus
+    mistake: str | None = None
+    message: str = ""
+
+
+@dataclass
+class _Plan:
+    """The comparisons one submission needs, made before the shared states are drawn."""
+
+    items: list[Comparison] = field(default_factory=list)
+
+
+def unreadable_grade(student: str, source: str, message: str, grading: Grading) -> SubmissionGrade:
+    """Every weighted step unreadable: the file could not be read (``message`` says where and why)."""
+    steps = tuple(StepGrade(s, UNREADABLE, None, 0.0, w, message) for s, w in _weighted(grading))
+    return SubmissionGrade(student, source, steps, message)
+
+
+def _weighted(grading: Grading) -> list[tuple[str, float]]:
+    return [(s, grading.weights[s]) for s in STEPS if s in grading.weights and s not in NOT_GRADED]
+
+
+def key_answers(derivation: Derivation) -> dict[str, dict[str, Any]]:
+    """The key's answer to each step, entry by entry (absent where the derivation gives none)."""
+    model, terms = derivation.model, derivation.lagrange
+    names = [q.name for q in derivation.problem.coordinates]
+    out: dict[str, dict[str, Any]] = {
+        "kinetic": {"": model.kinetic}, "potential": {"": model.potential}, "lagrangian": {"": model.lagrangian},
+        "constraints": {c.name: c.expression for c in derivation.constraints},
+        "momenta": dict(zip(names, terms.momenta, strict=True)),
+        "generalized_forces": dict(zip(names, terms.gradients, strict=True)),
+        "equations": dict(zip(names, terms.equations, strict=True)),
+    }
+    if derivation.accelerations is not None:
+        out["accelerations"] = dict(derivation.accelerations)
+    if derivation.multipliers is not None:
+        out["multipliers"] = dict(derivation.multipliers)
+    if derivation.constraint_forces is not None:
+        out["constraint_forces"] = {k: f.magnitude for k, f in derivation.constraint_forces.items()
+                                    if f.magnitude is not None}
+    out["normal_force"] = {f.term.name: f.normal_force for f in derivation.friction}
+    if derivation.conserved is not None:
+        out["conserved"] = {k: v for k, v in derivation.conserved.items() if isinstance(v, sympy.Basic)}
+    potential = derivation.effective_potential
+    if potential is not None and isinstance(potential.get("expression"), sympy.Basic):
+        out["effective_potential"] = {str(potential["coordinate"]): potential["expression"]}
+    return out
+
+
+def grade(derivation: Derivation, grading: Grading, submission: Submission, *, seed: int = 0) -> SubmissionGrade:
+    """Grade ``submission`` against the key ``derivation`` with the key's ``grading``."""
+    reproducible()
+    return _Grader(derivation, grading, submission, seed).run()
+
+
+class _Grader:
+    def __init__(self, derivation: Derivation, grading: Grading, submission: Submission, seed: int) -> None:
+        self.derivation, self.grading, self.submission, self.seed = derivation, grading, submission, seed
+        self.key = key_answers(derivation)
+        self.own = {name: step.entries for name, step in submission.steps.items() if step.issue is None}
+        self.follows = _follow_through(derivation, self.own)
+        self.coordinates = [q.name for q in derivation.problem.coordinates]
+        self.comparer: Any = None
+        self.equations: _Equations | None = None
+
+    # -- the comparisons, planned first so that every state is drawn once with every symbol known
+
+    def comparison(self, step: str, name: str, student: Any, reference: Any) -> Comparison:
+        return Comparison(step, name, (student,), (reference,), shifts=step in SHIFTS)
+
+    def plan(self) -> None:
+        items = []
+        for step, entries in self.own.items():
+            if step in ("equations", "constraints") or step not in self.grading.weights:
+                continue
+            for name, value in entries.items():
+                reference = self.key.get(step, {}).get(name)
+                if reference is not None:
+                    items.append(self.comparison(step, name, value, reference))
+                elif step == "conserved" and self.derivation.accelerations is not None:
+                    items.append(Comparison("conserved", name, (value,), None, shifts=True, rate=True))
+                own = self.follows.get(step, {}).get(name)
+                if own is not None:
+                    items.append(self.comparison(step, name, value, own))
+        self.comparer = Comparer(self.derivation, items, STATES, self.seed)
+
+    # -- grading
+
+    def run(self) -> SubmissionGrade:
+        self.plan()
+        grades = []
+        for step, weight in _weighted(self.grading):
+            grades.append(self.step(step, weight))
+        return SubmissionGrade(self.submission.student, self.submission.source, tuple(grades))
+
+    def expected_entries(self, step: str) -> list[str]:
+        """The entries a step should have: one per coordinate, constraint, contact; the key's conserved names."""
+        if step in ("kinetic", "potential", "lagrangian"):
+            return [""]
+        if step in ("momenta", "generalized_forces", "equations", "accelerations"):
+            return self.coordinates
+        if step == "conserved":
+            return []  # any names: those given are graded
+        return list(self.key.get(step, {}))
+
+    def step(self, step: str, weight: float) -> StepGrade:
+        read = self.submission.steps.get(step)
+        if read is None:
+            return StepGrade(step, MISSING, None, 0.0, weight, "not in the submission")
+        if read.issue is not None:
+            return StepGrade(step, UNREADABLE, None, 0.0, weight, str(read.issue))
+        if step in ("effective_potential",) and step not in self.key:
+            return StepGrade(step, INCORRECT, None, 0.0, weight, "the key gives no effective potential to compare")
+        names = self.expected_entries(step) or list(read.entries)
+        entries: list[_Entry] = []
+        for name in names:
+            if name not in read.entries:
+                entries.append(_Entry(name, INCORRECT, None, f"{_label(name)}no entry"))
+                continue
+            entries.append(self.entry(step, name, read.entries[name]))
+        if not entries:
+            return StepGrade(step, INCORRECT, None, 0.0, weight, "the step has no entries")
+        share = weight / len(entries)
+        points = sum(share if e.status == CORRECT else share * self.grading.follow_through if e.status == FOLLOWS
+                     else 0.0 for e in entries)
+        statuses = {e.status for e in entries}
+        status = CORRECT if statuses == {CORRECT} else FOLLOWS if statuses <= {CORRECT, FOLLOWS} else INCORRECT
+        mistake = next((e.mistake for e in entries if e.mistake is not None), None)
+        message = "; ".join(e.message for e in entries if e.message) or ("equivalent to the key" if status == CORRECT
+                                                                         else "")
+        return StepGrade(step, status, mistake, round(points, 6), weight, message)
+
+    def entry(self, step: str, name: str, value: Any) -> _Entry:
+        if step in ("equations", "constraints"):
+            return self.equation(step, name, value)
+        reference = self.key.get(step, {}).get(name)
+        if reference is None and step == "conserved" and self.derivation.accelerations is not None:
+            verdict = self.comparer.verdict(Comparison("conserved", name, (value,), None, shifts=True, rate=True))
+            if verdict.status == Status.OK:
+                return _Entry(name, CORRECT, None, f"{_label(name)}conserved along the key's equations of motion")
+            return _Entry(name, INCORRECT, None, f"{_label(name)}not conserved along the key's equations of motion")
+        if reference is None:
+            return _Entry(name, INCORRECT, None, f"{_label(name)}the key has no such quantity")
+        verdict = self.comparer.verdict(self.comparison(step, name, value, reference))
+        if verdict.status == Status.OK:
+            note = " up to a constant" if verdict.reason == OFFSET else ""
+            return _Entry(name, CORRECT, None, f"{_label(name)}equivalent to the key{note}" if note else "")
+        if verdict.reason == CONVENTION and verdict.factor == -1 and self.grading.lambda_sign == "either":
+            return _Entry(name, CORRECT, None, f"{_label(name)}correct in the opposite sign convention of λ (accepted)")
+        own = self.follows.get(step, {}).get(name)
+        if own is not None:
+            followed = self.comparer.verdict(self.comparison(step, name, value, own))
+            if followed.status == Status.OK:
+                return _Entry(name, FOLLOWS, None, f"{_label(name)}follows from the submission's own earlier steps")
+        mistake, detail = self.diagnose(step, verdict, value, reference)
+        return _Entry(name, INCORRECT, mistake, f"{_label(name)}{detail}")
+
+    def diagnose(self, step: str, verdict: Verdict, value: Any, reference: Any) -> tuple[str | None, str]:
+        """The mistake and a sentence of evidence, from check's diagnosis first, then from the candidates."""
+        reason = verdict.reason
+        if reason == OPPOSITE_SIGN:
+            if step == "potential":
+                return POTENTIAL_SIGN, "the potential has the wrong sign (it is −V)"
+            return SIGN, "has the opposite sign of the key's answer"
+        if reason == CONVENTION:
+            return LAMBDA, "λ in the opposite sign convention (lagsolve's: d/dt ∂L/∂q̇ − ∂L/∂q = Q + Σ λ a)"
+        if reason == FACTOR:
+            factor = "" if verdict.factor is None else f" (it is {sympy.sstr(verdict.factor)} times the key's)"
+            return FACTOR_MISSING, f"off by a constant factor{factor}"
+        if reason == RELEASED:
+            return DROPPED, verdict.note
+        if reason == SIGN_DEPENDENT:
+            return ABS, "agrees only where a quantity is positive: a magnitude written without Abs"
+        for mistake, candidate, detail in _candidates(step, reference, self.derivation):
+            if self.same(value, candidate, shifts=step in SHIFTS):
+                return mistake, detail
+        return None, _differs(verdict)
+
+    def same(self, value: Any, candidate: Any, *, shifts: bool) -> bool:
+        """Whether ``value`` equals ``candidate`` at the comparer's states (up to a constant with ``shifts``)."""
+        comparer = self.comparer
+        space = comparer.space()
+        with contextlib.suppress(TypeError, ValueError, AttributeError):
+            a, b = Compiled(comparer.prepare(value), space), Compiled(comparer.prepare(candidate), space)
+            if not (set(a.symbols) | set(b.symbols)) <= _known(space):
+                return False
+            rows = []
+            for state in comparer.states():
+                x, y = a(state), b(state)
+                if isinstance(x, mpmath.mpf) and isinstance(y, mpmath.mpf):
+                    rows.append((state, [x], [y]))
+            if len(rows) < MINIMUM_STATES:
+                return False
+            if all(close(r[1][0], r[2][0]) for r in rows):
+                return True
+            return shifts and constant_relation(rows, (value,), (candidate,), self.derivation, additive=True)[0]
+        return False
+
+    def equation(self, step: str, name: str, value: Any) -> _Entry:
+        """An equation (a Lagrange equation, or a constraint), correct up to a constant factor."""
+        if step == "constraints":
+            return self.constraint(name, value)
+        if self.equations is None:
+            self.equations = _Equations(self.derivation, self.seed)
+        check = self.equations
+        reference = self.key["equations"][name]
+        if check.proportional(value, reference):
+            return _Entry(name, CORRECT)
+        flipped = _flip_multipliers(reference, self.derivation)
+        if check.proportional(value, flipped):
+            if self.grading.lambda_sign == "either":
+                return _Entry(name, CORRECT, None, f"{_label(name)}correct in the opposite sign convention of λ "
+                                                   "(accepted)")
+            return _Entry(name, INCORRECT, LAMBDA, f"{_label(name)}the multiplier terms have the opposite sign "
+                                                   "(λ in the other sign convention)")
+        own = self.follows.get("equations", {}).get(name)
+        if own is not None and check.proportional(value, own):
+            return _Entry(name, FOLLOWS, None, f"{_label(name)}follows from the submission's own Lagrangian")
+        for mistake, candidate, detail in _candidates("equations", reference, self.derivation):
+            if check.proportional(value, candidate):
+                return _Entry(name, INCORRECT, mistake, f"{_label(name)}{detail}")
+        return _Entry(name, INCORRECT, None, f"{_label(name)}not the key's equation, even up to a constant factor")
+
+    def constraint(self, name: str, value: Any) -> _Entry:
+        """ψ (or its velocity form) up to a constant factor, symbolically."""
+        derivation = self.derivation
+        terms = next(c for c in derivation.constraints if c.name == name)
+        model = derivation.model
+        variables = {model.time, *model.coordinates, *model.velocities}
+        for reference in (terms.expression, velocity_form(terms, model)):
+            ratio = _ratio(value, reference)
+            if ratio is not None and not (ratio.free_symbols & variables) and ratio != 0:
+                return _Entry(name, CORRECT)
+        return _Entry(name, INCORRECT, None, f"{_label(name)}not the key's constraint ψ = "
+                                             f"{sympy.sstr(terms.expression)} = 0 up to a constant factor")
+
+
+def _ratio(a: Any, b: Any) -> Any:
+    with contextlib.suppress(sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError, ZeroDivisionError):
+        if b == 0:
+            return None
+        return sympy.cancel(sympy.together(a / b))
+    return None
+
+
+def _known(space: StateSpace) -> set[Any]:
+    model = space.derivation.model
+    coefficients = set()
+    for _, symbols in space._functions.values():  # noqa: SLF001 - the random functions' coefficients
+        coefficients |= set(symbols)
+    return {space.time, *space.parameters, *space.extra, *model.coordinates, *model.velocities, *coefficients}
+
+
+def _label(name: str) -> str:
+    return f"{name}: " if name else ""
+
+
+def _differs(verdict: Verdict) -> str:
+    witness = verdict.witness
+    if witness is None or verdict.reason != DIFFERS:
+        return "not equivalent to the key's answer"
+    values = ", ".join(f"{n} = {v:.3g}" for n, v in witness.values[:6])
+    got, want = witness.expected[0], witness.derived[0]
+    shown = "" if got is None or want is None else f": {got.real:.4g} where the key has {want.real:.4g}"
+    return f"not equivalent to the key's answer (at {values}{shown})"
+
+
+# -- the answers a mistake would give -------------------------------------------------------------------
+
+
+def _flip_multipliers(expr: Any, derivation: Derivation) -> Any:
+    return expr.xreplace({c.multiplier: -c.multiplier for c in derivation.constraints})
+
+
+def _without_velocity_squared(expr: Any, velocities: Iterable[Any]) -> Any:
+    r"""``expr`` less its part quadratic in the velocities: with :math:`E(s) = E(s\dot q)`,
+    :math:`E - (E(2) - 2E(1) + E(0))/2` (exact for E of degree two in :math:`\dot q`)."""
+    velocities = tuple(velocities)
+
+    def scaled(k: int) -> Any:
+        return expr.xreplace({v: k * v for v in velocities})
+
+    return expr - (scaled(2) - 2 * expr + scaled(0)) / 2
+
+
+def _terms(expr: Any) -> tuple[Any, ...]:
+    with contextlib.suppress(TypeError, ValueError):
+        terms = sympy.Add.make_args(sympy.expand(expr))
+        return terms if 1 < len(terms) <= MAX_TERMS else ()
+    return ()
+
+
+def _candidates(step: str, reference: Any, derivation: Derivation) -> list[tuple[str, Any, str]]:
+    """(mistake, the key's answer with that mistake made, evidence) for ``step``, most specific first."""
+    model = derivation.model
+    out: list[tuple[str, Any, str]] = []
+    if step == "lagrangian":
+        out.append((POTENTIAL_SIGN, model.kinetic + model.potential, "it is T + V: the potential has the wrong sign"))
+        for k in (2, sympy.Rational(1, 2)):
+            out.append((FACTOR_MISSING, k * model.kinetic - model.potential,
+                        f"the kinetic energy is {k} times the key's"))
+        for term in _terms(model.kinetic):
+            out.append((KINETIC_TERM, model.lagrangian - term, f"the kinetic term {sympy.sstr(term)} is missing"))
+    if step == "kinetic":
+        for term in _terms(reference):
+            out.append((KINETIC_TERM, reference - term, f"the kinetic term {sympy.sstr(term)} is missing"))
+    if step not in ("kinetic", "potential", "lagrangian", "constraints"):
+        without = _without_velocity_squared(reference, model.velocities)
+        if without != reference:
+            out.append((VELOCITY_SQUARED, without,
+                        "the terms quadratic in the velocities (centripetal, Coriolis) are missing"))
+    signs = POTENTIAL_SIGN if step == "potential" else SIGN
+    for term in _terms(reference):
+        out.append((signs, reference - 2 * term, f"the term {sympy.sstr(term)} has the wrong sign"))
+    return out
+
+
+# -- equations: functions of the state, the accelerations and the multipliers ----------------------------
+
+
+class _Equations:
+    """Equations compared as residuals at random states with random accelerations and multipliers (and
+    normal forces), after the constraints are used (eliminated coordinates, velocities, accelerations)."""
+
+    def __init__(self, derivation: Derivation, seed: int) -> None:
+        self.derivation = derivation
+        model = derivation.model
+        extra = [*model.accelerations, *derivation.multiplier_symbols, *(f.term.normal for f in derivation.friction)]
+        self.space = StateSpace(derivation, extra, seed)
+        self.states = self.space.states(STATES)
+        self.free = set(extra) - set(derivation.eliminated_accelerations)
+
+    def prepare(self, expr: Any) -> Any:
+        derivation = self.derivation
+        return derivation.elimination.apply(expr.xreplace(derivation.eliminated_accelerations))
+
+    def proportional(self, value: Any, reference: Any) -> bool:
+        with contextlib.suppress(TypeError, ValueError, AttributeError):
+            a, b = Compiled(self.prepare(value), self.space), Compiled(self.prepare(reference), self.space)
+            rows = []
+            for state in self.states:
+                x, y = a(state), b(state)
+                if isinstance(x, mpmath.mpf) and isinstance(y, mpmath.mpf):
+                    rows.append((state, [x], [y]))
+            if len(rows) < MINIMUM_STATES or all(close(r[2][0], 0) for r in rows):
+                return False
+            if all(close(r[1][0], r[2][0]) for r in rows):
+                return True
+            constant, factor = constant_relation(rows, (value,), (reference,), self.derivation, additive=False)
+            return bool(constant) and not (factor is not None and factor == 0)
+        return False
+
+
+# -- follow-through: what the submission's own steps give -----------------------------------------------
+
+
+def _follow_through(derivation: Derivation, own: dict[str, dict[str, Any]]) -> dict[str, dict[str, Any]]:
+    """The answers that follow from the submission's own Lagrangian and equations, step by step."""
+    model = derivation.model
+    names = [q.name for q in derivation.problem.coordinates]
+    out: dict[str, dict[str, Any]] = {}
+    kinetic = own.get("kinetic", {}).get("")
+    potential = own.get("potential", {}).get("")
+    if kinetic is not None or potential is not None:
+        out["lagrangian"] = {"": (model.kinetic if kinetic is None else kinetic)
+                             - (model.potential if potential is None else potential)}
+    lagrangian = own.get("lagrangian", {}).get("", out.get("lagrangian", {}).get(""))
+    terms: LagrangeTerms | None = None
+    if lagrangian is not None:
+        form = derivation.form
+        forces = form.generalized_forces if form is not None else tuple(0 for _ in names)
+        student = Model(model.time, model.coordinates, model.velocities, model.accelerations,
+                        sympy.Integer(0), sympy.Integer(0), lagrangian)
+        with contextlib.suppress(TypeError, ValueError, AttributeError, NotImplementedError):
+            terms = lagrange_terms(student, tuple(_constraint_terms(derivation)), tuple(forces))
+    if terms is not None:
+        out["momenta"] = dict(zip(names, terms.momenta, strict=True))
+        out["generalized_forces"] = dict(zip(names, terms.gradients, strict=True))
+        out["equations"] = dict(zip(names, terms.equations, strict=True))
+    equations = [own.get("equations", {}).get(q, (terms.equations[i] if terms is not None else None))
+                 for i, q in enumerate(names)]
+    if "equations" in own or terms is not None:
+        solved = _solve(derivation, equations)
+        if solved is not None:
+            accelerations, multipliers = solved
+            out["accelerations"] = dict(zip(names, accelerations, strict=True))
+            constraints = [c.name for c in derivation.constraints]
+            out["multipliers"] = dict(zip(constraints, multipliers, strict=True))
+    lam = own.get("multipliers") or out.get("multipliers")
+    if lam and derivation.form is not None:
+        magnitudes = {}
+        for c in derivation.constraints:
+            scale = force_scale(derivation.form.reactions[c.name])
+            if c.name in lam and scale is not sympy.nan:
+                magnitudes[c.name] = sympy.Abs(lam[c.name]) * scale
+        out["constraint_forces"] = magnitudes
+    return out
+
+
+def _constraint_terms(derivation: Derivation) -> tuple[Any, ...]:
+    form = derivation.form
+    return form.constraints if form is not None else derivation.constraints
+
+
+def _solve(derivation: Derivation, equations: list[Any]) -> tuple[list[Any], list[Any]] | None:
+    r"""q̈ and λ from the submission's equations (linear in them) and the key's constraints, A q̈ = β."""
+    if any(e is None for e in equations):
+        return None
+    model = derivation.model
+    constraints = _constraint_terms(derivation)
+    unknowns = [*model.accelerations, *(c.multiplier for c in constraints)]
+    rows = list(equations)
+    for c in constraints:
+        rows.append(sum((a * qdd for a, qdd in zip(c.coefficients, model.accelerations, strict=True)),
+                        sympy.Integer(0)) - c.acceleration_rhs)
+    zero = {u: 0 for u in unknowns}
+    try:
+        matrix = sympy.Matrix([[sympy.diff(r, u) for u in unknowns] for r in rows])
+        if any(entry.has(*unknowns) for entry in matrix):
+            return None  # not linear in the accelerations and multipliers
+        rhs = sympy.Matrix([-r.xreplace(zero) for r in rows])
+        solution = list(solve_linear(matrix, rhs))
+    except (ValueError, ZeroDivisionError, TypeError, DerivationError):
+        return None
+    n = len(model.accelerations)
+    return solution[:n], solution[n:]
+

@@ -1,0 +1,231 @@
+"""Read a submission for ``lagsolve grade`` (the contract: ``docs/grading.md``).
+
+A submission is a small YAML file: ``student`` (an id; the file's stem when absent) and ``steps``, any
+subset of :data:`STEPS`. Student text is hostile input: the YAML is read by the problem format's safe
+reader (:func:`lagsolve.problem.yamlread.read_document`) and every expression by its only gateway
+(:func:`lagsolve.problem.expr.parse`), with the key problem's names. A step that cannot be read keeps an
+:class:`~lagsolve.errors.Issue` (file, line, field, what is wrong, how to fix it) and the other steps are
+read on; a file that cannot be read at all raises :class:`~lagsolve.errors.SpecError`.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import sympy
+
+from lagsolve.errors import ExpressionError, Issue, SpecError
+from lagsolve.problem import expr as gateway
+from lagsolve.problem.names import momentum_name, momentum_symbol
+from lagsolve.problem.schema import Problem
+from lagsolve.problem.yamlread import Document, dotted, kind_of, read_document
+
+#: the steps a submission may contain, in the order of a derivation (names fixed by the contract)
+STEPS = ("kinetic", "potential", "lagrangian", "constraints", "momenta", "generalized_forces", "equations",
+         "accelerations", "multipliers", "constraint_forces", "normal_force", "conserved", "effective_potential",
+         "equilibria", "frequencies", "hamiltonian")
+#: one expression
+SCALAR = ("kinetic", "potential", "lagrangian", "hamiltonian")
+#: one expression per coordinate, per constraint, per friction contact
+PER_COORDINATE = ("momenta", "generalized_forces", "equations", "accelerations")
+PER_CONSTRAINT = ("constraints", "multipliers", "constraint_forces")
+PER_CONTACT = ("normal_force",)
+#: steps whose entries may be written ``lhs = rhs`` (read as lhs − rhs)
+EQUATIONS = ("constraints", "equations")
+#: steps the contract lists that this version reads but does not grade
+NOT_GRADED = ("equilibria", "frequencies", "hamiltonian")
+MAX_NAME = 200
+
+
+@dataclass(frozen=True)
+class Step:
+    """One step of a submission: ``entries`` maps an entry name (a coordinate, a constraint, a quantity;
+    ``""`` for a single expression) to its SymPy expression; ``issue`` says why the step cannot be read."""
+
+    name: str
+    entries: dict[str, Any] = field(default_factory=dict)
+    issue: Issue | None = None
+    line: int = 0
+
+
+@dataclass(frozen=True)
+class Submission:
+    """A read submission: the student's id, the file, and the steps it contains (by name)."""
+
+    student: str
+    source: str
+    steps: dict[str, Step]
+
+
+def names_for(problem: Problem, contacts: tuple[str, ...] = (), normals: dict[str, Any] | None = None,
+              *, accelerations: bool = False) -> gateway.Namespace:
+    """The names a submission's expressions may use: the key's own (``expected:``'s) plus, in the equations,
+    the accelerations ``q_ddot``, and ``N_<contact>``."""
+    symbols = dict(problem.symbols)
+    for c in problem.constraints:
+        symbols.setdefault(f"lambda_{c.name}", sympy.Symbol(f"lambda_{c.name}", real=True))
+    for q in problem.coordinates:
+        symbols.setdefault(momentum_name(q.name), momentum_symbol(q.name))
+    symbols.update(normals or {})
+    forbidden = {}
+    for q in problem.coordinates:
+        name = q.acceleration.name
+        if accelerations:
+            symbols[name] = q.acceleration
+        else:
+            forbidden[name] = "accelerations may appear only in the equations step"
+    return gateway.Namespace(symbols, {f.name: f.function for f in problem.functions}, forbidden)
+
+
+def read_submission(path: str | Path, problem: Problem, normals: dict[str, Any] | None = None) -> Submission:
+    """Read the submission file ``path`` against the key ``problem`` (see :func:`read_text`)."""
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except OSError as error:
+        raise SpecError([Issue(str(path), 0, "", f"cannot read the file: {error.strerror or error}",
+                               "check the path")]) from None
+    return read_text(raw, problem, str(path), path.stem, normals)
+
+
+def read_text(raw: bytes | str, problem: Problem, source: str = "<text>", stem: str = "",
+              normals: dict[str, Any] | None = None) -> Submission:
+    """Read a submission's text.
+
+    ``normals`` maps ``N_<contact>`` to the key's normal-force symbols.
+
+    Raises
+    ------
+    SpecError
+        The file is not one YAML mapping with ``steps`` (nothing in it can be graded).
+    """
+    document = read_document(raw.encode("utf-8") if isinstance(raw, str) else raw, source)
+    return _Reader(document, problem, source, normals or {}).submission(stem or "student")
+
+
+class _Reader:
+    def __init__(self, document: Document, problem: Problem, source: str, normals: dict[str, Any]) -> None:
+        self.data, self.lines, self.problem, self.source = document.data, document.lines, problem, source
+        self.normals = normals
+        self.plain = names_for(problem, normals=normals)
+        self.with_accelerations = names_for(problem, normals=normals, accelerations=True)
+
+    def line(self, path: tuple) -> int:
+        while path:
+            if path in self.lines:
+                return self.lines[path]
+            path = path[:-1]
+        return self.lines.get((), 1)
+
+    def issue(self, path: tuple, message: str, hint: str = "") -> Issue:
+        return Issue(self.source, self.line(path), dotted(path), message, hint)
+
+    def submission(self, stem: str) -> Submission:
+        data = self.data
+        if not isinstance(data, dict):
+            raise SpecError([self.issue((), f"expected a mapping with 'student' and 'steps', found {kind_of(data)}",
+                                        "see docs/grading.md for the submission format")])
+        unknown = [k for k in data if k not in ("student", "steps")]
+        if unknown:
+            raise SpecError([self.issue((unknown[0],), f"unknown key {unknown[0]!r}",
+                                        "a submission has only 'student' and 'steps'")])
+        student = data.get("student", stem)
+        if isinstance(student, int) and not isinstance(student, bool):
+            student = str(student)
+        if not isinstance(student, str) or not student.strip() or len(student) > MAX_NAME or "\n" in student:
+            raise SpecError([self.issue(("student",), f"expected a one-line id, found {kind_of(student)}",
+                                        "write e.g. 'student: ada_lovelace'")])
+        steps = data.get("steps")
+        if not isinstance(steps, dict):
+            raise SpecError([self.issue(("steps",), f"expected a mapping of steps, found {kind_of(steps)}",
+                                        f"write 'steps:' with any of: {', '.join(STEPS)}")])
+        out: dict[str, Step] = {}
+        for name, value in steps.items():
+            path = ("steps", name)
+            if name not in STEPS:
+                raise SpecError([self.issue(path, f"unknown step {name!r}", f"the steps are: {', '.join(STEPS)}")])
+            out[name] = self.step(name, value, path)
+        return Submission(student.strip(), self.source, out)
+
+    def step(self, name: str, value: Any, path: tuple) -> Step:
+        line = self.line(path)
+        try:
+            entries = self.entries(name, value, path)
+        except _Unreadable as bad:
+            return Step(name, {}, bad.issue, line)
+        return Step(name, entries, None, line)
+
+    def entries(self, name: str, value: Any, path: tuple) -> dict[str, Any]:
+        if name in SCALAR:
+            return {"": self.expression(value, path, self.plain)}
+        if name in NOT_GRADED:
+            return {}
+        if name == "effective_potential":
+            spec = self.mapping(value, path, "{coordinate: r, expression: ...}")
+            self.known(path, spec, ("coordinate", "expression"), "the keys")
+            coordinate = spec.get("coordinate")
+            coordinates = [q.name for q in self.problem.coordinates]
+            if coordinate not in coordinates:
+                raise _Unreadable(self.issue((*path, "coordinate"), f"unknown coordinate {coordinate!r}",
+                                             f"the coordinates are: {', '.join(coordinates)}"))
+            if "expression" not in spec:
+                raise _Unreadable(self.issue(path, "no 'expression'", "write the effective potential as 'expression'"))
+            return {coordinate: self.expression(spec["expression"], (*path, "expression"), self.plain)}
+        spec = self.mapping(value, path, "{name: expression, ...}")
+        known: tuple[str, ...] = ()
+        what = "names"
+        if name in PER_COORDINATE:
+            known, what = tuple(q.name for q in self.problem.coordinates), "coordinates"
+        elif name in PER_CONSTRAINT:
+            known, what = tuple(c.name for c in self.problem.constraints), "constraints"
+        elif name in PER_CONTACT:
+            known, what = tuple(f.name for f in self.problem.friction), "friction contacts"
+        if known:
+            self.known(path, spec, known, what)
+        names = self.with_accelerations if name == "equations" else self.plain
+        out = {}
+        for key, text in spec.items():
+            if not isinstance(key, str) or not key or len(key) > MAX_NAME:
+                raise _Unreadable(self.issue(path, f"{key!r} is not a name", "write names as plain words"))
+            out[key] = self.expression(text, (*path, key), names, equation=name in EQUATIONS)
+        return out
+
+    def mapping(self, value: Any, path: tuple, example: str) -> dict[str, Any]:
+        if not isinstance(value, dict):
+            raise _Unreadable(self.issue(path, f"expected a mapping, found {kind_of(value)}", f"write {example}"))
+        return value
+
+    def known(self, path: tuple, spec: dict[str, Any], known: tuple[str, ...], what: str) -> None:
+        for key in spec:
+            if key not in known:
+                raise _Unreadable(self.issue((*path, key), f"unknown name {key!r}",
+                                             f"the {what} are: {', '.join(known) or 'none'}"))
+
+    def expression(self, text: Any, path: tuple, names: gateway.Namespace, *, equation: bool = False) -> Any:
+        try:
+            if equation and isinstance(text, str) and "=" in text:
+                sides = _sides(text)
+                if sides is None:
+                    raise ExpressionError("an equation has one '=' between its two sides",
+                                          "write 'lhs = rhs' or one expression equal to 0")
+                return gateway.parse(sides[0], names) - gateway.parse(sides[1], names)
+            return gateway.parse(text, names)
+        except ExpressionError as error:
+            raise _Unreadable(self.issue(path, error.message, error.hint)) from None
+
+
+def _sides(text: str) -> tuple[str, str] | None:
+    """``lhs = rhs`` split at its one ``=`` (None when there are several, or a comparison like ``==``)."""
+    parts = re.split(r"=", text)
+    if len(parts) != 2 or any(not p.strip() for p in parts) or re.search(r"[<>!]$", parts[0]):
+        return None
+    return parts[0], parts[1]
+
+
+class _Unreadable(Exception):
+    def __init__(self, issue: Issue) -> None:
+        self.issue = issue
+        super().__init__(str(issue))
