@@ -25,7 +25,7 @@ def grade_files(key: str | Path, submissions: Sequence[str | Path], *, budget: f
     SpecError
         The key is not a valid problem file, or its ``grading:`` section is malformed.
     """
-    from lagsolve.grade.grader import ClassGrades, grade, unreadable_grade
+    from lagsolve.grade.grader import ClassGrades, GradingKey, grade, unreadable_grade
     from lagsolve.grade.key import read_grading
     from lagsolve.grade.submission import read_submission
     from lagsolve.mechanics.derivation import derive
@@ -34,6 +34,7 @@ def grade_files(key: str | Path, submissions: Sequence[str | Path], *, budget: f
     problem = load_problem(key)
     grading = read_grading(key, problem)
     derivation = derive(problem, budget=budget)
+    context = GradingKey(derivation, grading, seed)
     normals = {f.term.normal.name: f.term.normal for f in derivation.friction}
     grades = []
     for path in submissions:
@@ -42,5 +43,5 @@ def grade_files(key: str | Path, submissions: Sequence[str | Path], *, budget: f
         except SpecError as error:
             grades.append(unreadable_grade(Path(path).stem, str(path), str(error.issues[0]), grading))
             continue
-        grades.append(grade(derivation, grading, submission, seed=seed))
+        grades.append(grade(derivation, grading, submission, seed=seed, key=context))
     return ClassGrades(problem.name, str(key), tuple(grades))

@@ -25,33 +25,32 @@ from __future__ import annotations
 
 import contextlib
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
 import mpmath
 import sympy
 
-from lagsolve.check.compare import (
-    CONVENTION,
-    DIFFERS,
+from lagsolve.check.compare import STATES, Comparer
+from lagsolve.check.diagnose import ReleasedConstraints, close
+from lagsolve.enums import TextEnum
+from lagsolve.errors import DerivationError
+from lagsolve.grade.evaluate import (
     FACTOR,
     MINIMUM_STATES,
     OFFSET,
-    OPPOSITE_SIGN,
-    RELEASED,
+    OPPOSITE,
+    SAME,
     SIGN_DEPENDENT,
-    STATES,
-    Comparer,
-    Comparison,
-    Verdict,
+    UNDECIDED,
+    Evaluator,
+    Relation,
+    proportional,
+    relation,
 )
-from lagsolve.check.diagnose import close, constant_relation
-from lagsolve.check.states import Compiled, StateSpace
-from lagsolve.check.status import Status
-from lagsolve.enums import TextEnum
-from lagsolve.errors import DerivationError
 from lagsolve.grade.key import Grading
-from lagsolve.grade.submission import NOT_GRADED, STEPS, Submission
+from lagsolve.grade.submission import NOT_GRADED, STEPS, Submission, names_for
 from lagsolve.mechanics.constraints import velocity_form
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms
@@ -144,13 +143,6 @@ class _Entry:
     message: str = ""
 
 
-@dataclass
-class _Plan:
-    """The comparisons one submission needs, made before the shared states are drawn."""
-
-    items: list[Comparison] = field(default_factory=list)
-
-
 def unreadable_grade(student: str, source: str, message: str, grading: Grading) -> SubmissionGrade:
     """Every weighted step unreadable: the file could not be read (``message`` says where and why)."""
     steps = tuple(StepGrade(s, UNREADABLE, None, 0.0, w, message) for s, w in _weighted(grading))
@@ -188,47 +180,96 @@ def key_answers(derivation: Derivation) -> dict[str, dict[str, Any]]:
     return out
 
 
-def grade(derivation: Derivation, grading: Grading, submission: Submission, *, seed: int = 0) -> SubmissionGrade:
-    """Grade ``submission`` against the key ``derivation`` with the key's ``grading``."""
+def grade(derivation: Derivation, grading: Grading, submission: Submission, *, seed: int = 0,
+          key: GradingKey | None = None) -> SubmissionGrade:
+    """Grade ``submission`` against the key ``derivation`` with the key's ``grading``; pass the same
+    :class:`GradingKey` for every submission of a class (the states and the key's values are then made once)."""
     reproducible()
-    return _Grader(derivation, grading, submission, seed).run()
+    if key is None or key.derivation is not derivation or key.grading != grading or key.seed != seed:
+        key = GradingKey(derivation, grading, seed)
+    return _Grader(key, submission).run()
+
+
+class GradingKey:
+    """What grading needs of the key, made once per class: its answers, the shared random states and the
+    values of every expression at them (:class:`~lagsolve.grade.evaluate.Evaluator`), the answers a known
+    mistake would give, and what follows from each distinct student Lagrangian and set of equations."""
+
+    def __init__(self, derivation: Derivation, grading: Grading, seed: int = 0) -> None:
+        self.derivation, self.grading, self.seed = derivation, grading, seed
+        self.answers = key_answers(derivation)
+        self.coordinates = [q.name for q in derivation.problem.coordinates]
+        self.comparer = Comparer(derivation, [], STATES, seed)  # check's preparation and rate of a quantity
+        self._values: Evaluator | None = None
+        self._equations: Evaluator | None = None
+        self._released: ReleasedConstraints | None = None
+        self._follows: dict[Any, dict[str, dict[str, Any]]] = {}
+        self._candidates: dict[tuple[str, Any], list[tuple[str, Any, str]]] = {}
+
+    @property
+    def values(self) -> Evaluator:
+        """Quantities, prepared as check prepares them (multipliers and normal forces put in, constraints used)."""
+        if self._values is None:
+            derivation = self.derivation
+            names = names_for(derivation.problem, normals={f.term.normal.name: f.term.normal
+                                                           for f in derivation.friction})
+            symbols = [*names.symbols.values(), *(derivation.multipliers or {}).values()]
+            extra: set[Any] = set()
+            for s in symbols:
+                with contextlib.suppress(TypeError, ValueError, AttributeError):
+                    extra |= self.comparer.prepare(sympy.sympify(s)).free_symbols
+            self._values = Evaluator(derivation, extra, self.seed, self.comparer.prepare)
+        return self._values
+
+    @property
+    def equations(self) -> Evaluator:
+        """Residuals of equations, with random accelerations, multipliers and normal forces."""
+        if self._equations is None:
+            derivation = self.derivation
+            model = derivation.model
+            normals = [f.term.normal for f in derivation.friction]
+            extra = [*model.accelerations, *derivation.multiplier_symbols, *normals]
+
+            def prepare(expr: Any) -> Any:
+                return derivation.elimination.apply(expr.xreplace(derivation.eliminated_accelerations))
+
+            self._equations = Evaluator(derivation, extra, self.seed, prepare)
+        return self._equations
+
+    def released(self, coordinate: str, found: Relation) -> str | None:
+        """The constraint whose release (λ = 0) gives the student's acceleration, if one does."""
+        if self._released is None:
+            self._released = ReleasedConstraints(self.derivation, self.values.space)
+        with contextlib.suppress(TypeError, ValueError, ZeroDivisionError):
+            return self._released.which(coordinate, list(found.rows))
+        return None
+
+    def follow_through(self, own: dict[str, dict[str, Any]]) -> dict[str, dict[str, Any]]:
+        """:func:`_follow_through`, once per distinct set of the student's T, V, L, equations and λ."""
+        signature = tuple((step, tuple(sorted(own.get(step, {}).items(), key=lambda kv: kv[0])))
+                          for step in ("kinetic", "potential", "lagrangian", "equations", "multipliers"))
+        if signature not in self._follows:
+            self._follows[signature] = _follow_through(self.derivation, own)
+        return self._follows[signature]
+
+    def candidates(self, step: str, reference: Any) -> list[tuple[str, Any, str]]:
+        if (step, reference) not in self._candidates:
+            self._candidates[(step, reference)] = _candidates(step, reference, self.derivation)
+        return self._candidates[(step, reference)]
 
 
 class _Grader:
-    def __init__(self, derivation: Derivation, grading: Grading, submission: Submission, seed: int) -> None:
-        self.derivation, self.grading, self.submission, self.seed = derivation, grading, submission, seed
-        self.key = key_answers(derivation)
+    def __init__(self, key: GradingKey, submission: Submission) -> None:
+        self.context, self.submission = key, submission
+        self.derivation, self.grading = key.derivation, key.grading
+        self.key = key.answers
         self.own = {name: step.entries for name, step in submission.steps.items() if step.issue is None}
-        self.follows = _follow_through(derivation, self.own)
-        self.coordinates = [q.name for q in derivation.problem.coordinates]
-        self.comparer: Any = None
-        self.equations: _Equations | None = None
-
-    # -- the comparisons, planned first so that every state is drawn once with every symbol known
-
-    def comparison(self, step: str, name: str, student: Any, reference: Any) -> Comparison:
-        return Comparison(step, name, (student,), (reference,), shifts=step in SHIFTS)
-
-    def plan(self) -> None:
-        items = []
-        for step, entries in self.own.items():
-            if step in ("equations", "constraints") or step not in self.grading.weights:
-                continue
-            for name, value in entries.items():
-                reference = self.key.get(step, {}).get(name)
-                if reference is not None:
-                    items.append(self.comparison(step, name, value, reference))
-                elif step == "conserved" and self.derivation.accelerations is not None:
-                    items.append(Comparison("conserved", name, (value,), None, shifts=True, rate=True))
-                own = self.follows.get(step, {}).get(name)
-                if own is not None:
-                    items.append(self.comparison(step, name, value, own))
-        self.comparer = Comparer(self.derivation, items, STATES, self.seed)
+        self.follows = key.follow_through(self.own)
+        self.coordinates = key.coordinates
 
     # -- grading
 
     def run(self) -> SubmissionGrade:
-        self.plan()
         grades = []
         for step, weight in _weighted(self.grading):
             grades.append(self.step(step, weight))
@@ -271,94 +312,99 @@ class _Grader:
                                                                          else "")
         return StepGrade(step, status, mistake, round(points, 6), weight, message)
 
+    def relation(self, value: Any, reference: Any) -> Relation:
+        values = self.context.values
+        return relation(values.values(value), values.values(reference), values.states)
+
     def entry(self, step: str, name: str, value: Any) -> _Entry:
         if step in ("equations", "constraints"):
             return self.equation(step, name, value)
         reference = self.key.get(step, {}).get(name)
         if reference is None and step == "conserved" and self.derivation.accelerations is not None:
-            verdict = self.comparer.verdict(Comparison("conserved", name, (value,), None, shifts=True, rate=True))
-            if verdict.status == Status.OK:
-                return _Entry(name, CORRECT, None, f"{_label(name)}conserved along the key's equations of motion")
-            return _Entry(name, INCORRECT, None, f"{_label(name)}not conserved along the key's equations of motion")
+            return self.conserved(name, value)
         if reference is None:
             return _Entry(name, INCORRECT, None, f"{_label(name)}the key has no such quantity")
-        verdict = self.comparer.verdict(self.comparison(step, name, value, reference))
-        if verdict.status == Status.OK:
-            note = " up to a constant" if verdict.reason == OFFSET else ""
+        found = self.relation(value, reference)
+        if found.kind == SAME or (found.kind == OFFSET and step in SHIFTS):
+            note = " up to a constant" if found.kind == OFFSET else ""
             return _Entry(name, CORRECT, None, f"{_label(name)}equivalent to the key{note}" if note else "")
-        if verdict.reason == CONVENTION and verdict.factor == -1 and self.grading.lambda_sign == "either":
+        convention = step == "multipliers" and found.kind == OPPOSITE
+        if convention and self.grading.lambda_sign == "either":
             return _Entry(name, CORRECT, None, f"{_label(name)}correct in the opposite sign convention of λ (accepted)")
         own = self.follows.get(step, {}).get(name)
         if own is not None:
-            followed = self.comparer.verdict(self.comparison(step, name, value, own))
-            if followed.status == Status.OK:
+            followed = self.relation(value, own)
+            if followed.kind == SAME or (followed.kind == OFFSET and step in SHIFTS):
                 return _Entry(name, FOLLOWS, None, f"{_label(name)}follows from the submission's own earlier steps")
-        mistake, detail = self.diagnose(step, verdict, value, reference)
+        mistake, detail = self.diagnose(step, name, found, value, reference)
         return _Entry(name, INCORRECT, mistake, f"{_label(name)}{detail}")
 
-    def diagnose(self, step: str, verdict: Verdict, value: Any, reference: Any) -> tuple[str | None, str]:
-        """The mistake and a sentence of evidence, from check's diagnosis first, then from the candidates."""
-        reason = verdict.reason
-        if reason == OPPOSITE_SIGN:
+    def conserved(self, name: str, value: Any) -> _Entry:
+        """A conserved quantity the key does not name: its rate along the key's equations of motion is 0."""
+        values = self.context.values
+        with contextlib.suppress(TypeError, ValueError, AttributeError):
+            rate = values.values(self.context.comparer.rate(value))
+            real = [v for v in rate or () if isinstance(v, mpmath.mpf)]
+            if len(real) >= MINIMUM_STATES and all(close(v, 0) for v in real):
+                return _Entry(name, CORRECT, None, f"{_label(name)}conserved along the key's equations of motion")
+        return _Entry(name, INCORRECT, None, f"{_label(name)}not conserved along the key's equations of motion")
+
+    def diagnose(self, step: str, name: str, found: Relation, value: Any, reference: Any) -> tuple[str | None, str]:
+        """The mistake and a sentence of evidence: how the values relate first, then the candidates."""
+        if found.kind == OPPOSITE:
             if step == "potential":
                 return POTENTIAL_SIGN, "the potential has the wrong sign (it is −V)"
+            if step == "multipliers":
+                return LAMBDA, "λ in the opposite sign convention (lagsolve's: d/dt ∂L/∂q̇ − ∂L/∂q = Q + Σ λ a)"
             return SIGN, "has the opposite sign of the key's answer"
-        if reason == CONVENTION:
-            return LAMBDA, "λ in the opposite sign convention (lagsolve's: d/dt ∂L/∂q̇ − ∂L/∂q = Q + Σ λ a)"
-        if reason == FACTOR:
-            factor = "" if verdict.factor is None else f" (it is {sympy.sstr(verdict.factor)} times the key's)"
-            return FACTOR_MISSING, f"off by a constant factor{factor}"
-        if reason == RELEASED:
-            return DROPPED, verdict.note
-        if reason == SIGN_DEPENDENT:
+        if found.kind == SIGN_DEPENDENT:
             return ABS, "agrees only where a quantity is positive: a magnitude written without Abs"
-        for mistake, candidate, detail in _candidates(step, reference, self.derivation):
-            if self.same(value, candidate, shifts=step in SHIFTS):
+        if step == "accelerations" and found.kind != UNDECIDED:
+            released = self.context.released(name, found)
+            if released is not None:
+                return DROPPED, (f"it is the acceleration with {released} released (λ = 0), as if the motion "
+                                 "were free to leave the constraint surface")
+        if found.kind == FACTOR:
+            return FACTOR_MISSING, f"off by a constant factor{_factor(found)}"
+        for mistake, candidate, detail in self.context.candidates(step, reference):
+            same = self.relation(value, candidate)
+            if same.kind == SAME or (same.kind == OFFSET and step in SHIFTS):
                 return mistake, detail
-        return None, _differs(verdict)
+        return None, self.differs(found)
 
-    def same(self, value: Any, candidate: Any, *, shifts: bool) -> bool:
-        """Whether ``value`` equals ``candidate`` at the comparer's states (up to a constant with ``shifts``)."""
-        comparer = self.comparer
-        space = comparer.space()
-        with contextlib.suppress(TypeError, ValueError, AttributeError):
-            a, b = Compiled(comparer.prepare(value), space), Compiled(comparer.prepare(candidate), space)
-            if not (set(a.symbols) | set(b.symbols)) <= _known(space):
-                return False
-            rows = []
-            for state in comparer.states():
-                x, y = a(state), b(state)
-                if isinstance(x, mpmath.mpf) and isinstance(y, mpmath.mpf):
-                    rows.append((state, [x], [y]))
-            if len(rows) < MINIMUM_STATES:
-                return False
-            if all(close(r[1][0], r[2][0]) for r in rows):
-                return True
-            return shifts and constant_relation(rows, (value,), (candidate,), self.derivation, additive=True)[0]
-        return False
+    def differs(self, found: Relation) -> str:
+        if found.kind == UNDECIDED:
+            return "could not be compared with the key's answer (too few states where both are defined)"
+        if found.witness is None:
+            return "not equivalent to the key's answer"
+        row = next(r for r in found.rows if r[0] is found.witness)
+        got, want = row[1][0], row[2][0]
+        shown = "" if got is None else f": {float(mpmath.re(got)):.4g} where the key has {float(want):.4g}"
+        return f"not equivalent to the key's answer (at {self.context.values.describe(found.witness)}{shown})"
 
     def equation(self, step: str, name: str, value: Any) -> _Entry:
         """An equation (a Lagrange equation, or a constraint), correct up to a constant factor."""
         if step == "constraints":
             return self.constraint(name, value)
-        if self.equations is None:
-            self.equations = _Equations(self.derivation, self.seed)
-        check = self.equations
+        check = self.context.equations
+
+        def same(other: Any) -> bool:
+            return proportional(check.values(value), check.values(other), check.states)
+
         reference = self.key["equations"][name]
-        if check.proportional(value, reference):
+        if same(reference):
             return _Entry(name, CORRECT)
-        flipped = _flip_multipliers(reference, self.derivation)
-        if check.proportional(value, flipped):
+        if same(_flip_multipliers(reference, self.derivation)):
             if self.grading.lambda_sign == "either":
                 return _Entry(name, CORRECT, None, f"{_label(name)}correct in the opposite sign convention of λ "
                                                    "(accepted)")
             return _Entry(name, INCORRECT, LAMBDA, f"{_label(name)}the multiplier terms have the opposite sign "
                                                    "(λ in the other sign convention)")
         own = self.follows.get("equations", {}).get(name)
-        if own is not None and check.proportional(value, own):
+        if own is not None and same(own):
             return _Entry(name, FOLLOWS, None, f"{_label(name)}follows from the submission's own Lagrangian")
-        for mistake, candidate, detail in _candidates("equations", reference, self.derivation):
-            if check.proportional(value, candidate):
+        for mistake, candidate, detail in self.context.candidates("equations", reference):
+            if same(candidate):
                 return _Entry(name, INCORRECT, mistake, f"{_label(name)}{detail}")
         return _Entry(name, INCORRECT, None, f"{_label(name)}not the key's equation, even up to a constant factor")
 
@@ -384,26 +430,19 @@ def _ratio(a: Any, b: Any) -> Any:
     return None
 
 
-def _known(space: StateSpace) -> set[Any]:
-    model = space.derivation.model
-    coefficients = set()
-    for _, symbols in space._functions.values():  # noqa: SLF001 - the random functions' coefficients
-        coefficients |= set(symbols)
-    return {space.time, *space.parameters, *space.extra, *model.coordinates, *model.velocities, *coefficients}
-
-
 def _label(name: str) -> str:
     return f"{name}: " if name else ""
 
 
-def _differs(verdict: Verdict) -> str:
-    witness = verdict.witness
-    if witness is None or verdict.reason != DIFFERS:
-        return "not equivalent to the key's answer"
-    values = ", ".join(f"{n} = {v:.3g}" for n, v in witness.values[:6])
-    got, want = witness.expected[0], witness.derived[0]
-    shown = "" if got is None or want is None else f": {got.real:.4g} where the key has {want.real:.4g}"
-    return f"not equivalent to the key's answer (at {values}{shown})"
+def _factor(found: Relation) -> str:
+    """`` (it is k times the key's)`` when the ratio is one small rational number at every state."""
+    ratios = [r[1][0] / r[2][0] for r in found.rows if isinstance(r[1][0], mpmath.mpf) and abs(r[2][0]) > 1e-20]
+    if not ratios or not all(close(v, ratios[0]) for v in ratios):
+        return " (a factor that depends on the parameters)"
+    guess = Fraction(float(ratios[0])).limit_denominator(1000)
+    if not close(mpmath.mpf(guess.numerator) / guess.denominator, ratios[0]):
+        return ""
+    return f" (it is {sympy.sstr(sympy.Rational(guess.numerator, guess.denominator))} times the key's)"
 
 
 # -- the answers a mistake would give -------------------------------------------------------------------
@@ -454,42 +493,6 @@ def _candidates(step: str, reference: Any, derivation: Derivation) -> list[tuple
     for term in _terms(reference):
         out.append((signs, reference - 2 * term, f"the term {sympy.sstr(term)} has the wrong sign"))
     return out
-
-
-# -- equations: functions of the state, the accelerations and the multipliers ----------------------------
-
-
-class _Equations:
-    """Equations compared as residuals at random states with random accelerations and multipliers (and
-    normal forces), after the constraints are used (eliminated coordinates, velocities, accelerations)."""
-
-    def __init__(self, derivation: Derivation, seed: int) -> None:
-        self.derivation = derivation
-        model = derivation.model
-        extra = [*model.accelerations, *derivation.multiplier_symbols, *(f.term.normal for f in derivation.friction)]
-        self.space = StateSpace(derivation, extra, seed)
-        self.states = self.space.states(STATES)
-        self.free = set(extra) - set(derivation.eliminated_accelerations)
-
-    def prepare(self, expr: Any) -> Any:
-        derivation = self.derivation
-        return derivation.elimination.apply(expr.xreplace(derivation.eliminated_accelerations))
-
-    def proportional(self, value: Any, reference: Any) -> bool:
-        with contextlib.suppress(TypeError, ValueError, AttributeError):
-            a, b = Compiled(self.prepare(value), self.space), Compiled(self.prepare(reference), self.space)
-            rows = []
-            for state in self.states:
-                x, y = a(state), b(state)
-                if isinstance(x, mpmath.mpf) and isinstance(y, mpmath.mpf):
-                    rows.append((state, [x], [y]))
-            if len(rows) < MINIMUM_STATES or all(close(r[2][0], 0) for r in rows):
-                return False
-            if all(close(r[1][0], r[2][0]) for r in rows):
-                return True
-            constant, factor = constant_relation(rows, (value,), (reference,), self.derivation, additive=False)
-            return bool(constant) and not (factor is not None and factor == 0)
-        return False
 
 
 # -- follow-through: what the submission's own steps give -----------------------------------------------
