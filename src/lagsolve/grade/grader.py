@@ -37,6 +37,7 @@ from lagsolve.check.diagnose import ReleasedConstraints, close
 from lagsolve.enums import TextEnum
 from lagsolve.errors import DerivationError
 from lagsolve.grade.evaluate import (
+    DIFFERS,
     FACTOR,
     MINIMUM_STATES,
     OFFSET,
@@ -46,6 +47,7 @@ from lagsolve.grade.evaluate import (
     UNDECIDED,
     Evaluator,
     Relation,
+    constant_in_groups,
     proportional,
     relation,
 )
@@ -357,6 +359,10 @@ class _Grader:
             if step == "multipliers":
                 return LAMBDA, "λ in the opposite sign convention (lagsolve's: d/dt ∂L/∂q̇ − ∂L/∂q = Q + Σ λ a)"
             return SIGN, "has the opposite sign of the key's answer"
+        if step in SHIFTS and found.kind in (FACTOR, OFFSET, DIFFERS) and _opposite_up_to_constant(found):
+            if step == "potential":
+                return POTENTIAL_SIGN, "the potential has the wrong sign (it is −V, up to a constant)"
+            return SIGN, "has the opposite sign of the key's answer (up to a constant)"
         if found.kind == SIGN_DEPENDENT:
             return ABS, "agrees only where a quantity is positive: a magnitude written without Abs"
         if step == "accelerations" and found.kind != UNDECIDED:
@@ -428,6 +434,12 @@ def _ratio(a: Any, b: Any) -> Any:
             return None
         return sympy.cancel(sympy.together(a / b))
     return None
+
+
+def _opposite_up_to_constant(found: Relation) -> bool:
+    """E + D is constant at the states of each group (and E is not D up to a constant)."""
+    rows = [(state, [-e], d) for state, (e,), d in found.rows if isinstance(e, mpmath.mpf)]
+    return len(rows) == len(found.rows) and constant_in_groups(rows, additive=True)
 
 
 def _label(name: str) -> str:
