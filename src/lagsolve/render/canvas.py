@@ -24,9 +24,12 @@ def fit(text: str, width_inches: float, fontsize: float = 12.0) -> str:
 
 
 def figure(title: str, rows: int = 1, cols: int = 1, **kwargs: Any) -> tuple[Any, Any]:
+    """A titled figure of ``rows`` × ``cols`` panels at the text width: 1.1 in a row (at least 2.6 in in all), so
+    that a three-row figure and a one-row one share a printed page (the hole table's coordinates and phase
+    portraits) instead of each leaving half a page empty; the text stays at its size."""
     from lagsolve.render.picture import Picture
 
-    size = kwargs.pop("figsize", (WIDTH, min(1.15 + 1.45 * rows, MAX_HEIGHT)))
+    size = kwargs.pop("figsize", (WIDTH, min(max(2.6, 1.15 + 1.1 * rows), MAX_HEIGHT)))
     fig = Picture(figsize=size, layout="constrained")
     axes = fig.subplots(rows, cols, squeeze=False, **kwargs)
     fig.suptitle(fit(title, size[0] - 0.3), parse_math=False)  # user text: a "$" in a name is not mathtext
