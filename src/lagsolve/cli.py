@@ -500,9 +500,10 @@ def grade(key: Path, submissions: tuple[Path, ...], fmt: str, output: Path | Non
 
 
 @main.command()
-@click.argument("kind", type=click.Choice(["input", "output"]))
+@click.argument("kind", type=click.Choice(["input", "output", "grades"]))
 def schema(kind: str) -> None:
-    """Print the JSON Schema (draft 2020-12) of the problem file (input) or of the JSON result (output).
+    """Print the JSON Schema (draft 2020-12) of the problem file (input), of the JSON result (output) or of
+    lagsolve grade's JSON grades (grades).
 
     \b
     lagsolve schema input > problem.schema.json
