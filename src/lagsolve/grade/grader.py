@@ -227,7 +227,8 @@ class GradingKey:
 
     @property
     def equations(self) -> Evaluator:
-        """Residuals of equations, with random accelerations, multipliers and normal forces."""
+        """Residuals of equations, with random accelerations, multipliers and normal forces (new ones at each
+        state, so that a constant factor between two equations cannot depend on them)."""
         if self._equations is None:
             derivation = self.derivation
             model = derivation.model
@@ -237,7 +238,7 @@ class GradingKey:
             def prepare(expr: Any) -> Any:
                 return derivation.elimination.apply(expr.xreplace(derivation.eliminated_accelerations))
 
-            self._equations = Evaluator(derivation, extra, self.seed, prepare)
+            self._equations = Evaluator(derivation, extra, self.seed, prepare, varying=True)
         return self._equations
 
     def released(self, coordinate: str, found: Relation) -> str | None:
