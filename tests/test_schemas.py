@@ -10,7 +10,15 @@ from typing import Any
 import pytest
 from ruamel.yaml import YAML
 
-from lagsolve.schemas import input_schema, output_schema, schema
+from lagsolve.schemas import (
+    GRADE_MISTAKES,
+    GRADE_STATUSES,
+    GRADE_STEPS,
+    grades_schema,
+    input_schema,
+    output_schema,
+    schema,
+)
 
 jsonschema = pytest.importorskip("jsonschema")
 
@@ -29,15 +37,15 @@ def _errors(validator: object, instance: object) -> list[str]:
 
 
 def test_schemas_are_valid_draft_2020_12() -> None:
-    """Both schemas are themselves valid JSON Schemas of draft 2020-12."""
-    for kind in ("input", "output"):
+    """The three schemas are themselves valid JSON Schemas of draft 2020-12."""
+    for kind in ("input", "output", "grades"):
         assert schema(kind)["$schema"] == "https://json-schema.org/draft/2020-12/schema"
         _validator(schema(kind))
 
 
 def test_unknown_kind_is_a_value_error() -> None:
     """Asking for another schema names the ones there are."""
-    with pytest.raises(ValueError, match="unknown schema 'both'; use one of: input, output"):
+    with pytest.raises(ValueError, match="unknown schema 'both'; use one of: input, output, grades"):
         schema("both")
 
 
@@ -78,3 +86,34 @@ def test_output_schema_refuses_a_wrong_version() -> None:
     data = json.loads(GOLDEN[0].read_text(encoding="utf-8"))
     data["format_version"] = 2
     assert _errors(_validator(output_schema()), data)
+
+
+def test_grades_schema_names_are_the_graders() -> None:
+    """The steps, statuses and mistake names in the grades schema are those lagsolve.grade uses."""
+    from lagsolve.grade.grader import MISTAKES, GradeStatus
+    from lagsolve.grade.submission import STEPS
+
+    assert GRADE_STEPS == STEPS and GRADE_MISTAKES == MISTAKES
+    assert set(GRADE_STATUSES) == {str(s) for s in GradeStatus}
+
+
+def test_json_grades_of_the_examples_are_valid(tmp_path: Path) -> None:
+    """``lagsolve grade --format json`` on examples/grading/*.yaml (and a file that cannot be read) is valid
+    against the grades schema; a grade with an unknown status or mistake is not."""
+    from click.testing import CliRunner
+
+    from lagsolve.cli import main
+
+    examples = sorted(str(p) for p in (ROOT / "examples" / "grading").glob("*.yaml"))
+    (tmp_path / "eve.yaml").write_text("steps: [not, a, mapping]\n")
+    result = CliRunner().invoke(main, ["grade", str(ROOT / "problems" / "bead.yaml"), *examples,
+                                       str(tmp_path / "eve.yaml"), "--format", "json"])
+    assert result.exit_code == 2, result.output
+    data = json.loads(result.stdout)
+    validator = _validator(grades_schema())
+    assert len(data["submissions"]) == 5 and _errors(validator, data) == []
+    assert {s["status"] for g in data["submissions"] for s in g["steps"]} == set(GRADE_STATUSES)
+    step = data["submissions"][0]["steps"][0]
+    for bad in ({**step, "status": "partial"}, {**step, "mistake": "typo"}, {**step, "extra": 1}):
+        data["submissions"][0]["steps"][0] = bad
+        assert _errors(validator, data)

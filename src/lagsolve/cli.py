@@ -455,18 +455,23 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
                                       "gradescope: the autograder's results.json.")
 @click.option("-o", "--output", type=click.Path(path_type=Path), default=None,
               help="Write the grades into this folder (gradescope: one folder per student) instead of printing.")
+@click.option("--summary", type=click.Choice(["md", "html"]), default=None,
+              help="The class summary (per step: the statuses counted, the most common mistakes with one anonymous "
+                   "example each): printed instead of the grades, or written as summary.md/summary.html with -o.")
 @_number("--timeout", key="timeout", default=120.0, show_default=True, help="CPU seconds for the key's derivation.")
-def grade(key: Path, submissions: tuple[Path, ...], fmt: str, output: Path | None, timeout: float) -> None:
+def grade(key: Path, submissions: tuple[Path, ...], fmt: str, output: Path | None, summary: str | None,
+          timeout: float) -> None:
     """Grade each student SUBMISSION step by step against the problem file KEY (docs/grading.md).
 
     Exit 2 when KEY is invalid or a submission file cannot be read at all (the others are still graded).
 
     \b
     lagsolve grade problems/bead.yaml examples/grading/*.yaml --format csv
+    lagsolve grade problems/bead.yaml examples/grading/*.yaml --summary md
     """
     from lagsolve.app.grading import grade_files
     from lagsolve.files import safe_slug, write_file
-    from lagsolve.render.grades import FILES, RENDER, gradescope_result
+    from lagsolve.render.grades import FILES, RENDER, SUMMARY, SUMMARY_FILES, gradescope_result
 
     try:
         grades = grade_files(key, submissions, budget=timeout)
@@ -475,7 +480,7 @@ def grade(key: Path, submissions: tuple[Path, ...], fmt: str, output: Path | Non
     for g in grades.grades:
         if g.error:
             click.echo(f"error: {g.error}", err=True)
-    text = RENDER[fmt](grades)
+    text = RENDER[fmt](grades) if summary is None or output is not None else SUMMARY[summary](grades)
     try:
         if output is None:
             click.echo(text, nl=False)
@@ -487,15 +492,18 @@ def grade(key: Path, submissions: tuple[Path, ...], fmt: str, output: Path | Non
                            json.dumps(gradescope_result(g), indent=2, ensure_ascii=False) + "\n")
         else:
             write_file(output, FILES[fmt], text)
+        if output is not None and summary is not None:
+            write_file(output, SUMMARY_FILES[summary], SUMMARY[summary](grades))
     except LagsolveError as error:
         sys.exit(_fail(error))
     sys.exit(2 if grades.unreadable else 0)
 
 
 @main.command()
-@click.argument("kind", type=click.Choice(["input", "output"]))
+@click.argument("kind", type=click.Choice(["input", "output", "grades"]))
 def schema(kind: str) -> None:
-    """Print the JSON Schema (draft 2020-12) of the problem file (input) or of the JSON result (output).
+    """Print the JSON Schema (draft 2020-12) of the problem file (input), of the JSON result (output) or of
+    lagsolve grade's JSON grades (grades).
 
     \b
     lagsolve schema input > problem.schema.json

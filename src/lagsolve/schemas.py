@@ -1,10 +1,11 @@
-"""JSON Schemas (draft 2020-12) of the problem file and of the JSON result (``lagsolve schema``).
+"""JSON Schemas (draft 2020-12) of the problem file, of the JSON result and of the JSON grades (``lagsolve schema``).
 
 The input schema describes the shape the loader accepts (keys, nesting, which values are
 expressions); the loader checks more than a schema can say (declared names, expression grammar,
 sizes), so a file valid against the schema can still be refused, never the reverse. The output
 schema describes :func:`lagsolve.render.report.result_dict` (format section 2 and the additions
-in ``docs/format.md``). Plain data: nothing here imports SymPy.
+in ``docs/format.md``); the grades schema describes ``lagsolve grade --format json``
+(:func:`lagsolve.render.grades.grades_json`, ``docs/grading.md``). Plain data: nothing here imports SymPy.
 """
 
 from __future__ import annotations
@@ -15,7 +16,15 @@ from typing import Any
 from lagsolve.problem.methods import METHODS
 
 DRAFT = "https://json-schema.org/draft/2020-12/schema"
-KINDS = ("input", "output")
+KINDS = ("input", "output", "grades")
+#: the steps and mistake names of ``lagsolve grade`` (the contract's; tests check them against lagsolve.grade)
+GRADE_STEPS = ("kinetic", "potential", "lagrangian", "constraints", "momenta", "generalized_forces", "equations",
+               "accelerations", "multipliers", "constraint_forces", "normal_force", "conserved", "effective_potential",
+               "equilibria", "frequencies", "hamiltonian")
+GRADE_STATUSES = ("correct", "incorrect", "follows", "missing", "unreadable")
+GRADE_MISTAKES = ("sign_error", "missing_factor", "lambda_sign_convention", "missing_velocity_squared_terms",
+                  "missing_moving_constraint_term", "dropped_constraint", "wrong_potential_sign",
+                  "missing_kinetic_term", "wrong_dimension", "missing_abs")
 
 _NAME = {"type": "string", "pattern": "^[A-Za-z][A-Za-z0-9_]*$"}
 _EXPR = {"type": ["string", "number"], "description": "an expression in the declared names (or a number)"}
@@ -260,18 +269,50 @@ def _hamiltonian(text: dict[str, Any], texts: dict[str, Any], by_name: dict[str,
             "description": "Hamiltonian mechanics (docs/format.md, Output)"}
 
 
+def grades_schema() -> dict[str, Any]:
+    """The schema of the grades of a class (``lagsolve grade --format json``)."""
+    points = {"type": "number", "minimum": 0}
+    step = _closed({
+        "step": {"enum": list(GRADE_STEPS)},
+        "status": {"enum": list(GRADE_STATUSES)},
+        "mistake": {"anyOf": [{"type": "null"}, {"enum": list(GRADE_MISTAKES)}]},
+        "points": points,
+        "max_points": points,
+        "message": {"type": "string"},
+    }, ("step", "status", "mistake", "points", "max_points", "message"))
+    submission = _closed({
+        "student": {"type": "string", "minLength": 1},
+        "source": {"type": "string"},
+        "points": points,
+        "max_points": points,
+        "error": {"type": ["string", "null"], "description": "why the file could not be read at all (every step "
+                                                             "is then unreadable)"},
+        "steps": {"type": "array", "items": step},
+    }, ("student", "source", "points", "max_points", "error", "steps"))
+    return {
+        "$schema": DRAFT,
+        "$id": "https://lagsolve.invalid/schema/grades-v1.json",
+        "title": "lagsolve grades (lagsolve grade --format json)",
+        **_closed({"key": {"type": "string", "description": "the key problem's name"},
+                   "source": {"type": "string", "description": "the key problem's file"},
+                   "submissions": {"type": "array", "items": submission}}, ("key", "source", "submissions")),
+    }
+
+
 def schema(kind: str) -> dict[str, Any]:
-    """The schema named ``kind`` ("input" or "output").
+    """The schema named ``kind`` ("input", "output" or "grades").
 
     Raises
     ------
     ValueError
-        ``kind`` is neither.
+        ``kind`` is none of them.
     """
     if kind == "input":
         return input_schema()
     if kind == "output":
         return output_schema()
+    if kind == "grades":
+        return grades_schema()
     raise ValueError(f"unknown schema {kind!r}; use one of: {', '.join(KINDS)}")
 
 

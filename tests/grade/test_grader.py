@@ -146,6 +146,18 @@ def test_wrong_without_a_known_cause_is_incorrect_and_unnamed(key: tuple) -> Non
     assert grades["accelerations"].points == 1.0  # y is right: half the step
 
 
+def test_an_equation_off_by_a_term_without_the_state_is_not_a_factor_away(key: tuple) -> None:
+    """y: m y_ddot − m g − λ is not the key's m y_ddot + m g − λ times a constant; −3 times the key's is (the
+    hole table's z equation, which depends on no coordinate, is the case that needs the accelerations and λ
+    drawn anew at each state: tests/grade/test_seeded.py)."""
+    right = {"x": f"m*x_ddot = -lambda_wire*{F1}", "y": "m*y_ddot + m*g - lambda_wire"}
+    assert graded(key, steps(equations=right))["equations"].status == "correct"
+    scaled = {**right, "y": "-3*m*y_ddot - 3*m*g + 3*lambda_wire"}
+    assert graded(key, steps(equations=scaled))["equations"].status == "correct"
+    wrong = graded(key, steps(equations={**right, "y": "m*y_ddot - m*g - lambda_wire"}))["equations"]
+    assert wrong.status == "incorrect" and wrong.points == 1.0, wrong.message  # x is right: half the step
+
+
 @pytest.mark.parametrize("hostile", ["__import__('os').system('true')", "9**9**9**9", "exp(exp(exp(exp(9))))",
                                      "m*q_dot", "x_ddot", "eval(1)", "m*x_dot = ="])
 def test_hostile_text_is_unreadable_and_the_rest_graded(key: tuple, hostile: str) -> None:

@@ -240,7 +240,11 @@ def test_seeded_submission(keys: dict[str, tuple], name: str, kind: str, data: A
 
 
 def test_follow_through_after_a_wrong_potential(keys: dict[str, tuple]) -> None:
-    """hole_table with V = −m2 g z: L, the z equation and the accelerations that follow get credit."""
+    """hole_table with V = −m2 g z (the key's is +m2 g z: z is the height, gravity −g along it): L, the
+    z equation and the accelerations that follow get credit. The z equation m2 z̈ − m2 g + λ is not the key's
+    m2 z̈ + m2 g + λ up to a constant factor: the accelerations and λ are drawn anew at each state, so a ratio
+    that depends on them is no constant (with them drawn per group of states it was, and this step was
+    graded correct)."""
     steps = dict(SEEDS["hole_table"]["steps"])
     steps.update({"potential": "-m2*g*z", "lagrangian": "m1*(r_dot**2 + r**2*theta_dot**2)/2 + m2*z_dot**2/2 + m2*g*z",
                   "generalized_forces": {"r": "m1*r*theta_dot**2", "theta": "0", "z": "m2*g"},
@@ -253,7 +257,8 @@ def test_follow_through_after_a_wrong_potential(keys: dict[str, tuple]) -> None:
                   "constraint_forces": {"string": "m1*m2*Abs(r*theta_dot**2 - g)/(m1 + m2)"}})
     graded = _grade(keys, "hole_table", steps)
     assert graded["potential"].mistake == "wrong_potential_sign"
-    for step in ("lagrangian", "generalized_forces", "accelerations", "multipliers", "constraint_forces"):
+    for step in ("lagrangian", "generalized_forces", "equations", "accelerations", "multipliers",
+                 "constraint_forces"):
         assert graded[step].status == "follows", (step, graded[step].message)
         assert graded[step].points == graded[step].max_points
     assert graded["kinetic"].status == graded["momenta"].status == "correct"

@@ -14,8 +14,9 @@ sign, the same only where a quantity is positive, a constant factor, a constant 
 
 from __future__ import annotations
 
+import random
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import mpmath
@@ -61,14 +62,23 @@ class Evaluator:
     """The values of expressions at one key's shared states.
 
     ``prepare`` turns an expression into what is compiled (the constraints used, the derived multipliers
-    put in, ...); ``extra`` lists the symbols other than the problem's that get random values.
+    put in, ...); ``extra`` lists the symbols other than the problem's that get random values: like the
+    parameters, one value per group of states, unless ``varying`` (the unknowns of an equation: accelerations,
+    multipliers, normal forces), when each state has its own. A ratio constant in a group then depends on the
+    parameters only, never on those unknowns: ``m2*z_ddot + m2*g + lambda`` is not ``m2*z_ddot - m2*g + lambda``
+    times a constant, although both are the same at every state of a group when the unknowns are per group.
     """
 
     def __init__(self, derivation: Derivation, extra: Iterable[Any], seed: int,
-                 prepare: Callable[[Any], Any]) -> None:
+                 prepare: Callable[[Any], Any], *, varying: bool = False) -> None:
         self.derivation = derivation
         self.space = StateSpace(derivation, extra, seed)
         self.states = self.space.states(STATES)
+        if varying and self.space.extra:
+            rng = random.Random(f"lagsolve-grade-{seed}")  # a str seed: the same whatever PYTHONHASHSEED
+            self.states = [replace(state, values={**state.values, **{s: mpmath.mpf(rng.uniform(-2.0, 2.0))
+                                                                     for s in self.space.extra}})
+                           for state in self.states]
         self.prepare = prepare
         model = derivation.model
         coefficients: set[Any] = set()

@@ -92,7 +92,8 @@ MAX_TERMS = 24
 
 @dataclass(frozen=True)
 class StepGrade:
-    """The grade of one step: ``status``, ``mistake`` (a name of :data:`MISTAKES` or None), points."""
+    """The grade of one step: ``status``, ``mistake`` (a name of :data:`MISTAKES` or None), points; ``answer`` is
+    the submission's text of the entry the mistake was found in (hostile text: only for the class summary)."""
 
     step: str
     status: GradeStatus
@@ -100,6 +101,7 @@ class StepGrade:
     points: float
     max_points: float
     message: str
+    answer: str = ""
 
 
 @dataclass(frozen=True)
@@ -225,7 +227,8 @@ class GradingKey:
 
     @property
     def equations(self) -> Evaluator:
-        """Residuals of equations, with random accelerations, multipliers and normal forces."""
+        """Residuals of equations, with random accelerations, multipliers and normal forces (new ones at each
+        state, so that a constant factor between two equations cannot depend on them)."""
         if self._equations is None:
             derivation = self.derivation
             model = derivation.model
@@ -235,7 +238,7 @@ class GradingKey:
             def prepare(expr: Any) -> Any:
                 return derivation.elimination.apply(expr.xreplace(derivation.eliminated_accelerations))
 
-            self._equations = Evaluator(derivation, extra, self.seed, prepare)
+            self._equations = Evaluator(derivation, extra, self.seed, prepare, varying=True)
         return self._equations
 
     def released(self, coordinate: str, found: Relation) -> str | None:
@@ -312,7 +315,8 @@ class _Grader:
         mistake = next((e.mistake for e in entries if e.mistake is not None), None)
         message = "; ".join(e.message for e in entries if e.message) or ("equivalent to the key" if status == CORRECT
                                                                          else "")
-        return StepGrade(step, status, mistake, round(points, 6), weight, message)
+        example = _example(entries, mistake, read.texts)
+        return StepGrade(step, status, mistake, round(points, 6), weight, message, example)
 
     def relation(self, value: Any, reference: Any) -> Relation:
         values = self.context.values
@@ -426,6 +430,14 @@ class _Grader:
                 return _Entry(name, CORRECT)
         return _Entry(name, INCORRECT, None, f"{_label(name)}not the key's constraint ψ = "
                                              f"{sympy.sstr(terms.expression)} = 0 up to a constant factor")
+
+
+def _example(entries: list[_Entry], mistake: str | None, texts: dict[str, str]) -> str:
+    """The text of the first incorrect entry with the step's mistake, as written (``name: text`` in a mapping)."""
+    for e in entries:
+        if e.status == INCORRECT and e.mistake == mistake and e.name in texts:
+            return f"{_label(e.name)}{texts[e.name]}"
+    return ""
 
 
 def _ratio(a: Any, b: Any) -> Any:

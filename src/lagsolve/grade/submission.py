@@ -43,12 +43,14 @@ MAX_NAME = 200
 @dataclass(frozen=True)
 class Step:
     """One step of a submission: ``entries`` maps an entry name (a coordinate, a constraint, a quantity;
-    ``""`` for a single expression) to its SymPy expression; ``issue`` says why the step cannot be read."""
+    ``""`` for a single expression) to its SymPy expression; ``issue`` says why the step cannot be read;
+    ``texts`` keeps each entry as written (hostile text: for a class summary's examples, escaped there)."""
 
     name: str
     entries: dict[str, Any] = field(default_factory=dict)
     issue: Issue | None = None
     line: int = 0
+    texts: dict[str, str] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -156,7 +158,7 @@ class _Reader:
             entries = self.entries(name, value, path)
         except _Unreadable as bad:
             return Step(name, {}, bad.issue, line)
-        return Step(name, entries, None, line)
+        return Step(name, entries, None, line, _texts(name, value, entries))
 
     def entries(self, name: str, value: Any, path: tuple) -> dict[str, Any]:
         if name in SCALAR:
@@ -215,6 +217,15 @@ class _Reader:
             return gateway.parse(text, names)
         except ExpressionError as error:
             raise _Unreadable(self.issue(path, error.message, error.hint)) from None
+
+
+def _texts(name: str, value: Any, entries: dict[str, Any]) -> dict[str, str]:
+    """Each read entry as the student wrote it (``value`` is the step's YAML, already read without error)."""
+    if name in SCALAR:
+        return {"": str(value)}
+    if name == "effective_potential":
+        return {k: str(value["expression"]) for k in entries}
+    return {k: str(value[k]) for k in entries if k in value}
 
 
 def _sides(text: str) -> tuple[str, str] | None:
