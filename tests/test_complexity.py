@@ -32,7 +32,6 @@ LATER = {
     "render/sketch.py::__init__",
     "mechanics/geometry.py::_cartesian_shape",
     "mechanics/numeric_equilibria.py::numeric_linearization",
-    "mechanics/normal.py::normal_forces",
     "mechanics/dimensions.py::dimension_issues",
     "check/states.py::__init__",
     "mechanics/equilibria.py::effective_potential",
