@@ -36,7 +36,6 @@ LATER = {
     "check/states.py::__init__",
     "mechanics/equilibria.py::effective_potential",
     "mechanics/steady.py::steady_motions",
-    "mechanics/minimal.py::reduce_system",
     "problem/readers/constraints.py::constraints",
     "mechanics/linearize.py::_mode",
     "sweep/api.py::sweep",
