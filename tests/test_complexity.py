@@ -38,7 +38,6 @@ LATER = {
     "mechanics/steady.py::steady_motions",
     "problem/readers/constraints.py::constraints",
     "mechanics/linearize.py::_mode",
-    "sweep/api.py::sweep",
     "render/checks.py::describe",
     "numeric/potential.py::potential_curve",
     "mechanics/mode_shapes.py::_null_space",
