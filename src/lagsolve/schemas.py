@@ -60,84 +60,7 @@ def _one_or_many(item: dict[str, Any]) -> dict[str, Any]:
 
 def input_schema() -> dict[str, Any]:
     """The schema of a problem file (format v1 and lagsolve's additions)."""
-    expr = {"$ref": "#/$defs/expression"}
-    vector = {"$ref": "#/$defs/vector"}
-    equilibrium = _closed({"value": expr, "stable": {"type": "boolean"}, "frequency": expr}, ("value",))
-    properties = {
-        "name": {"type": "string", "minLength": 1},
-        "description": _TEXT,
-        "time": {"anyOf": [{"$ref": "#/$defs/name"}, _closed({"name": {"$ref": "#/$defs/name"}, "unit": _UNIT})]},
-        "parameters": _names(_closed({"description": _TEXT, "positive": {"type": "boolean"},
-                                      "real": {"type": "boolean"}, "value": {"type": "number"}, "unit": _UNIT})),
-        "functions": _names(_closed({"description": _TEXT, "unit": _UNIT})),
-        "coordinates": _names(_closed({"description": _TEXT, "positive": {"type": "boolean"}, "unit": _UNIT})),
-        "particles": _by_name(_closed({"mass": expr, "position": vector}, ("mass", "position"))),
-        "bodies": _by_name(_closed({
-            "mass": expr, "position": vector,
-            "inertia": {"anyOf": [expr, {"type": "array", "items": expr}]},
-            "angular_velocity": {"anyOf": [expr, {"type": "array", "items": expr}]},
-        }, ("mass", "position", "inertia", "angular_velocity"))),
-        "gravity": vector,
-        "kinetic": expr,
-        "potential": expr,
-        "dissipation": expr,
-        "forces": {"type": "array", "items": {"oneOf": [
-            _closed({"coordinate": {"$ref": "#/$defs/name"}, "value": expr}, ("coordinate", "value")),
-            _closed({"on": {"$ref": "#/$defs/name"}, "force": vector}, ("on", "force")),
-        ]}},
-        "constraints": _by_name({
-            **_closed({"holonomic": expr, "nonholonomic": expr, "on": _one_or_many({"$ref": "#/$defs/name"}),
-                       "unilateral": {"type": "boolean"},
-                       "at": {**vector, "description": "the point of the body or particle named first in 'on' "
-                                              "where it acts: a contact, the second name gets the opposite force"}}),
-            "oneOf": [{"required": ["holonomic"]}, {"required": ["nonholonomic"]}],
-        }),
-        "friction": _by_name(_closed({
-            "coefficient": expr, "static": expr,
-            "on": {**_one_or_many({"$ref": "#/$defs/name"}),
-                   "description": "what slides, or [what slides, what carries the surface]"},
-            "at": {**vector, "description": "the contact point of a body (default: its normal constraint's)"},
-            "normal": _one_or_many({"$ref": "#/$defs/name"}), "sliding": _one_or_many({"$ref": "#/$defs/name"}),
-        }, ("coefficient", "normal"))),
-        "expected": _closed({
-            "accelerations": _by_name(expr),
-            "multipliers": _by_name(expr),
-            "constraint_forces": _by_name({"anyOf": [expr, _closed({"vector": vector, "magnitude": expr})]}),
-            "reduced": _closed({"independent": {"type": "array", "items": {"$ref": "#/$defs/name"}},
-                                "accelerations": _by_name(expr)}),
-            "conserved": _by_name(expr),
-            "effective_potential": _closed({"coordinate": {"$ref": "#/$defs/name"}, "expression": expr,
-                                            "equilibria": {"type": "array", "items": equilibrium}},
-                                           ("coordinate",)),
-            "normal_modes": {"type": "array", "items": _closed({
-                "at": _by_name(expr), "stable": {"type": "boolean"},
-                "squared_frequencies": {"type": "array", "items": expr, "minItems": 1},
-                "shapes": {"type": "array", "items": {"type": "array", "items": expr, "minItems": 1}, "minItems": 1,
-                           "description": "one mode shape per squared frequency, a component per coordinate"},
-            }, ("at",))},
-            "steady_motions": _closed({"coordinate": {"$ref": "#/$defs/name"}, "rate": {"$ref": "#/$defs/name"},
-                                       "values": {"type": "array", "items": expr, "minItems": 1},
-                                       "stable": {"type": "boolean"}, "frequency": expr},
-                                      ("coordinate", "rate", "values")),
-        }),
-        "simulation": _closed({
-            "values": _by_name({"type": "number"}),
-            "functions": {"type": "object", "additionalProperties": expr,
-                          "description": "concrete forms of declared functions: \"f(u)\": expression in u"},
-            "initial": _by_name({"type": "number"}),
-            "t_end": _POSITIVE,
-            "samples": {"type": "integer", "minimum": 2, "maximum": 1_000_000},
-            "method": {"enum": list(METHODS)},
-            "rtol": _POSITIVE,
-            "atol": _POSITIVE,
-        }),
-        "independent": {"type": "array", "items": {"$ref": "#/$defs/name"}, "minItems": 1},
-        "grading": _closed({  # lagsolve grade (docs/grading.md)
-            "weights": {"type": "object", "additionalProperties": {"type": "number", "minimum": 0, "maximum": 1000}},
-            "follow_through": {"type": "number", "minimum": 0, "maximum": 1},
-            "lambda_sign": {"enum": ["strict", "either"]},
-        }),
-    }
+    properties = {**_declarations(), **_mechanics(), "expected": _expected(), **_running()}
     return {
         "$schema": DRAFT,
         "$id": "https://lagsolve.invalid/schema/problem-v1.json",
@@ -147,6 +70,107 @@ def input_schema() -> dict[str, Any]:
         "properties": properties,
         "additionalProperties": False,
         "$defs": {"name": _NAME, "expression": _EXPR, "vector": _VECTOR},
+    }
+
+
+def _declarations() -> dict[str, Any]:
+    """The problem file's title and declarations: name, description, time, parameters, functions, coordinates."""
+    return {
+    "name": {"type": "string", "minLength": 1},
+    "description": _TEXT,
+    "time": {"anyOf": [{"$ref": "#/$defs/name"}, _closed({"name": {"$ref": "#/$defs/name"}, "unit": _UNIT})]},
+    "parameters": _names(_closed({"description": _TEXT, "positive": {"type": "boolean"},
+                                  "real": {"type": "boolean"}, "value": {"type": "number"}, "unit": _UNIT})),
+    "functions": _names(_closed({"description": _TEXT, "unit": _UNIT})),
+    "coordinates": _names(_closed({"description": _TEXT, "positive": {"type": "boolean"}, "unit": _UNIT})),
+    }
+
+
+def _mechanics() -> dict[str, Any]:
+    """The problem file's mechanics: particles, bodies, gravity, energies, forces, constraints, friction."""
+    expr = {"$ref": "#/$defs/expression"}
+    vector = {"$ref": "#/$defs/vector"}
+    return {
+    "particles": _by_name(_closed({"mass": expr, "position": vector}, ("mass", "position"))),
+    "bodies": _by_name(_closed({
+        "mass": expr, "position": vector,
+        "inertia": {"anyOf": [expr, {"type": "array", "items": expr}]},
+        "angular_velocity": {"anyOf": [expr, {"type": "array", "items": expr}]},
+    }, ("mass", "position", "inertia", "angular_velocity"))),
+    "gravity": vector,
+    "kinetic": expr,
+    "potential": expr,
+    "dissipation": expr,
+    "forces": {"type": "array", "items": {"oneOf": [
+        _closed({"coordinate": {"$ref": "#/$defs/name"}, "value": expr}, ("coordinate", "value")),
+        _closed({"on": {"$ref": "#/$defs/name"}, "force": vector}, ("on", "force")),
+    ]}},
+    "constraints": _by_name({
+        **_closed({"holonomic": expr, "nonholonomic": expr, "on": _one_or_many({"$ref": "#/$defs/name"}),
+                   "unilateral": {"type": "boolean"},
+                   "at": {**vector, "description": "the point of the body or particle named first in 'on' "
+                                          "where it acts: a contact, the second name gets the opposite force"}}),
+        "oneOf": [{"required": ["holonomic"]}, {"required": ["nonholonomic"]}],
+    }),
+    "friction": _by_name(_closed({
+        "coefficient": expr, "static": expr,
+        "on": {**_one_or_many({"$ref": "#/$defs/name"}),
+               "description": "what slides, or [what slides, what carries the surface]"},
+        "at": {**vector, "description": "the contact point of a body (default: its normal constraint's)"},
+        "normal": _one_or_many({"$ref": "#/$defs/name"}), "sliding": _one_or_many({"$ref": "#/$defs/name"}),
+    }, ("coefficient", "normal"))),
+    }
+
+
+def _expected() -> dict[str, Any]:
+    """The problem file's ``expected`` section: the answers a derivation is checked against."""
+    expr = {"$ref": "#/$defs/expression"}
+    vector = {"$ref": "#/$defs/vector"}
+    equilibrium = _closed({"value": expr, "stable": {"type": "boolean"}, "frequency": expr}, ("value",))
+    return _closed({
+        "accelerations": _by_name(expr),
+        "multipliers": _by_name(expr),
+        "constraint_forces": _by_name({"anyOf": [expr, _closed({"vector": vector, "magnitude": expr})]}),
+        "reduced": _closed({"independent": {"type": "array", "items": {"$ref": "#/$defs/name"}},
+                            "accelerations": _by_name(expr)}),
+        "conserved": _by_name(expr),
+        "effective_potential": _closed({"coordinate": {"$ref": "#/$defs/name"}, "expression": expr,
+                                        "equilibria": {"type": "array", "items": equilibrium}},
+                                       ("coordinate",)),
+        "normal_modes": {"type": "array", "items": _closed({
+            "at": _by_name(expr), "stable": {"type": "boolean"},
+            "squared_frequencies": {"type": "array", "items": expr, "minItems": 1},
+            "shapes": {"type": "array", "items": {"type": "array", "items": expr, "minItems": 1}, "minItems": 1,
+                       "description": "one mode shape per squared frequency, a component per coordinate"},
+        }, ("at",))},
+        "steady_motions": _closed({"coordinate": {"$ref": "#/$defs/name"}, "rate": {"$ref": "#/$defs/name"},
+                                   "values": {"type": "array", "items": expr, "minItems": 1},
+                                   "stable": {"type": "boolean"}, "frequency": expr},
+                                  ("coordinate", "rate", "values")),
+    })
+
+
+def _running() -> dict[str, Any]:
+    """The problem file's ``simulation``, ``independent`` and ``grading`` sections."""
+    expr = {"$ref": "#/$defs/expression"}
+    return {
+    "simulation": _closed({
+        "values": _by_name({"type": "number"}),
+        "functions": {"type": "object", "additionalProperties": expr,
+                      "description": "concrete forms of declared functions: \"f(u)\": expression in u"},
+        "initial": _by_name({"type": "number"}),
+        "t_end": _POSITIVE,
+        "samples": {"type": "integer", "minimum": 2, "maximum": 1_000_000},
+        "method": {"enum": list(METHODS)},
+        "rtol": _POSITIVE,
+        "atol": _POSITIVE,
+    }),
+    "independent": {"type": "array", "items": {"$ref": "#/$defs/name"}, "minItems": 1},
+    "grading": _closed({  # lagsolve grade (docs/grading.md)
+        "weights": {"type": "object", "additionalProperties": {"type": "number", "minimum": 0, "maximum": 1000}},
+        "follow_through": {"type": "number", "minimum": 0, "maximum": 1},
+        "lambda_sign": {"enum": ["strict", "either"]},
+    }),
     }
 
 

@@ -408,15 +408,7 @@ class _Checker:
 
     def numeric(self, item: Item, expected: tuple[Any, ...], derived: tuple[Any, ...],
                 base: dict[str, Any]) -> Verdict:
-        space = self.space()
-        got = [Compiled(e, space) for e in expected]
-        want = [Compiled(d, space) for d in derived]
-        rows: list[Row] = []
-        for state in self.states():
-            d = [w(state) for w in want]
-            if any(v is None or (item.real and not isinstance(v, mpmath.mpf)) for v in d):
-                continue  # outside the derived result's domain
-            rows.append((state, [g(state) for g in got], d))
+        rows = self.sampled_rows(item, expected, derived)
         if len(rows) < MINIMUM_STATES:
             return Verdict(**base, status=UNCHECKED, reason=TOO_FEW_STATES, states=len(rows),
                            note=f"only {len(rows)} states on the constraint surface where the derived value is "
@@ -431,25 +423,59 @@ class _Checker:
         if any(e is None for _, es, _ in rows for e in es):
             return Verdict(**base, status=MISMATCH, reason=UNDEFINED,
                            note="the expected answer is undefined at a state that satisfies the constraints")
+        verdict = self.sign_verdict(item, base, rows, agree, expected, derived)
+        if verdict is None:
+            verdict = self.released_verdict(item, base, rows)
+        return verdict if verdict is not None else self.relation_verdict(item, base, rows, expected, derived)
+
+    def sampled_rows(self, item: Item, expected: tuple[Any, ...], derived: tuple[Any, ...]) -> list[Row]:
+        """The expected and derived values at each sampled state where the derived result is defined (and
+        real, for a real quantity)."""
+        space = self.space()
+        got = [Compiled(e, space) for e in expected]
+        want = [Compiled(d, space) for d in derived]
+        rows: list[Row] = []
+        for state in self.states():
+            d = [w(state) for w in want]
+            if any(v is None or (item.real and not isinstance(v, mpmath.mpf)) for v in d):
+                continue  # outside the derived result's domain
+            rows.append((state, [g(state) for g in got], d))
+        return rows
+
+    def sign_verdict(self, item: Item, base: dict[str, Any], rows: list[Row], agree: list[bool],
+                     expected: tuple[Any, ...], derived: tuple[Any, ...]) -> Verdict | None:
+        """When the answers differ by their sign only: everywhere (the opposite sign, or the other λ convention)
+        or where a condition fails (a sign-dependent answer). None when they differ otherwise."""
         flipped = [all(close(e, -d) for e, d in zip(es, ds, strict=True)) for _, es, ds in rows]
-        if all(a or f for a, f in zip(agree, flipped, strict=True)):
-            if k == 0:
-                if item.quantity == "multipliers":
-                    return Verdict(**base, status=MISMATCH, reason=CONVENTION, factor=sympy.Integer(-1),
-                                   note="λ with the opposite sign convention: expected = −derived, and that is the "
-                                        "only difference")
-                return Verdict(**base, status=MISMATCH, reason=OPPOSITE_SIGN, factor=sympy.Integer(-1))
-            condition = sign_condition(rows, agree, expected, derived, self.space())
-            return Verdict(**base, status=WARNING, reason=SIGN_DEPENDENT, condition=condition,
-                           note="agrees where the condition holds and has the opposite sign elsewhere")
-        if item.quantity == "accelerations":
-            if self._released is None:
-                self._released = ReleasedConstraints(self.derivation, self.space())
-            released = self._released.which(item.name, rows)
-            if released is not None:
-                return Verdict(**base, status=MISMATCH, reason=RELEASED,
-                               note=f"it is the acceleration with {released} released (λ = 0), as if the motion "
-                                    "were free to leave the constraint surface")
+        if not all(a or f for a, f in zip(agree, flipped, strict=True)):
+            return None
+        if sum(agree) == 0:
+            if item.quantity == "multipliers":
+                return Verdict(**base, status=MISMATCH, reason=CONVENTION, factor=sympy.Integer(-1),
+                               note="λ with the opposite sign convention: expected = −derived, and that is the "
+                                    "only difference")
+            return Verdict(**base, status=MISMATCH, reason=OPPOSITE_SIGN, factor=sympy.Integer(-1))
+        condition = sign_condition(rows, agree, expected, derived, self.space())
+        return Verdict(**base, status=WARNING, reason=SIGN_DEPENDENT, condition=condition,
+                       note="agrees where the condition holds and has the opposite sign elsewhere")
+
+    def released_verdict(self, item: Item, base: dict[str, Any], rows: list[Row]) -> Verdict | None:
+        """An expected acceleration that is the one with a constraint released (λ = 0); None otherwise."""
+        if item.quantity != "accelerations":
+            return None
+        if self._released is None:
+            self._released = ReleasedConstraints(self.derivation, self.space())
+        released = self._released.which(item.name, rows)
+        if released is None:
+            return None
+        return Verdict(**base, status=MISMATCH, reason=RELEASED,
+                       note=f"it is the acceleration with {released} released (λ = 0), as if the motion "
+                            "were free to leave the constraint surface")
+
+    def relation_verdict(self, item: Item, base: dict[str, Any], rows: list[Row], expected: tuple[Any, ...],
+                         derived: tuple[Any, ...]) -> Verdict:
+        """Answers that differ by a constant factor (or the other λ convention with one), by a constant offset
+        (harmless for a quantity with an arbitrary zero level), or otherwise."""
         constant, factor = constant_relation(rows, expected, derived, self.derivation, additive=False)
         if constant:
             opposite = factor is not None and factor.is_negative and item.quantity == "multipliers"

@@ -61,78 +61,121 @@ def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
     """The analysis of a finished derivation (see the module docstring), each part a stage of ``stages``
     (a fresh budget when None): a part that runs out of its share, or does not apply, says why in its note."""
     stages = stages if stages is not None else Stages()
-    problem, model, lagrange = derivation.problem, derivation.model, derivation.lagrange
+    problem = derivation.problem
     constraints = derivation.form.constraints if derivation.form is not None else \
-        tuple(constraint_terms(c, model) for c in problem.constraints)
-    taken = set(problem.symbols) | {f.name for f in problem.functions} | {momentum_name(c.symbol)
-                                                                          for c in problem.coordinates}
-    classes = stages.run("constraint classification", classify_all, constraints, model, problem.constraints, taken)
-    # a normal force the multiplier route keeps as a symbol N (coupled friction) stays a symbol here too
-    raw = derivation.raw_accelerations
-    normals = {f.term.normal: f.normal_force for f in derivation.friction
-               if raw is not None and not any(a.has(f.term.normal) for a in raw)}
-    reduced, reduced_note = None, ""
-    if classes is None:
-        reduced_note = _stage_reason(stages, "constraint classification")
-        stages.skip("minimal coordinates", "needs the constraint classification, which did not finish")
-        classes = ()
-    else:
-        found = stages.run("minimal coordinates", reduce_system, model, constraints, classes,
-                           lagrange.generalized_forces, normals, raw, problem.independent)
-        reduced, reduced_note = found if found is not None else (None, _stage_reason(stages, "minimal coordinates"))
-    if reduced is not None:
-        system = MotionSystem(reduced.model, reduced.generalized_forces, reduced.acceleration_map(), kind="reduced")
-    else:
-        forces = tuple(f.xreplace(normals) for f in lagrange.generalized_forces)
-        accelerations = dict(zip(model.accelerations, raw, strict=True)) if raw is not None else {}
-        system = MotionSystem(model, forces, accelerations, constraints, constraint_surface(constraints, model),
-                              kind="full")
+        tuple(constraint_terms(c, derivation.model) for c in problem.constraints)
+    normals = _kept_normals(derivation)
+    classes, reduced, reduced_note = _classify_and_reduce(stages, derivation, constraints, normals)
+    system = _motion_system(derivation, constraints, reduced, normals)
     friction = bool(problem.friction)
-    conservation = stages.run("conserved quantities", conserved_quantities, system, friction=friction)
-    if conservation is None:
-        conservation = Conservation((), (), (_stage_reason(stages, "conserved quantities"),))
-    else:
-        conservation = _with_symmetries(stages, derivation.problem, system, conservation, reduced)
-    effective, effective_note = None, ""
-    if friction:
-        stages.skip("effective potential", "Coulomb friction acts: equilibria are not isolated points", "n/a")
-        effective_note = "Coulomb friction acts"
-    else:
-        found_v = stages.run("effective potential", effective_potential, system, conservation, friction)
-        effective, effective_note = (found_v if found_v is not None
-                                     else (None, _stage_reason(stages, "effective potential")))
+    conservation = _conservation(stages, problem, system, reduced, friction)
+    effective, effective_note = _effective(stages, system, conservation, friction)
     steady, steady_note = _steady(stages, system, effective)
-    linear, linear_note = None, "the effective potential covers this system"
-    if effective is None and applies(system, conservation.cyclic, friction):
-        linear_note = applies(system, conservation.cyclic, friction)
-        stages.skip("equilibria and normal modes", linear_note, "n/a")
-    elif effective is None:
-        values = dict(problem.simulation.values) if problem.simulation is not None else None
-        # with numbers to fall back on, a symbolic solve that has not finished in a few seconds will not help
-        cap = NUMERIC_FALLBACK_CAP if values is not None and not problem.functions else None
-        found_l = stages.run("equilibria and normal modes", linearize, system, conservation.cyclic, friction, values,
-                             cap=cap, instead="numeric equilibria at the simulation values are given instead")
-        linear, linear_note = (found_l if found_l is not None
-                               else (None, _stage_reason(stages, "equilibria and normal modes")))
-        spec = problem.simulation
-        if linear is None and spec is not None and not problem.functions:
-            numeric = stages.run("numeric equilibria", numeric_linearization, system, dict(spec.values),
-                                 dict(spec.initial))
-            if numeric is not None:
-                linear, linear_note = numeric, f"numeric: {linear_note}"
-            else:
-                linear_note += f"; {_stage_reason(stages, 'numeric equilibria')}"
-                stages.settle("numeric equilibria")  # the analysis section says it
-        elif linear is not None and not linear.complete and spec is not None and not problem.functions:
-            # closed-form equilibria that may not be all: the others are looked for numerically
-            completed = stages.run("numeric equilibria", complete_numerically, linear, system, dict(spec.values),
-                                   dict(spec.initial))
-            linear = completed if completed is not None else linear
-    else:
-        stages.skip("equilibria and normal modes", "the effective potential covers this system", "n/a")
+    linear, linear_note = _linear(stages, problem, system, conservation, effective, friction)
     effective_contact, modes_contact = _contact(derivation, reduced, effective, linear)
     return Analysis(classes, reduced, reduced_note, system, conservation, effective, effective_note,
                     linear, linear_note, effective_contact, modes_contact, steady, steady_note)
+
+
+def _kept_normals(derivation: Derivation) -> dict[Any, Any]:
+    """The normal forces of friction to put in: a normal force the multiplier route keeps as a symbol N
+    (coupled friction) stays a symbol here too, the others are replaced by their expression."""
+    raw = derivation.raw_accelerations
+    return {f.term.normal: f.normal_force for f in derivation.friction
+            if raw is not None and not any(a.has(f.term.normal) for a in raw)}
+
+
+def _classify_and_reduce(stages: Stages, derivation: Derivation, constraints: tuple[Any, ...],
+                         normals: dict[Any, Any]) -> tuple[tuple[Any, ...], ReducedSystem | None, str]:
+    """The constraint classes (stage ``constraint classification``) and the system in minimal coordinates
+    (stage ``minimal coordinates``), or why there is none: no classes means no reduction is tried."""
+    problem, model = derivation.problem, derivation.model
+    taken = set(problem.symbols) | {f.name for f in problem.functions} | {momentum_name(c.symbol)
+                                                                          for c in problem.coordinates}
+    classes = stages.run("constraint classification", classify_all, constraints, model, problem.constraints, taken)
+    if classes is None:
+        note = _stage_reason(stages, "constraint classification")
+        stages.skip("minimal coordinates", "needs the constraint classification, which did not finish")
+        return (), None, note
+    found = stages.run("minimal coordinates", reduce_system, model, constraints, classes,
+                       derivation.lagrange.generalized_forces, normals, derivation.raw_accelerations,
+                       problem.independent)
+    reduced, reduced_note = found if found is not None else (None, _stage_reason(stages, "minimal coordinates"))
+    return classes, reduced, reduced_note
+
+
+def _motion_system(derivation: Derivation, constraints: tuple[Any, ...], reduced: ReducedSystem | None,
+                   normals: dict[Any, Any]) -> MotionSystem:
+    """The system the rest of the analysis studies: the reduced one when minimal coordinates exist, else the
+    full one with its constraints (and the raw accelerations, when the derivation solved for them)."""
+    if reduced is not None:
+        return MotionSystem(reduced.model, reduced.generalized_forces, reduced.acceleration_map(), kind="reduced")
+    model, raw = derivation.model, derivation.raw_accelerations
+    forces = tuple(f.xreplace(normals) for f in derivation.lagrange.generalized_forces)
+    accelerations = dict(zip(model.accelerations, raw, strict=True)) if raw is not None else {}
+    return MotionSystem(model, forces, accelerations, constraints, constraint_surface(constraints, model),
+                        kind="full")
+
+
+def _conservation(stages: Stages, problem: Any, system: MotionSystem, reduced: ReducedSystem | None,
+                  friction: bool) -> Conservation:
+    """The conserved quantities (stage ``conserved quantities``) with the symmetries' momenta, or none and why."""
+    conservation = stages.run("conserved quantities", conserved_quantities, system, friction=friction)
+    if conservation is None:
+        return Conservation((), (), (_stage_reason(stages, "conserved quantities"),))
+    return _with_symmetries(stages, problem, system, conservation, reduced)
+
+
+def _effective(stages: Stages, system: MotionSystem, conservation: Conservation,
+               friction: bool) -> tuple[EffectivePotential | None, str]:
+    """The effective potential (stage ``effective potential``), or why none: Coulomb friction rules it out."""
+    if friction:
+        stages.skip("effective potential", "Coulomb friction acts: equilibria are not isolated points", "n/a")
+        return None, "Coulomb friction acts"
+    found = stages.run("effective potential", effective_potential, system, conservation, friction)
+    return found if found is not None else (None, _stage_reason(stages, "effective potential"))
+
+
+def _linear(stages: Stages, problem: Any, system: MotionSystem, conservation: Conservation,
+            effective: EffectivePotential | None, friction: bool) -> tuple[Linearization | None, str]:
+    """The equilibria and normal modes (stage ``equilibria and normal modes``) when no effective potential
+    covers the system and linearizing applies, or why none."""
+    if effective is not None:
+        stages.skip("equilibria and normal modes", "the effective potential covers this system", "n/a")
+        return None, "the effective potential covers this system"
+    why_not = applies(system, conservation.cyclic, friction)
+    if why_not:
+        stages.skip("equilibria and normal modes", why_not, "n/a")
+        return None, why_not
+    values = dict(problem.simulation.values) if problem.simulation is not None else None
+    # with numbers to fall back on, a symbolic solve that has not finished in a few seconds will not help
+    cap = NUMERIC_FALLBACK_CAP if values is not None and not problem.functions else None
+    found = stages.run("equilibria and normal modes", linearize, system, conservation.cyclic, friction, values,
+                       cap=cap, instead="numeric equilibria at the simulation values are given instead")
+    linear, linear_note = found if found is not None else (None, _stage_reason(stages, "equilibria and normal modes"))
+    if problem.simulation is None or problem.functions:
+        return linear, linear_note
+    return _numeric_equilibria(stages, problem.simulation, system, linear, linear_note)
+
+
+def _numeric_equilibria(stages: Stages, spec: Any, system: MotionSystem, linear: Linearization | None,
+                        linear_note: str) -> tuple[Linearization | None, str]:
+    """With simulation values: the equilibria found numerically (stage ``numeric equilibria``) when the
+    symbolic solve gave none, or the closed-form ones completed by those it may have missed."""
+    if linear is None:
+        numeric = stages.run("numeric equilibria", numeric_linearization, system, dict(spec.values),
+                             dict(spec.initial))
+        if numeric is not None:
+            return numeric, f"numeric: {linear_note}"
+        linear_note += f"; {_stage_reason(stages, 'numeric equilibria')}"
+        stages.settle("numeric equilibria")  # the analysis section says it
+        return None, linear_note
+    if not linear.complete:
+        # closed-form equilibria that may not be all: the others are looked for numerically
+        completed = stages.run("numeric equilibria", complete_numerically, linear, system, dict(spec.values),
+                               dict(spec.initial))
+        linear = completed if completed is not None else linear
+    return linear, linear_note
 
 
 def _with_symmetries(stages: Stages, problem: Any, system: MotionSystem, conservation: Conservation,

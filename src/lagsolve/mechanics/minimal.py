@@ -171,21 +171,14 @@ def reduce_system(model: Model, constraints: tuple[ConstraintTerms, ...], classe
     elimination, reason = choose_dependent(holonomic, model, independent)
     if elimination is None:
         return None, reason
-    kept = tuple(i for i, q in enumerate(model.coordinates) if q not in elimination.positions)
-    q_ind = tuple(model.coordinates[i] for i in kept)
-    kinetic = tidy_sum(elimination.apply(model.kinetic))
-    potential = tidy_sum(elimination.apply(model.potential))
-    reduced_model = Model(model.time, q_ind, tuple(model.velocities[i] for i in kept),
-                          tuple(model.accelerations[i] for i in kept), kinetic, potential, kinetic - potential)
-    path = [elimination.apply(model.coordinates[i]) for i in range(len(model.coordinates))]
-    forces = [elimination.apply(f.xreplace(normal_forces)) for f in generalized_forces]
-    q_red = tuple(tidy(sum((forces[i] * sympy.diff(path[i], q) for i in range(len(path))), sympy.Integer(0)))
-                  for q in q_ind)
+    kept, reduced_model = _reduced_model(model, elimination)
+    q_ind, kinetic, potential = reduced_model.coordinates, reduced_model.kinetic, reduced_model.potential
+    q_red = _reduced_forces(model, elimination, generalized_forces, normal_forces, q_ind)
     terms = lagrange_terms(reduced_model, (), q_red, engine="symengine")
     if not elimination.positions and full_accelerations is None:
         solve = False  # nothing eliminated, and the full system's explicit solve was too large: the same here
+    constants = tuple(k.constant for k in classes if k.constant is not None)
     if not solve:
-        constants = tuple(k.constant for k in classes if k.constant is not None)
         return ReducedSystem(independent=q_ind, substitution=elimination, constants=constants, model=reduced_model,
                              generalized_forces=q_red, lagrange=terms, raw_accelerations=(), kinetic=kinetic,
                              potential=potential, lagrangian=kinetic - potential, equation_sides=(),
@@ -199,18 +192,46 @@ def reduce_system(model: Model, constraints: tuple[ConstraintTerms, ...], classe
             return None, f"the reduced equations are singular ({exc})"
     sides = tuple((tidy_sum(r - g), tidy_sum(f))
                   for r, g, f in zip(terms.momenta_rates, terms.gradients, q_red, strict=True))
-    agreement = "symbolic" if full_accelerations is not None else "unchecked"
-    for k, i in enumerate(kept if full_accelerations is not None else ()):
-        status = zero_status(elimination.apply((full_accelerations or ())[i]) - raw[k])
-        if status is Zero.NONZERO:
-            agreement = "differ"
-            break
-        if status is Zero.UNDECIDED:
-            agreement = "numeric"
-    constants = tuple(k.constant for k in classes if k.constant is not None)
     return ReducedSystem(
         independent=q_ind, substitution=elimination, constants=constants, model=reduced_model,
         generalized_forces=q_red, lagrange=terms, raw_accelerations=tuple(raw), kinetic=kinetic,
         potential=potential, lagrangian=kinetic - potential, equation_sides=sides,
-        accelerations={q.name: tidy(a) for q, a in zip(q_ind, raw, strict=True)}, agreement=agreement,
+        accelerations={q.name: tidy(a) for q, a in zip(q_ind, raw, strict=True)},
+        agreement=_agreement(kept, elimination, full_accelerations, raw),
     ), ""
+
+
+def _reduced_model(model: Model, elimination: Elimination) -> tuple[tuple[int, ...], Model]:
+    """The indices of the coordinates kept (those not eliminated) and the model in them: the energies with
+    the eliminated coordinates put in."""
+    kept = tuple(i for i, q in enumerate(model.coordinates) if q not in elimination.positions)
+    q_ind = tuple(model.coordinates[i] for i in kept)
+    kinetic = tidy_sum(elimination.apply(model.kinetic))
+    potential = tidy_sum(elimination.apply(model.potential))
+    return kept, Model(model.time, q_ind, tuple(model.velocities[i] for i in kept),
+                       tuple(model.accelerations[i] for i in kept), kinetic, potential, kinetic - potential)
+
+
+def _reduced_forces(model: Model, elimination: Elimination, generalized_forces: tuple[Any, ...],
+                    normal_forces: dict[Any, Any], q_ind: tuple[Any, ...]) -> tuple[Any, ...]:
+    """The generalized forces along the kept coordinates: Σ_i Q_i ∂q_i/∂q_k along the elimination's path."""
+    path = [elimination.apply(model.coordinates[i]) for i in range(len(model.coordinates))]
+    forces = [elimination.apply(f.xreplace(normal_forces)) for f in generalized_forces]
+    return tuple(tidy(sum((forces[i] * sympy.diff(path[i], q) for i in range(len(path))), sympy.Integer(0)))
+                 for q in q_ind)
+
+
+def _agreement(kept: tuple[int, ...], elimination: Elimination, full_accelerations: tuple[Any, ...] | None,
+               raw: tuple[Any, ...]) -> str:
+    """How the reduced accelerations agree with the multiplier route's: "symbolic", "numeric" (some difference
+    not decided zero symbolically), "differ", or "unchecked" without the multiplier route's."""
+    if full_accelerations is None:
+        return "unchecked"
+    agreement = "symbolic"
+    for k, i in enumerate(kept):
+        status = zero_status(elimination.apply(full_accelerations[i]) - raw[k])
+        if status is Zero.NONZERO:
+            return "differ"
+        if status is Zero.UNDECIDED:
+            agreement = "numeric"
+    return agreement

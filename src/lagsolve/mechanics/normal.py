@@ -63,9 +63,35 @@ def normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, .
                   model: Model, elimination: Elimination) -> dict[str, NormalForce]:
     """Each contact's normal force (see the module docstring), by contact name."""
     surface = Surface(constraints, model, elimination)
+    parts = _parts(frictions, multipliers, constraints, reactions)
+    zero_n = {f.normal: 0 for f in frictions}
+    out, known = _decoupled(frictions, parts, surface, elimination, zero_n)
+    coupled = [f for f in frictions if f.name not in out]
+    if not coupled:
+        return out
+    a_vec, b_vec = _coupled_vectors(coupled, parts, elimination, zero_n, known)
+    for f in coupled:
+        total = a_vec[f.name] + sum((b_vec[f.name, g.normal] * g.normal for g in coupled), sympy.zeros(
+            a_vec[f.name].rows, 1))
+        system = sympy.Eq(f.normal, norm([unit_signs(tidy(c)) for c in total]))
+        out[f.name] = NormalForce(None, "", None, system)
+    if len(coupled) == 1:
+        f = coupled[0]
+        out[f.name] = _one_coupled(f, parts[f.name], a_vec[f.name], b_vec[f.name, f.normal], elimination, zero_n,
+                                   known, out[f.name].system)
+        return out
+    solved = _several(coupled, parts, a_vec, b_vec)
+    for f in coupled:
+        out[f.name] = _several_coupled(f, solved, out[f.name].system)
+    return out
+
+
+def _parts(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, ...],
+           constraints: tuple[ConstraintTerms, ...], reactions: dict[str, Reaction],
+           ) -> dict[str, list[tuple[sympy.Matrix, Any]]]:
+    """Each contact's constraint forces on its particle: (direction, multiplier) for each of its constraints.
+    A constraint whose force on the particle is not known leaves the normal force unknown: an error."""
     index = {c.name: j for j, c in enumerate(constraints)}
-    symbols = [f.normal for f in frictions]
-    zero_n = {N: 0 for N in symbols}
     parts: dict[str, list[tuple[sympy.Matrix, Any]]] = {}
     for f in frictions:
         parts[f.name] = []
@@ -76,9 +102,18 @@ def normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, .
                     f"friction {f.name!r}: constraint {name!r} has no known force on {f.particle!r} "
                     f"({reactions[name].note or 'it acts on other particles'}), so the normal force is unknown")
             parts[f.name].append((sympy.Matrix(pushes[0].direction), multipliers[index[name]]))
+    return parts
+
+
+def _decoupled(frictions: tuple[FrictionTerm, ...], parts: dict[str, list[tuple[sympy.Matrix, Any]]],
+               surface: Surface, elimination: Elimination, zero_n: dict[Any, Any],
+               ) -> tuple[dict[str, NormalForce], dict[Any, Any]]:
+    """The normal forces of the contacts whose multipliers do not depend on any N on the constraint surface,
+    in closed form, by contact name; and the same values by normal-force symbol."""
     # coupling on the constraint surface: which contacts' N change which multipliers. The values below are
     # written with the elimination alone (shorter than with the surface's velocities put in); they hold on the
     # surface either way, and a coefficient that vanishes there has been found so already.
+    symbols = [f.normal for f in frictions]
     depends = {f.name: [N for N in symbols if not all(surface.is_zero(sympy.diff(lam, N)) for _, lam in parts[f.name])]
                for f in frictions}
     out: dict[str, NormalForce] = {}
@@ -91,9 +126,13 @@ def normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, .
             out[f.name] = NormalForce(value, "decoupled: on the constraint surface the multipliers do not depend "
                                              "on the friction, so N follows from them in closed form", None,
                                       sympy.Eq(f.normal, value))
-    coupled = [f for f in frictions if f.name not in out]
-    if not coupled:
-        return out
+    return out, known
+
+
+def _coupled_vectors(coupled: list[FrictionTerm], parts: dict[str, list[tuple[sympy.Matrix, Any]]],
+                     elimination: Elimination, zero_n: dict[Any, Any], known: dict[Any, Any],
+                     ) -> tuple[dict[str, sympy.Matrix], dict[tuple[str, Any], sympy.Matrix]]:
+    """The coupled contacts' constraint force written a + Σ b N: ``a`` by contact, ``b`` by (contact, N)."""
     a_vec: dict[str, sympy.Matrix] = {}
     b_vec: dict[tuple[str, Any], sympy.Matrix] = {}
     for f in coupled:
@@ -103,46 +142,46 @@ def normal_forces(frictions: tuple[FrictionTerm, ...], multipliers: tuple[Any, .
         for g in coupled:
             b_vec[f.name, g.normal] = sum((u * elimination.apply(sympy.diff(lam, g.normal).xreplace(known))
                                            for u, lam in parts[f.name]), sympy.zeros(rows, 1))
-    for f in coupled:
-        total = a_vec[f.name] + sum((b_vec[f.name, g.normal] * g.normal for g in coupled), sympy.zeros(
-            a_vec[f.name].rows, 1))
-        system = sympy.Eq(f.normal, norm([unit_signs(tidy(c)) for c in total]))
-        out[f.name] = NormalForce(None, "", None, system)
-    if len(coupled) == 1:
-        f = coupled[0]
-        a, b = a_vec[f.name], b_vec[f.name, f.normal]
-        if len(parts[f.name]) == 1:
-            # N = |a + b N| with scalars along the one constraint's force
-            length = norm(list(parts[f.name][0][0]))
-            lam = parts[f.name][0][1]
-            a_s = tidy(length * elimination.apply(lam.xreplace(zero_n).xreplace(known)))
-            b_s = tidy(unit_signs(length * elimination.apply(sympy.diff(lam, f.normal))))
-            known_sign, core = sign_core(a_s)
-            sign_a = sympy.Integer(known_sign) if known_sign is not None and core == 1 else sympy.sign(core)
-            value = tidy(sympy.Abs(a_s)) / tidy(1 - b_s * sign_a)
-            valid = sympy.StrictLessThan(tidy(unit_signs(sympy.expand(b_s**2))), 1)
-            case = ("coupled, one contact: the friction changes the multiplier, so N solves N = |a + b N|; "
-                    "N = |a|/(1 - b sign(a)) while |b| < 1")
-        else:
-            aa, ab, bb = (tidy(unit_signs(e)) for e in ((a.T * a)[0], (a.T * b)[0], (b.T * b)[0]))
-            value = tidy(unit_signs((ab + sympy.sqrt(ab**2 + (1 - bb) * aa)) / (1 - bb)))
-            valid = sympy.StrictLessThan(bb, 1)
-            case = ("coupled, one contact: the friction changes the multipliers, so N solves N = |a + b N|, a "
-                    "quadratic with one non-negative root")
-        out[f.name] = NormalForce(value, case, valid, out[f.name].system)
-        return out
-    solved = _several(coupled, parts, a_vec, b_vec)
-    for f in coupled:
-        if solved is None:
-            case = ("coupled, with several contacts whose sign pattern is not determined: N stays implicit in the "
-                    "results; it solves the system N = |a + B N| given (simulate solves it at every step)")
-            out[f.name] = NormalForce(None, case, None, out[f.name].system)
-        else:
-            values, valid = solved
-            case = ("coupled, several contacts with the sign of each a known: N = (I - S B)^-1 S a, valid while "
-                    "every N is non-negative")
-            out[f.name] = NormalForce(values[f.normal], case, valid, out[f.name].system)
-    return out
+    return a_vec, b_vec
+
+
+def _one_coupled(f: FrictionTerm, parts: list[tuple[sympy.Matrix, Any]], a: sympy.Matrix, b: sympy.Matrix,
+                 elimination: Elimination, zero_n: dict[Any, Any], known: dict[Any, Any],
+                 system: Any) -> NormalForce:
+    """The one coupled contact's N solving N = |a + b N|: in closed form with scalars along its one
+    constraint's force, or the quadratic's non-negative root with several constraints."""
+    if len(parts) == 1:
+        # N = |a + b N| with scalars along the one constraint's force
+        length = norm(list(parts[0][0]))
+        lam = parts[0][1]
+        a_s = tidy(length * elimination.apply(lam.xreplace(zero_n).xreplace(known)))
+        b_s = tidy(unit_signs(length * elimination.apply(sympy.diff(lam, f.normal))))
+        known_sign, core = sign_core(a_s)
+        sign_a = sympy.Integer(known_sign) if known_sign is not None and core == 1 else sympy.sign(core)
+        value = tidy(sympy.Abs(a_s)) / tidy(1 - b_s * sign_a)
+        valid = sympy.StrictLessThan(tidy(unit_signs(sympy.expand(b_s**2))), 1)
+        case = ("coupled, one contact: the friction changes the multiplier, so N solves N = |a + b N|; "
+                "N = |a|/(1 - b sign(a)) while |b| < 1")
+    else:
+        aa, ab, bb = (tidy(unit_signs(e)) for e in ((a.T * a)[0], (a.T * b)[0], (b.T * b)[0]))
+        value = tidy(unit_signs((ab + sympy.sqrt(ab**2 + (1 - bb) * aa)) / (1 - bb)))
+        valid = sympy.StrictLessThan(bb, 1)
+        case = ("coupled, one contact: the friction changes the multipliers, so N solves N = |a + b N|, a "
+                "quadratic with one non-negative root")
+    return NormalForce(value, case, valid, system)
+
+
+def _several_coupled(f: FrictionTerm, solved: tuple[dict[Any, Any], Any] | None, system: Any) -> NormalForce:
+    """One of several coupled contacts: its N from the linear solve for the known sign pattern, or implicit
+    (given by its ``system``) when the pattern is not determined."""
+    if solved is None:
+        case = ("coupled, with several contacts whose sign pattern is not determined: N stays implicit in the "
+                "results; it solves the system N = |a + B N| given (simulate solves it at every step)")
+        return NormalForce(None, case, None, system)
+    values, valid = solved
+    case = ("coupled, several contacts with the sign of each a known: N = (I - S B)^-1 S a, valid while "
+            "every N is non-negative")
+    return NormalForce(values[f.normal], case, valid, system)
 
 
 def _several(coupled: list[FrictionTerm], parts: dict[str, list[tuple[sympy.Matrix, Any]]],

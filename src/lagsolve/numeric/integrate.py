@@ -265,101 +265,189 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         raise ValueError(f"unknown method {method!r}")
     if not (t_end > 0 and np.isfinite(t_end)):
         raise ValueError("t_end must be a positive number")
-    n, m, k = system.n, system.m, len(system.contacts)
+    m, k = system.m, len(system.contacts)
     run = _Run(system, np.ones(m, dtype=bool), np.zeros(k, dtype=bool), np.zeros(k), project)
-    coordinates = "all, projected onto the constraints after each step" if m else "all"
-    if minimal and system.chart is not None:
-        run.chart = system.chart
-        run.extended = system.chart.extended(0.0, q0, qd0, system.parameters)
-        names = np.array(system.coordinates)
-        coordinates = (f"minimal: {', '.join(names[system.chart.independent])}, with "
-                       f"{', '.join(names[system.chart.dependent])} from the constraints")
-    explicit = method in EXPLICIT
-    times = np.linspace(0.0, t_end, samples)
-    rows: list[tuple] = []
-    events: list[Event] = []
+    coordinates = _coordinates(run, q0, qd0, minimal)
+    options = _Options(method, t_end, rtol, atol, max_step, project, after_release, progress)
+    record = _Record(np.linspace(0.0, t_end, samples), t_end)
     start = clock.perf_counter()
-    steps = nfev = 0
-    max_residual = run.residual(0.0, q0, qd0)
-    t0, y0 = 0.0, np.concatenate([q0, qd0])  # the whole state at each (re)start
-    last: tuple[float, np.ndarray] | None = None  # the last state found finite, for a message
-    _start_contacts(run, t0, y0, events)
-    next_sample = 0
-    finished = stopped = False
-    while not finished:
-        pulling = [j for j in system.unilateral if run.active[j] and run.solve(t0, y0)[1][j] < 0]
-        if pulling:  # a unilateral constraint that would have to pull: contact is lost at once
-            stop = after_release == AfterRelease.STOP
-            events.append(Event(float(t0), EventKind.RELEASE, system.constraints[pulling[0]], _state(system, y0),
-                                "stopped" if stop else "released"))
-            if stop:
-                rows.append(_sample(run, t0, y0))
-                stopped = True
-                break
-            _release(run, pulling[0])
-            continue
-        _check_finite(run, t0, y0, last, rhs=True)  # at a (re)start: a NaN step size would make SciPy loop
-        last = (float(t0), y0)
-        solver = getattr(integrate, method)(run.rhs, t0, run.local(y0), t_end, rtol=rtol, atol=atol,
-                                            max_step=max_step)
-        watch_old = _watch(run, t0, y0)
-        restarted = False
-        while solver.status == "running":
-            message = solver.step()
-            if solver.status == "failed":
-                _check_finite(run, solver.t, run.full(solver.t, solver.y), last, rhs=True)
-                raise SimulationError(f"the integrator ({method}) failed at t = {solver.t:.6g}: {message}")
-            steps += 1
-            t_old, t_new = solver.t_old, solver.t
-            dense = _whole(run, solver.dense_output())
-            y_new = run.full(t_new, solver.y)
-            watch_new = _watch(run, t_new, y_new)
-            event = _first_event(run, dense, t_old, t_new, watch_old, watch_new)
-            t_stop = event[0] if event is not None else t_new
-            while next_sample < samples and times[next_sample] <= t_stop + 1e-12 * max(1.0, t_end):
-                y_sample = dense(times[next_sample])
-                _check_finite(run, times[next_sample], y_sample, last)
-                rows.append(_sample(run, times[next_sample], y_sample))
-                last = (float(times[next_sample]), y_sample)
-                next_sample += 1
-            _check_finite(run, t_stop, y_new if event is None else dense(t_stop), last)
-            last = (float(t_stop), y_new if event is None else dense(t_stop))
-            if event is not None:
-                t0, y0, stopped = _handle(run, event, dense, events, after_release)
-                if stopped:
-                    rows.append(_sample(run, t0, y0))
-                    finished = True
-                restarted = True
-                break
-            max_residual = max(max_residual, run.residual(t_new, y_new[:n], y_new[n:]))
-            if explicit and project and ((m and run.chart is None) or run.stuck.any()):
-                q, qd = run.projected(t_new, y_new[:n], y_new[n:])
-                y_new = np.concatenate([q, qd])
-                _check_finite(run, t_new, y_new, last)
-                last = (float(t_new), y_new)
-                solver.y = run.local(y_new)
-                solver.f = run.rhs(t_new, solver.y)
-                watch_new = _watch(run, t_new, y_new)
-            watch_old = watch_new
-            if progress is not None:
-                progress(t_new)
-        nfev += solver.nfev
-        if not restarted:
-            finished = True
-    if next_sample < samples and not stopped:
+    record.max_residual = run.residual(0.0, q0, qd0)
+    solver, stopped = _segments(run, record, options, np.concatenate([q0, qd0]))
+    if record.next_sample < samples and not stopped:
+        assert solver is not None  # the run ended with a segment that reached t_end
         y_end = run.full(t_end, solver.y)
-        _check_finite(run, t_end, y_end, last)
-        rows.append(_sample(run, t_end, y_end))
+        _check_finite(run, t_end, y_end, record.last)
+        record.rows.append(_sample(run, t_end, y_end))
     if progress is not None:
         progress(t_end)
     if system.chart is not None and minimal and run.chart is None:
         coordinates += "; all, projected onto the constraints after each step, once a constraint was released"
-    return _trajectory(system, rows, events, RunStats(
-        method=method, rtol=rtol, atol=atol, steps=steps, evaluations=system.evaluations[0],
-        solver_evaluations=nfev, wall_time=clock.perf_counter() - start, max_residual=max_residual,
+    return _trajectory(system, record.rows, record.events, RunStats(
+        method=method, rtol=rtol, atol=atol, steps=record.steps, evaluations=system.evaluations[0],
+        solver_evaluations=record.nfev, wall_time=clock.perf_counter() - start, max_residual=record.max_residual,
         energy_conserved=system.energy_conserved, energy_note=system.energy_note,
         coordinates=coordinates, projected=bool(m) and run.chart is None,
     ))
+
+
+@dataclass(frozen=True)
+class _Options:
+    """How :func:`integrate_motion` was asked to integrate."""
+
+    method: str
+    t_end: float
+    rtol: float
+    atol: float
+    max_step: float
+    project: bool
+    after_release: str
+    progress: Callable[[float], None] | None
+
+    @property
+    def explicit(self) -> bool:
+        return self.method in EXPLICIT
+
+
+@dataclass
+class _Record:
+    """What a run has gathered so far: its samples and events, its work, the largest constraint residual, and
+    the last state found finite (for a message)."""
+
+    times: np.ndarray
+    t_end: float
+    rows: list[tuple] = field(default_factory=list)
+    events: list[Event] = field(default_factory=list)
+    last: tuple[float, np.ndarray] | None = None
+    next_sample: int = 0
+    steps: int = 0
+    nfev: int = 0
+    max_residual: float = 0.0
+
+    def reached(self, run: _Run, t: float, y: np.ndarray, rhs: bool = False) -> None:
+        """Note a state the run reached, after checking it (or, with ``rhs``, its accelerations) finite."""
+        _check_finite(run, t, y, self.last, rhs=rhs)
+        self.last = (float(t), y)
+
+    def take_samples(self, run: _Run, dense: Callable[[float], np.ndarray], t_stop: float) -> None:
+        """Sample the dense output at every sample time not taken yet up to ``t_stop``."""
+        times = self.times
+        while self.next_sample < len(times) and times[self.next_sample] <= t_stop + 1e-12 * max(1.0, self.t_end):
+            y_sample = dense(times[self.next_sample])
+            _check_finite(run, times[self.next_sample], y_sample, self.last)
+            self.rows.append(_sample(run, times[self.next_sample], y_sample))
+            self.last = (float(times[self.next_sample]), y_sample)
+            self.next_sample += 1
+
+
+def _coordinates(run: _Run, q0: np.ndarray, qd0: np.ndarray, minimal: bool) -> str:
+    """Put ``run`` in minimal coordinates when asked and the system has a chart; say which coordinates
+    it integrates."""
+    system = run.system
+    if not (minimal and system.chart is not None):
+        return "all, projected onto the constraints after each step" if system.m else "all"
+    run.chart = system.chart
+    run.extended = system.chart.extended(0.0, q0, qd0, system.parameters)
+    names = np.array(system.coordinates)
+    return (f"minimal: {', '.join(names[system.chart.independent])}, with "
+            f"{', '.join(names[system.chart.dependent])} from the constraints")
+
+
+def _segments(run: _Run, record: _Record, options: _Options, y0: np.ndarray) -> tuple[Any, bool]:
+    """Integrate from ``y0`` at t = 0, restarting the integrator at each event, until ``t_end`` or an event
+    that stops the run; return the last integrator (None when none ran) and whether the run stopped early."""
+    t0 = 0.0  # the whole state at each (re)start is (t0, y0)
+    _start_contacts(run, t0, y0, record.events)
+    solver = None
+    while True:
+        let_go = _let_go(run, record, t0, y0, options.after_release)
+        if let_go is not None:
+            if let_go:
+                return solver, True
+            continue
+        solver, restart = _segment(run, record, options, t0, y0)
+        if restart is None:
+            return solver, False
+        t0, y0, stopped = restart
+        if stopped:
+            return solver, True
+
+
+def _let_go(run: _Run, record: _Record, t0: float, y0: np.ndarray, after_release: str) -> bool | None:
+    """A unilateral constraint that would have to pull at ``(t0, y0)`` loses contact at once: the run stops
+    there (True) or goes on without it (False). None when no active unilateral constraint pulls."""
+    system = run.system
+    pulling = [j for j in system.unilateral if run.active[j] and run.solve(t0, y0)[1][j] < 0]
+    if not pulling:
+        return None
+    stop = after_release == AfterRelease.STOP
+    record.events.append(Event(float(t0), EventKind.RELEASE, system.constraints[pulling[0]], _state(system, y0),
+                               "stopped" if stop else "released"))
+    if stop:
+        record.rows.append(_sample(run, t0, y0))
+        return True
+    _release(run, pulling[0])
+    return False
+
+
+def _segment(run: _Run, record: _Record, options: _Options, t0: float,
+             y0: np.ndarray) -> tuple[Any, tuple[float, np.ndarray, bool] | None]:
+    """One integrator run from ``(t0, y0)`` until ``t_end`` or the first event; return the integrator and,
+    after an event, where to restart and whether the run stops there (None when it reached ``t_end``)."""
+    record.reached(run, t0, y0, rhs=True)  # at a (re)start: a NaN step size would make SciPy loop
+    solver = getattr(integrate, options.method)(run.rhs, t0, run.local(y0), options.t_end, rtol=options.rtol,
+                                                atol=options.atol, max_step=options.max_step)
+    watch = _watch(run, t0, y0)
+    restart = None
+    while solver.status == "running" and restart is None:
+        restart, watch = _step(run, record, options, solver, watch)
+    record.nfev += solver.nfev
+    return solver, restart
+
+
+def _step(run: _Run, record: _Record, options: _Options, solver: Any,
+          watch_old: dict) -> tuple[tuple[float, np.ndarray, bool] | None, dict]:
+    """One accepted step and the samples in it, up to the first event in it: after an event, where to
+    restart and whether the run stops there; without one, None (the step's end projected onto the
+    constraints). Also the watched values at the step's end."""
+    message = solver.step()
+    if solver.status == "failed":
+        _check_finite(run, solver.t, run.full(solver.t, solver.y), record.last, rhs=True)
+        raise SimulationError(f"the integrator ({options.method}) failed at t = {solver.t:.6g}: {message}")
+    record.steps += 1
+    t_old, t_new = solver.t_old, solver.t
+    dense = _whole(run, solver.dense_output())
+    y_new = run.full(t_new, solver.y)
+    watch_new = _watch(run, t_new, y_new)
+    event = _first_event(run, dense, t_old, t_new, watch_old, watch_new)
+    t_stop = event[0] if event is not None else t_new
+    record.take_samples(run, dense, t_stop)
+    record.reached(run, t_stop, y_new if event is None else dense(t_stop))
+    if event is not None:
+        t0, y0, stopped = _handle(run, event, dense, record.events, options.after_release)
+        if stopped:
+            record.rows.append(_sample(run, t0, y0))
+        return (t0, y0, stopped), watch_new
+    n = run.system.n
+    record.max_residual = max(record.max_residual, run.residual(t_new, y_new[:n], y_new[n:]))
+    watch_new = _projected_step(run, record, options, solver, y_new, watch_new)
+    if options.progress is not None:
+        options.progress(t_new)
+    return None, watch_new
+
+
+def _projected_step(run: _Run, record: _Record, options: _Options, solver: Any, y_new: np.ndarray,
+                    watch: dict) -> dict:
+    """After an explicit method's step, with constraints integrated in all coordinates or contacts stuck: the
+    step's end projected onto them, and the integrator restarted from there. The watched values there."""
+    if not (options.explicit and options.project and ((run.system.m and run.chart is None) or run.stuck.any())):
+        return watch
+    t_new, n = solver.t, run.system.n
+    q, qd = run.projected(t_new, y_new[:n], y_new[n:])
+    y_new = np.concatenate([q, qd])
+    record.reached(run, t_new, y_new)
+    solver.y = run.local(y_new)
+    solver.f = run.rhs(t_new, solver.y)
+    return _watch(run, t_new, y_new)
 
 
 def _check_finite(run: _Run, t: float, y: np.ndarray, last: tuple[float, np.ndarray] | None,

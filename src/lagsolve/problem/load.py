@@ -29,6 +29,7 @@ from lagsolve.problem.schema import (
     Coordinate,
     FunctionDecl,
     Parameter,
+    Particle,
     Problem,
 )
 from lagsolve.problem.yamlread import MAX_BYTES, dotted, read_document
@@ -80,64 +81,19 @@ class _Loader(BodiesReader, FrictionReader, AnswersReader, SimulationReader):
         self.keys((), self.data, TOP_LEVEL)
         data = self.data = self.misspelt_sections(self.data)
         self.keys((), {k: v for k, v in data.items() if k in TOP_LEVEL}, TOP_LEVEL, required=("name", "coordinates"))
-        name = self.text(("name",), data["name"], one_line=True, limit=MAX_TITLE_LENGTH) if "name" in data else None
-        description = ""
-        if "description" in data:
-            description = self.text(("description",), data["description"], limit=MAX_PROBLEM_DESCRIPTION_LENGTH) or ""
-
-        time_name, time_unit = data.get("time", "t"), None
-        if isinstance(time_name, dict):  # time: {name: t, unit: ms}
-            time_name, time_unit = self.time_spec(time_name)
-        if not isinstance(time_name, str) or not self.declare(("time",), time_name, "the time"):
-            if not isinstance(time_name, str):
-                self.issue(("time",), f"expected a name, found {kind_of(time_name)}")
-            time_name = "t"
-            self.kinds.setdefault("t", "the time")
-        time = sympy.Symbol(time_name, real=True)
-        self.symbols[time_name] = time
-
+        name, description = self.titles(data)
+        time, time_unit = self.time_symbol(data)
         parameters = self.parameters(data.get("parameters", {}))
         functions = self.function_decls(data.get("functions", {}))
         coordinates = self.coordinates(data.get("coordinates", []))
-
-        base = gateway.Namespace(self.symbols, self.functions, self.acceleration_names)
-        velocity_names = {n for n in self.symbols if n.endswith("_dot") and n[:-4] in self.kinds}
-        positions = gateway.Namespace(
-            {n: s for n, s in self.symbols.items() if n not in velocity_names}, self.functions,
-            {**self.acceleration_names,
-             **{n: "positions, masses and inertias cannot depend on velocities" for n in velocity_names}},
-        )
-        constants = gateway.Namespace(
-            {time_name: time, **{p.name: p.symbol for p in parameters}}, {},
-            {**{c.name: "a coordinate cannot appear here (only parameters and the time)" for c in coordinates}},
-        )
-        raw_particles = data.get("particles") or {}
-        if not isinstance(raw_particles, dict):
-            self.mapping(("particles",), data["particles"])
-            raw_particles = {}
-            self.particles_readable = False
-        elif "particles" in data and data["particles"] is None:
-            self.mapping(("particles",), None)
-        # every particle the file names, valid or not: a reference to one that failed to load
-        # is not reported a second time as "unknown particle"
-        self.declared_particles = [n for n in raw_particles if isinstance(n, str)]
-        particles = self.particles(raw_particles, positions)
-        self.loaded_particles = {p.name: p for p in particles}
+        base, positions, constants = self.namespaces(time, parameters, coordinates)
+        particles = self.particle_section(data, positions)
         bodies = self.bodies(data.get("bodies") or {}, positions, base)
         gravity = self.vector(("gravity",), data["gravity"], constants) if "gravity" in data else None
         self.check_dimensions(particles, bodies, gravity)
-
-        kinetic = self.expression(("kinetic",), data["kinetic"], base) if "kinetic" in data else None
-        potential = self.expression(("potential",), data["potential"], base) if "potential" in data else None
-        dissipation = (self.expression(("dissipation",), data["dissipation"], base)
-                       if "dissipation" in data else None)
-        if not (data.get("particles") or data.get("bodies") or "kinetic" in data) and coordinates:
-            self.issue((), "the problem has no kinetic energy",
-                       "add particles, bodies, or a 'kinetic:' expression")
-
-        particle_names = self.declared_particles
+        kinetic, potential, dissipation = self.energies(data, base, coordinates)
         forces = self.forces(data.get("forces", []), base, particles, coordinates)
-        constraints = self.constraints(data.get("constraints", {}), base, particle_names, bodies, positions)
+        constraints = self.constraints(data.get("constraints", {}), base, self.declared_particles, bodies, positions)
         friction, constraints = self.friction(data.get("friction", {}), base, positions, bodies, constraints,
                                               coordinates)
         expected = self.expected(data.get("expected", {}), constraints)
@@ -156,6 +112,74 @@ class _Loader(BodiesReader, FrictionReader, AnswersReader, SimulationReader):
             lines={dotted(k): v for k, v in self.lines.items()}, independent=independent, time_unit=time_unit,
             texts=self.texts,
         )
+
+    def titles(self, data: dict[str, Any]) -> tuple[str | None, str]:
+        """The problem's name (None when missing or unreadable) and description ("" when none)."""
+        name = self.text(("name",), data["name"], one_line=True, limit=MAX_TITLE_LENGTH) if "name" in data else None
+        description = ""
+        if "description" in data:
+            description = self.text(("description",), data["description"], limit=MAX_PROBLEM_DESCRIPTION_LENGTH) or ""
+        return name, description
+
+    def time_symbol(self, data: dict[str, Any]) -> tuple[sympy.Symbol, str | None]:
+        """The time's symbol, declared (``t`` when the name given cannot be used), and its unit (None when
+        not given)."""
+        time_name, time_unit = data.get("time", "t"), None
+        if isinstance(time_name, dict):  # time: {name: t, unit: ms}
+            time_name, time_unit = self.time_spec(time_name)
+        if not isinstance(time_name, str) or not self.declare(("time",), time_name, "the time"):
+            if not isinstance(time_name, str):
+                self.issue(("time",), f"expected a name, found {kind_of(time_name)}")
+            time_name = "t"
+            self.kinds.setdefault("t", "the time")
+        time = sympy.Symbol(time_name, real=True)
+        self.symbols[time_name] = time
+        return time, time_unit
+
+    def namespaces(self, time: sympy.Symbol, parameters: list[Parameter], coordinates: list[Coordinate]
+                   ) -> tuple[gateway.Namespace, gateway.Namespace, gateway.Namespace]:
+        """The names each kind of expression may use: every declared one (``base``), all but the velocities
+        (``positions``: positions, masses and inertias), only the parameters and the time (``constants``)."""
+        base = gateway.Namespace(self.symbols, self.functions, self.acceleration_names)
+        velocity_names = {n for n in self.symbols if n.endswith("_dot") and n[:-4] in self.kinds}
+        positions = gateway.Namespace(
+            {n: s for n, s in self.symbols.items() if n not in velocity_names}, self.functions,
+            {**self.acceleration_names,
+             **{n: "positions, masses and inertias cannot depend on velocities" for n in velocity_names}},
+        )
+        constants = gateway.Namespace(
+            {time.name: time, **{p.name: p.symbol for p in parameters}}, {},
+            {**{c.name: "a coordinate cannot appear here (only parameters and the time)" for c in coordinates}},
+        )
+        return base, positions, constants
+
+    def particle_section(self, data: dict[str, Any], positions: gateway.Namespace) -> list[Particle]:
+        """The particles, after noting every particle name the file gives (valid or not: a reference to
+        one that failed to load is not reported a second time as "unknown particle")."""
+        raw_particles = data.get("particles") or {}
+        if not isinstance(raw_particles, dict):
+            self.mapping(("particles",), data["particles"])
+            raw_particles = {}
+            self.particles_readable = False
+        elif "particles" in data and data["particles"] is None:
+            self.mapping(("particles",), None)
+        self.declared_particles = [n for n in raw_particles if isinstance(n, str)]
+        particles = self.particles(raw_particles, positions)
+        self.loaded_particles = {p.name: p for p in particles}
+        return particles
+
+    def energies(self, data: dict[str, Any], base: gateway.Namespace, coordinates: list[Coordinate]
+                 ) -> tuple[Any, Any, Any]:
+        """The ``kinetic``, ``potential`` and ``dissipation`` expressions (None when not given); a problem
+        with coordinates and nothing giving a kinetic energy is an issue."""
+        kinetic = self.expression(("kinetic",), data["kinetic"], base) if "kinetic" in data else None
+        potential = self.expression(("potential",), data["potential"], base) if "potential" in data else None
+        dissipation = (self.expression(("dissipation",), data["dissipation"], base)
+                       if "dissipation" in data else None)
+        if not (data.get("particles") or data.get("bodies") or "kinetic" in data) and coordinates:
+            self.issue((), "the problem has no kinetic energy",
+                       "add particles, bodies, or a 'kinetic:' expression")
+        return kinetic, potential, dissipation
 
     def misspelt_sections(self, data: dict[str, Any]) -> dict[str, Any]:
         """``data`` with a misspelt top-level key (``particle:``, reported already) read as the section it was meant

@@ -103,14 +103,45 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     >>> len(frame), frame["status"].unique().tolist()                                            # doctest: +SKIP
     (3, ['ok'])
     """
+    pandas = _pandas()
+    from lagsolve.sweep.run import columns, compiled
+
+    text, source, settings, inputs = _prepare(path_or_text, grid, random, runs, seed, t_end, method, rtol, atol,
+                                              poincare, workers, chunk_size)
+    if scheduler is not None:  # a wrong address is refused before the problem is compiled
+        from lagsolve.sweep.cluster import check_scheduler
+
+        scheduler = check_scheduler(scheduler)
+    built = compiled(text, source)  # bad values surface here, as SpecError, before any worker starts
+    if before is not None:
+        before(columns(built, settings, list(inputs)))
+    frames = _run_chunks(text, source, settings, inputs, chunk_size, workers, scheduler, progress)
+    frame = pandas.concat(frames, ignore_index=True)
+    frame.attrs["swept"] = list(inputs)
+    if settings.section is not None:
+        frame.attrs["section"] = settings.section.name
+    return frame
+
+
+def _pandas() -> Any:
+    """The pandas module, or an ImportError saying how to install the sweep extra."""
     try:
         import pandas
     except ImportError as exc:  # pragma: no cover - pandas comes with the sweep extra
         raise ImportError(f"lagsolve sweep needs pandas: {INSTALL}") from exc
+    return pandas
+
+
+def _prepare(path_or_text: str | Path | bytes, grid: Mapping[str, Any] | Sequence[str] | None,
+             random: Mapping[str, tuple[float, float]] | Sequence[str] | None, runs: int | None, seed: int,
+             t_end: float | None, method: str, rtol: float, atol: float, poincare: str | None, workers: int,
+             chunk_size: int | None) -> tuple[str, str, Any, dict[str, Any]]:
+    """The problem's text and source, how every run is integrated, and each swept name's input values
+    (one per run), once the input is checked (SpecError otherwise)."""
     from lagsolve.problem.load import load_text
     from lagsolve.sweep import spec
     from lagsolve.sweep.rk import METHODS as BATCHED
-    from lagsolve.sweep.run import Settings, columns, compiled, run_chunk
+    from lagsolve.sweep.run import Settings
 
     text, source = _text(path_or_text)
     problem = load_text(text, source)
@@ -119,6 +150,18 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
                        tuple(c.name for c in problem.coordinates))
     _check_options(method, rtol, atol, workers, runs, chunk_size, seed, BATCHED)
     ranges.check(t_end=t_end)
+    grid_values, random_values = _swept(grid, random, names)
+    end = _end_time(t_end, problem, source)
+    section = spec.parse_section(poincare, names) if poincare is not None else None
+    inputs = spec.inputs(grid_values, random_values, runs, seed)
+    return text, source, Settings(float(end), method, float(rtol), float(atol), section), inputs
+
+
+def _swept(grid: Mapping[str, Any] | Sequence[str] | None,
+           random: Mapping[str, tuple[float, float]] | Sequence[str] | None, names: Any) -> tuple[list[Any], list[Any]]:
+    """The grid's ranges and the random draws' ranges, each parsed from a mapping or ``NAME=...`` strings."""
+    from lagsolve.sweep import spec
+
     grid_specs = _as_specs(grid, "--grid")
     if isinstance(grid_specs, Mapping):
         grid_values = spec.grid_from_mapping(grid_specs, names)
@@ -130,20 +173,25 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
                          for k, v in random_specs.items()]
     else:
         random_values = [spec.parse_random(r, names) for r in random_specs]
+    return grid_values, random_values
+
+
+def _end_time(t_end: float | None, problem: Any, source: str) -> float:
+    """The runs' end time: ``t_end`` when given, else the file's ``simulation.t_end``; SpecError when there is
+    no positive one."""
     end = t_end if t_end is not None else problem.simulation.t_end if problem.simulation is not None else None
     if end is None or not (math.isfinite(end) and end > 0):
         raise SpecError([Issue(source, 0, "simulation.t_end", "no positive end time",
                                "give simulation.t_end in the file or --t-end")])
-    section = spec.parse_section(poincare, names) if poincare is not None else None
-    inputs = spec.inputs(grid_values, random_values, runs, seed)
-    settings = Settings(float(end), method, float(rtol), float(atol), section)
-    if scheduler is not None:  # a wrong address is refused before the problem is compiled
-        from lagsolve.sweep.cluster import check_scheduler
+    return end
 
-        scheduler = check_scheduler(scheduler)
-    built = compiled(text, source)  # bad values surface here, as SpecError, before any worker starts
-    if before is not None:
-        before(columns(built, settings, list(inputs)))
+
+def _run_chunks(text: str, source: str, settings: Any, inputs: dict[str, Any], chunk_size: int | None,
+                workers: int, scheduler: str | None, progress: ProgressCallback | None) -> list[Any]:
+    """The runs cut into chunks (about four per worker, at most 1024 runs each, unless ``chunk_size`` is
+    given), each run here or on a Dask cluster: one frame per chunk, in input order."""
+    from lagsolve.sweep.run import run_chunk
+
     total = len(next(iter(inputs.values())))
     size = chunk_size or min(1024, max(1, math.ceil(total / (4 * max(1, workers)))))
     chunks = [(start, {k: v[start: start + size] for k, v in inputs.items()}) for start in range(0, total, size)]
@@ -153,16 +201,11 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
             frames.append(run_chunk(text, source, settings, chunk, start))
             if progress is not None:
                 progress(start + len(frames[-1]), total)
-    else:
-        from lagsolve.sweep.cluster import run_distributed
+        return frames
+    from lagsolve.sweep.cluster import run_distributed
 
-        frames = run_distributed(run_chunk, [(text, source, settings, chunk, start) for start, chunk in chunks],
-                                 workers, scheduler, progress, total)
-    frame = pandas.concat(frames, ignore_index=True)
-    frame.attrs["swept"] = list(inputs)
-    if section is not None:
-        frame.attrs["section"] = section.name
-    return frame
+    return run_distributed(run_chunk, [(text, source, settings, chunk, start) for start, chunk in chunks],
+                           workers, scheduler, progress, total)
 
 
 def _check_options(method: str, rtol: float, atol: float, workers: int, runs: int | None, chunk_size: int | None,
