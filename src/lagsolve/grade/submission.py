@@ -20,6 +20,7 @@ import sympy
 from lagsolve.errors import ExpressionError, Issue, SpecError
 from lagsolve.problem import expr as gateway
 from lagsolve.problem.names import momentum_name, momentum_symbol
+from lagsolve.problem.readers.base import line_of
 from lagsolve.problem.schema import Problem
 from lagsolve.problem.yamlread import Document, dotted, kind_of, read_document
 
@@ -116,11 +117,7 @@ class _Reader:
         self.with_accelerations = names_for(problem, normals=normals, accelerations=True)
 
     def line(self, path: tuple) -> int:
-        while path:
-            if path in self.lines:
-                return self.lines[path]
-            path = path[:-1]
-        return self.lines.get((), 1)
+        return line_of(self.lines, path)
 
     def issue(self, path: tuple, message: str, hint: str = "") -> Issue:
         return Issue(self.source, self.line(path), dotted(path), message, hint)

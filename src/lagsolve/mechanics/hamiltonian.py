@@ -52,9 +52,10 @@ import sympy
 from lagsolve.mechanics.algebra import cancel, factor_terms, ops
 from lagsolve.mechanics.energy import jacobi_integral
 from lagsolve.mechanics.identities import Zero, numerically_zero, proved_zero, zero_status
-from lagsolve.mechanics.linsolve import SIZE_LIMIT, blocks, solve_structured
+from lagsolve.mechanics.linsolve import SIZE_LIMIT, solve_structured
 from lagsolve.mechanics.model import Model, time_derivative
 from lagsolve.mechanics.partials import partial
+from lagsolve.mechanics.ringsolve import coupled
 from lagsolve.mechanics.simplify import measure, smallest, tidy, tidy_sum
 from lagsolve.mechanics.stages import Stages, StageSkipped, StageTooLarge
 from lagsolve.problem.names import momentum_symbol
@@ -265,7 +266,7 @@ def _long_inverse(A: sympy.Matrix, w: sympy.Matrix) -> tuple[Any, ...] | None:
     a dense block of three or more coordinates and the solution is longer than :data:`INVERSE_LIMIT`; None
     when the sum of squares is worth completing (every block of A smaller, or the inverse short).
     ``ValueError`` when A is singular; :class:`StageSkipped` when the inverse is too large to give at all."""
-    if max(len(group) for group in blocks(A)) < 3:
+    if max(len(group) for group in coupled(A)) < 3:
         return None
     try:
         solution, _ = solve_structured(A, w, sympy.zeros(0, A.rows), sympy.zeros(0, 1), SIZE_LIMIT)

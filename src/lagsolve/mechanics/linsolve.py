@@ -35,6 +35,7 @@ import sympy
 
 from lagsolve.mechanics.algebra import cancel, ops
 from lagsolve.mechanics.ringsolve import MAX_TERMS, cancelled, in_sympy_order, normalized, solve_in_ring
+from lagsolve.mechanics.ringsolve import coupled as blocks  # the diagonal blocks: the pattern's connected components
 from lagsolve.mechanics.stages import StageTooLarge
 
 #: an explicit result (or an intermediate of the elimination) with more operations than this is not produced
@@ -52,28 +53,6 @@ def _guard(exprs: list[Any], limit: int | None) -> None:
     if largest > limit:
         raise StageTooLarge(f"the explicit solution grows past {limit} operations per expression "
                            f"(one has {largest}); the matrix form M q̈ = F + Aᵀλ above is the result")
-
-
-def blocks(matrix: sympy.Matrix) -> list[list[int]]:
-    """The index sets of the diagonal blocks of a symmetric ``matrix`` (connected components of its
-    non-zero pattern), each sorted, in order of their first index."""
-    n = matrix.rows
-    parent = list(range(n))
-
-    def find(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for i in range(n):
-        for k in range(i + 1, n):
-            if matrix[i, k] != 0 or matrix[k, i] != 0:
-                parent[find(i)] = find(k)
-    groups: dict[int, list[int]] = {}
-    for i in range(n):
-        groups.setdefault(find(i), []).append(i)
-    return sorted(groups.values(), key=lambda g: g[0])
 
 
 def solve_linear(system: sympy.Matrix, rhs: sympy.Matrix, limit: int | None = None) -> sympy.Matrix:

@@ -682,4 +682,4 @@ def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, trajector
 def _on_member(anchor: Anchor, problem: Any) -> bool:
     """A rod's end at a point that moves with the coordinates (a joint on a member), not a fixed or driven pivot."""
     coordinates = {c.symbol for c in problem.coordinates}
-    return any(sympy.sympify(p).free_symbols & coordinates for p in anchor.point)
+    return any(getattr(p, "free_symbols", set()) & coordinates for p in anchor.point)  # a plain 0 has none

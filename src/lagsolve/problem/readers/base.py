@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import difflib
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from typing import Any
 
 from lagsolve.errors import ExpressionError, Issue
@@ -47,11 +47,7 @@ class Reader:
     # -- reporting ---------------------------------------------------------------------------
 
     def line(self, path: tuple) -> int:
-        while path:
-            if path in self.lines:
-                return self.lines[path]
-            path = path[:-1]
-        return self.lines.get((), 1)
+        return line_of(self.lines, path)
 
     def issue(self, path: tuple, message: str, hint: str = "") -> None:
         self.issues.append(Issue(self.source, self.line(path), dotted(path), message, hint))
@@ -211,3 +207,12 @@ def known_names(what: str, names: Iterable[str]) -> str:
     """The names a reference could have used, for a message."""
     names = list(names)
     return f"known {what}: " + ", ".join(names) if names else f"no {what} are declared"
+
+
+def line_of(lines: Mapping[tuple, int], path: tuple) -> int:
+    """The line of the field at ``path``, or of the nearest enclosing field that has one (1 for the file)."""
+    while path:
+        if path in lines:
+            return lines[path]
+        path = path[:-1]
+    return lines.get((), 1)
