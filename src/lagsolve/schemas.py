@@ -255,20 +255,15 @@ def output_schema() -> dict[str, Any]:
 
 
 def _units_schema() -> dict[str, Any]:
-    """``units``: present only when the problem declares units (null: a unit that cannot be known)."""
-    unit = {"type": ["string", "null"]}
-    units = _by_name(unit)
-    return {**_closed({
-        "time": {"type": "string"}, "energy": unit, "coordinates": units, "accelerations": units,
-        "generalized_forces": units,
-        "multipliers": _by_name(_closed({"unit": unit, "constraint": unit}, ("unit", "constraint"))),
-        "constraint_forces": _by_name({"anyOf": [unit, _closed({"generalized": units}, ("generalized",))]}),
-        "friction": units,
-        "missing": {"type": "array", "items": {"type": "string"}},
-    }, ("time", "energy", "coordinates", "accelerations", "multipliers", "constraint_forces")),
-        "description": "the unit of each result (docs/format.md, Units); a multiplier's unit is the generalized "
-                       "force's over its constraint's coefficient, so it depends on how the constraint is written "
-                       "('constraint' is the unit of its expression)"}
+    """``units``: present only when the problem declares units (null: a unit that cannot be known); generated from
+    the record the JSON is written from (:class:`lagsolve.render.sections.units.UnitsSection`)."""
+    from lagsolve.render.model import json_schema
+    from lagsolve.render.sections.units import UnitsSection
+
+    return {**json_schema(UnitsSection),
+            "description": "the unit of each result (docs/format.md, Units); a multiplier's unit is the generalized "
+                           "force's over its constraint's coefficient, so it depends on how the constraint is written "
+                           "('constraint' is the unit of its expression)"}
 
 
 def _hamiltonian(text: dict[str, Any], texts: dict[str, Any], by_name: dict[str, Any]) -> dict[str, Any]:

@@ -19,6 +19,7 @@ from lagsolve.render.report import (
     sections_summary,
 )
 from lagsolve.render.sections import Sections, build
+from lagsolve.render.units import unit_tex
 
 Shipped = Callable[[str], Derivation]
 
@@ -177,9 +178,10 @@ def test_units_section_rows_are_the_tables_rows(bead: Derivation) -> None:
     sections = build(bead)
     units = sections.units
     assert units is not None
-    context = sections_context(sections)["units"]
-    assert [r["unit_text"] for r in context["rows"]] == [r.unit or "?" for r in units.rows]
-    assert sections_json(sections)["units"]["accelerations"] == dict(units.units.accelerations)
+    latex, mathml = sections_context(sections)["units"], sections_context(sections, "mathml")["units"]
+    assert [r["unit"] for r in mathml["rows"]] == [r.unit.text or "?" for r in units.rows]
+    assert [r["unit"] for r in latex["rows"]] == [unit_tex(r.unit.text) for r in units.rows]
+    assert sections_json(sections)["units"]["accelerations"] == {"x": "m/s^2", "y": "m/s^2"}
 
 
 #: the sentences the Markdown and LaTeX templates wrote for each agreement before they came from the sections

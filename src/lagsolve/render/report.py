@@ -26,10 +26,10 @@ from lagsolve.render.analysis_report import analysis_context, analysis_json, ana
 from lagsolve.render.formats import FORMATS
 from lagsolve.render.hamiltonian_report import hamiltonian_context, hamiltonian_json, hamiltonian_summary
 from lagsolve.render.mathml import typeset
+from lagsolve.render.model import JsonPrinter, NotationPrinter, present
 from lagsolve.render.notation import FILTERS, Notation, symbol_table, to_json
 from lagsolve.render.sections import Sections, build
 from lagsolve.render.sections.core import ConstraintForce
-from lagsolve.render.units import units_context, units_json
 
 FORMAT_VERSION = 1
 #: above this many coordinates the matrix form is written one equation per row instead of as matrices
@@ -149,7 +149,7 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
         "symbols": symbol_table(dict(core.symbols), note),
         "math": math,
         "stage_notes": {n.stage: n.reason for n in core.notes},
-        "units": units_context(sections.units, tex),
+        "units": present(sections.units, NotationPrinter(math, note)),
     }
 
 
@@ -329,7 +329,7 @@ def sections_json(sections: Sections) -> dict[str, Any]:
         "analysis": analysis_json(sections.analysis),
         "hamiltonian": hamiltonian_json(sections.hamiltonian),
         "notes": [{"stage": n.stage, "kind": n.kind, "reason": n.reason} for n in core.notes],
-        **({"units": units} if (units := units_json(sections.units)) is not None else {}),
+        **({"units": present(sections.units, JsonPrinter())} if sections.units is not None else {}),
     }
 
 

@@ -1,0 +1,103 @@
+"""`lagsolve.render.model`: the one presentation model (issue 30 items 1-2).
+
+Every field of every section record carries its metadata; the walker prints records for each printer; the
+JSON Schema generated from the records describes what the walker writes.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import pytest
+import sympy
+
+from lagsolve.render.model import Expr, JsonPrinter, NotationPrinter, Rows, json_schema, present, records, shown
+from lagsolve.render.notation import Notation
+from lagsolve.render.sections.units import UnitsSection
+
+#: the section records migrated to the presentation model (each one's whole tree of records is checked)
+MIGRATED = [UnitsSection]
+
+jsonschema = pytest.importorskip("jsonschema")
+
+
+@pytest.mark.parametrize("section", MIGRATED, ids=lambda c: c.__name__)
+def test_every_field_of_every_record_has_metadata(section: type) -> None:
+    """A field declared without ``shown(...)`` would go missing from some format: none exists."""
+    missing = [f"{cls.__qualname__}.{f.name}" for cls in records(section)
+               for f in dataclasses.fields(cls) if "lagsolve.shown" not in f.metadata]
+    assert missing == []
+
+
+@dataclass(frozen=True)
+class _Item:
+    name: str = shown(json=None)
+    value: Expr = shown(terminal=True)
+
+
+@dataclass(frozen=True)
+class _Inner:
+    extra: Expr = shown(json="more")
+
+
+@dataclass(frozen=True)
+class _Record:
+    title: str = shown(terminal=True)
+    force: Expr = shown(blank_zero=True, terminal=True)
+    items: tuple[_Item, ...] = shown(keyed="name", terminal=True)
+    matrix: Rows = shown()
+    note: str = shown("", optional=True)
+    hidden: Expr = shown(sympy.Integer(0), json=None)
+    inner: _Inner = shown(factory=lambda: _Inner(sympy.Integer(3)), inline=True)
+    table: Mapping[str, Expr] = shown(factory=dict, template=False)
+
+
+def _example() -> _Record:
+    x = sympy.Symbol("x")
+    return _Record(title="t", force=sympy.Integer(0), items=(_Item("a", x ** 2), _Item("b", -x)),
+                   matrix=sympy.Matrix([[1, x], [x, 2]]), table={"k": x / 2})
+
+
+def test_the_json_printer_follows_the_metadata() -> None:
+    """JSON keys, keyed lists, rows, optional and inline fields, template-only and JSON-only fields."""
+    assert present(_example(), JsonPrinter()) == {
+        "title": "t", "force": "0", "items": {"a": {"value": "x**2"}, "b": {"value": "-x"}},
+        "matrix": [["1", "x"], ["x", "2"]], "more": "3", "table": {"k": "x/2"}}
+
+
+def test_the_template_printers_follow_the_metadata() -> None:
+    """Templates get field names, lists, LaTeX or MathML, "" for a zero ``blank_zero``; the terminal only the fields
+    it shows."""
+    note = Notation(["x"])
+    latex = present(_example(), NotationPrinter("latex", note))
+    assert latex == {"title": "t", "force": "", "items": [{"name": "a", "value": "x^{2}"},
+                                                          {"name": "b", "value": "- x"}],
+                     "matrix": note.latex(sympy.Matrix([[1, sympy.Symbol("x")], [sympy.Symbol("x"), 2]])),
+                     "note": "", "hidden": "0", "inner": {"extra": "3"}}
+    assert present(_example(), NotationPrinter("text", note)) == {
+        "title": "t", "force": "", "items": [{"value": "x²"}, {"value": "-x"}]}
+    assert present(_example(), NotationPrinter("mathml", note))["items"][0]["value"].startswith("<msup>")
+
+
+def test_the_generated_schema_describes_the_json() -> None:
+    """What the JSON printer writes is valid against the generated schema, and the schema is closed."""
+    schema = json_schema(_Record)
+    validator = jsonschema.Draft202012Validator(schema)
+    data = present(_example(), JsonPrinter())
+    assert list(validator.iter_errors(data)) == []
+    assert list(validator.iter_errors({**data, "unknown": 1}))
+    assert schema["required"] == ["title", "force", "items", "matrix", "more", "table"]
+
+
+def test_a_field_without_metadata_is_an_error() -> None:
+    """A record field declared without ``shown`` fails loudly instead of silently missing from one format."""
+
+    @dataclass(frozen=True)
+    class Bare:
+        value: Any = field(default=1)
+
+    with pytest.raises(TypeError, match=r"Bare\.value has no presentation metadata"):
+        present(Bare(), JsonPrinter())
