@@ -174,8 +174,8 @@ ENVIRONMENT: type[jinja2.Environment] = ImmutableSandboxedEnvironment
 
 
 def environment(kind: str, extra: Path | None = None) -> jinja2.Environment:
-    """A sandboxed Jinja2 environment for ``kind`` ("markdown", "latex" or "html"); LaTeX uses ``((* *))``-style
-    delimiters."""
+    """A sandboxed Jinja2 environment for ``kind`` ("markdown", "latex", "html" or "text", the terminal summary's);
+    LaTeX uses ``((* *))``-style delimiters."""
     dirs = [str(d) for d in template_dirs(kind, extra) if d.is_dir()]
     options: dict[str, Any] = {
         "loader": jinja2.FileSystemLoader(dirs),
@@ -230,6 +230,17 @@ def render_sections(sections: Sections, fmt: str, templates: Path | None = None,
     except jinja2.TemplateError as exc:
         raise RenderError(f"template {kind}/{name} failed: {exc}") from None
     return typeset(page) if spec.math == "mathml" else page
+
+
+def text_lines(partial: str, data: dict[str, Any], templates: Path | None = None) -> list[str]:
+    """The terminal lines of ``templates/text/<partial>`` over ``data`` (sections :func:`present`-ed with the text
+    printer: only the fields marked ``terminal``)."""
+    env = environment("text", templates)
+    try:
+        page = env.get_template(partial).render(**data)
+    except jinja2.TemplateError as exc:
+        raise RenderError(f"template text/{partial} failed: {exc}") from None
+    return page.splitlines()
 
 
 def _inlined(figures: dict[str, Any] | None, files: dict[str, bytes]) -> dict[str, Any] | None:
