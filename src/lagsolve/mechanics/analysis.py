@@ -18,20 +18,18 @@ what the motion looks like near equilibrium.
    (the heavy top's steady precession), their stability and the frequency of small oscillations;
 7. :mod:`~lagsolve.mechanics.linearize` — with several left, equilibria and normal modes.
 
-:func:`with_analysis` stores the result in a :class:`~lagsolve.mechanics.derivation.Derivation`
-together with the contract forms ``reduced``, ``conserved`` and ``effective_potential``
-(format section 2, SymPy expressions; the JSON writer prints them).
+:func:`lagsolve.mechanics.derivation.derive` builds the :class:`~lagsolve.mechanics.results.Analysis` part of a
+derivation with :func:`analyse` and its :class:`~lagsolve.mechanics.results.Contract` part (``reduced``,
+``conserved`` and ``effective_potential``, format section 2, SymPy expressions) with :func:`contract_forms`.
 """
 
 from __future__ import annotations
 
-import dataclasses
 from typing import TYPE_CHECKING, Any
 
 import sympy
 
 from lagsolve.mechanics.conserved import Conservation, MotionSystem, conserved_quantities
-from lagsolve.mechanics.constraints import constraint_terms
 from lagsolve.mechanics.contact import ContactCheck, check_point
 from lagsolve.mechanics.equilibria import EffectivePotential, effective_potential
 from lagsolve.mechanics.integrability import classify_all
@@ -48,7 +46,7 @@ from lagsolve.problem.names import momentum_name
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.matrix_form import MatrixForm
-    from lagsolve.mechanics.results import Derivation
+    from lagsolve.mechanics.results import FrictionResult, Solution
 
 
 #: CPU seconds the symbolic equilibrium solve may take when numeric equilibria can be given instead (every
@@ -57,39 +55,39 @@ if TYPE_CHECKING:
 NUMERIC_FALLBACK_CAP = 2.0
 
 
-def analyse(derivation: Derivation, stages: Stages | None = None) -> Analysis:
-    """The analysis of a finished derivation (see the module docstring), each part a stage of ``stages``
-    (a fresh budget when None): a part that runs out of its share, or does not apply, says why in its note."""
+def analyse(form: MatrixForm, solution: Solution, friction_results: tuple[FrictionResult, ...] = (),
+            stages: Stages | None = None) -> Analysis:
+    """The analysis of a derivation's matrix form, explicit solve and friction results (see the module docstring),
+    each part a stage of ``stages`` (a fresh budget when None): a part that runs out of its share, or does not
+    apply, says why in its note."""
     stages = stages if stages is not None else Stages()
-    problem = derivation.problem
-    constraints = derivation.form.constraints if derivation.form is not None else \
-        tuple(constraint_terms(c, derivation.model) for c in problem.constraints)
-    normals = _kept_normals(derivation)
-    classes, reduced, reduced_note = _classify_and_reduce(stages, derivation, constraints, normals)
-    system = _motion_system(derivation, constraints, reduced, normals)
+    problem = form.problem
+    normals = _kept_normals(solution, friction_results)
+    classes, reduced, reduced_note = _classify_and_reduce(stages, form, solution, normals)
+    system = _motion_system(form, solution, reduced, normals)
     friction = bool(problem.friction)
     conservation = _conservation(stages, problem, system, reduced, friction)
     effective, effective_note = _effective(stages, system, conservation, friction)
     steady, steady_note = _steady(stages, system, effective)
     linear, linear_note = _linear(stages, problem, system, conservation, effective, friction)
-    effective_contact, modes_contact = _contact(derivation, reduced, effective, linear)
+    effective_contact, modes_contact = _contact(form, solution, reduced, effective, linear)
     return Analysis(classes, reduced, reduced_note, system, conservation, effective, effective_note,
                     linear, linear_note, effective_contact, modes_contact, steady, steady_note)
 
 
-def _kept_normals(derivation: Derivation) -> dict[Any, Any]:
+def _kept_normals(solution: Solution, friction_results: tuple[FrictionResult, ...]) -> dict[Any, Any]:
     """The normal forces of friction to put in: a normal force the multiplier route keeps as a symbol N
     (coupled friction) stays a symbol here too, the others are replaced by their expression."""
-    raw = derivation.raw_accelerations
-    return {f.term.normal: f.normal_force for f in derivation.friction
+    raw = solution.raw_accelerations
+    return {f.term.normal: f.normal_force for f in friction_results
             if raw is not None and not any(a.has(f.term.normal) for a in raw)}
 
 
-def _classify_and_reduce(stages: Stages, derivation: Derivation, constraints: tuple[Any, ...],
+def _classify_and_reduce(stages: Stages, form: MatrixForm, solution: Solution,
                          normals: dict[Any, Any]) -> tuple[tuple[Any, ...], ReducedSystem | None, str]:
     """The constraint classes (stage ``constraint classification``) and the system in minimal coordinates
     (stage ``minimal coordinates``), or why there is none: no classes means no reduction is tried."""
-    problem, model = derivation.problem, derivation.model
+    problem, model, constraints = form.problem, form.model, form.constraints
     taken = set(problem.symbols) | {f.name for f in problem.functions} | {momentum_name(c.symbol)
                                                                           for c in problem.coordinates}
     classes = stages.run("constraint classification", classify_all, constraints, model, problem.constraints, taken)
@@ -98,20 +96,20 @@ def _classify_and_reduce(stages: Stages, derivation: Derivation, constraints: tu
         stages.skip("minimal coordinates", "needs the constraint classification, which did not finish")
         return (), None, note
     found = stages.run("minimal coordinates", reduce_system, model, constraints, classes,
-                       derivation.lagrange.generalized_forces, normals, derivation.raw_accelerations,
+                       form.lagrange.generalized_forces, normals, solution.raw_accelerations,
                        problem.independent)
     reduced, reduced_note = found if found is not None else (None, _stage_reason(stages, "minimal coordinates"))
     return classes, reduced, reduced_note
 
 
-def _motion_system(derivation: Derivation, constraints: tuple[Any, ...], reduced: ReducedSystem | None,
+def _motion_system(form: MatrixForm, solution: Solution, reduced: ReducedSystem | None,
                    normals: dict[Any, Any]) -> MotionSystem:
     """The system the rest of the analysis studies: the reduced one when minimal coordinates exist, else the
     full one with its constraints (and the raw accelerations, when the derivation solved for them)."""
     if reduced is not None:
         return MotionSystem(reduced.model, reduced.generalized_forces, reduced.acceleration_map(), kind="reduced")
-    model, raw = derivation.model, derivation.raw_accelerations
-    forces = tuple(f.xreplace(normals) for f in derivation.lagrange.generalized_forces)
+    model, raw, constraints = form.model, solution.raw_accelerations, form.constraints
+    forces = tuple(f.xreplace(normals) for f in form.lagrange.generalized_forces)
     accelerations = dict(zip(model.accelerations, raw, strict=True)) if raw is not None else {}
     return MotionSystem(model, forces, accelerations, constraints, constraint_surface(constraints, model),
                         kind="full")
@@ -203,14 +201,16 @@ def _steady(stages: Stages, system: MotionSystem, effective: EffectivePotential 
     return found if found is not None else (None, _stage_reason(stages, "steady motions"))
 
 
-def _contact(derivation: Derivation, reduced: ReducedSystem | None, effective: EffectivePotential | None,
+def _contact(form: MatrixForm, solution: Solution, reduced: ReducedSystem | None,
+             effective: EffectivePotential | None,
              linear: Linearization | None) -> tuple[tuple[tuple[ContactCheck, ...], ...], ...]:
     """Each equilibrium's unilateral constraint forces at rest (:mod:`lagsolve.mechanics.contact`)."""
-    unilateral = tuple(c.name for c in derivation.problem.constraints if c.unilateral)
-    if not unilateral or derivation.multipliers is None:
+    unilateral = tuple(c.name for c in form.problem.constraints if c.unilateral)
+    multipliers = solution.multipliers
+    if not unilateral or multipliers is None:
         return (), ()
     substitution = reduced.substitution if reduced is not None else None
-    velocities = dict.fromkeys(derivation.model.velocities, sympy.Integer(0))
+    velocities = dict.fromkeys(form.model.velocities, sympy.Integer(0))
     if reduced is not None:
         velocities.update(dict.fromkeys(reduced.model.velocities, sympy.Integer(0)))
     effective_checks: list[tuple[ContactCheck, ...]] = []
@@ -220,12 +220,12 @@ def _contact(derivation: Derivation, reduced: ReducedSystem | None, effective: E
         if e.value is None:
             effective_checks.append(())
             continue
-        rates = {q: v for model in (derivation.model, *((reduced.model,) if reduced is not None else ()))
+        rates = {q: v for model in (form.model, *((reduced.model,) if reduced is not None else ()))
                  for q, v in zip(model.coordinates, model.velocities, strict=True)}
         moving = {rates[c]: w for c, _, w in effective.cyclic if c in rates}
-        effective_checks.append(check_point(derivation.multipliers, unilateral, {effective.coordinate: e.value},
+        effective_checks.append(check_point(multipliers, unilateral, {effective.coordinate: e.value},
                                             {**velocities, **moving}, substitution))
-    modes_checks = [check_point(derivation.multipliers, unilateral, dict(m.point), velocities, substitution)
+    modes_checks = [check_point(multipliers, unilateral, dict(m.point), velocities, substitution)
                     for m in (linear.modes if linear is not None else ())]
     return tuple(effective_checks), tuple(modes_checks)
 
@@ -261,12 +261,6 @@ def contract_forms(analysis: Analysis) -> dict[str, Any]:
                            for e in v.equilibria],
         }
     return {"reduced": reduced, "conserved": conserved, "effective_potential": effective}
-
-
-def with_analysis(derivation: Derivation, stages: Stages | None = None) -> Derivation:
-    """``derivation`` with ``analysis`` and the contract forms filled in."""
-    analysis = analyse(derivation, stages)
-    return dataclasses.replace(derivation, analysis=analysis, **contract_forms(analysis))
 
 
 def monitored(form: MatrixForm, budget: float = 30.0) -> tuple[dict[str, Any], MinimalChart | None, str, str]:

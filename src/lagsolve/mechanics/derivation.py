@@ -17,12 +17,12 @@ import sympy
 
 from lagsolve.errors import DerivationError
 from lagsolve.mechanics.algebra import ops
-from lagsolve.mechanics.analysis import with_analysis
+from lagsolve.mechanics.analysis import analyse, contract_forms
 from lagsolve.mechanics.constraints import ConstraintTerms
 from lagsolve.mechanics.elimination import Elimination, eliminate
 from lagsolve.mechanics.forces import ForceTerm
 from lagsolve.mechanics.friction import FrictionTerm
-from lagsolve.mechanics.hamiltonian import with_hamiltonian
+from lagsolve.mechanics.hamiltonian import canonical_form
 from lagsolve.mechanics.identities import proved_zero
 from lagsolve.mechanics.lagrange import LagrangeTerms, solve_augmented
 from lagsolve.mechanics.linsolve import SIZE_LIMIT
@@ -30,7 +30,16 @@ from lagsolve.mechanics.matrix_form import MatrixForm, matrix_form
 from lagsolve.mechanics.model import Model
 from lagsolve.mechanics.normal import NormalForce, normal_forces
 from lagsolve.mechanics.reactions import Reaction
-from lagsolve.mechanics.results import ConstraintForce, ContactForce, Derivation, FrictionResult
+from lagsolve.mechanics.results import (
+    Canonical,
+    ConstraintForce,
+    ContactForce,
+    Contract,
+    Derivation,
+    Display,
+    FrictionResult,
+    Solution,
+)
 from lagsolve.mechanics.simplify import (
     compound_angles,
     measure,
@@ -96,30 +105,30 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     shown = stages.run("display simplification", _display, form, elimination, raw_acc, raw_lam, tidy, show_sum)
     if shown is None:
         shown = _display(form, elimination, raw_acc, raw_lam, _plain, _plain)
+    display, accelerations, multipliers = shown
     # the forces of constraint are found from the multipliers with a coupled N still a symbol (compact: |λ| |d|),
     # and the closed form is put in afterwards, like everywhere else
-    multipliers = shown["multipliers"]
     closed = {N: _shown_normal(v, elimination) for N, v in substituted.items() if N not in decoupled}
-    if closed and raw_lam is not None and raw_acc is not None:
-        raw_acc, raw_lam = _put_in(raw_acc, raw_lam, closed)
-        for key in ("accelerations", "multipliers"):
-            if shown[key] is not None:
-                shown[key] = {k: v.xreplace(closed) for k, v in shown[key].items()}
-    else:
+    if raw_lam is None or raw_acc is None:
         closed = {}
     forces = _forces_of_constraint(stages, form, multipliers, elimination, closed)
+    if closed:
+        raw_acc, raw_lam = _put_in(raw_acc, raw_lam, closed)
+        accelerations, multipliers = _closed_in_results(accelerations, closed), _closed_in_results(multipliers, closed)
+    solution = Solution(raw_acc, raw_lam, accelerations, multipliers, forces)
     friction = tuple(_friction_result(f, found.get(f.name), substituted, elimination) for f in frictions)
     friction = _contacts(stages, form, friction, forces, decoupled, elimination, raw_lam)
-    derivation = Derivation(
-        problem=problem, model=model, constraints=shown["constraints"], force_terms=shown["force_terms"],
-        lagrange=lagrange, elimination=elimination, raw_accelerations=raw_acc, raw_multipliers=raw_lam,
-        constraint_forces=forces, friction=friction, form=form, **{k: v for k, v in shown.items()
-                                                                    if k not in ("constraints", "force_terms")},
-    )
-    _check_free_symbols(derivation)
-    if analysis:
-        derivation = with_hamiltonian(with_analysis(derivation, stages), stages)
-    return dataclasses.replace(derivation, notes=stages.shown())
+    _check_free_symbols(form, display, solution, friction)
+    studied = analyse(form, solution, friction, stages) if analysis else None
+    contract = Contract(**contract_forms(studied)) if studied is not None else Contract()
+    canonical = canonical_form(studied, problem, stages) if studied is not None else Canonical()
+    return Derivation(form=form, elimination=elimination, display=display, solution=solution, friction=friction,
+                      analysis=studied, contract=contract, canonical=canonical, notes=stages.shown())
+
+
+def _closed_in_results(values: dict[str, Any] | None, closed: dict[Any, Any]) -> dict[str, Any] | None:
+    """Display results (accelerations or multipliers by name) with the coupled normal forces' closed forms put in."""
+    return None if values is None else {k: v.xreplace(closed) for k, v in values.items()}
 
 
 def _substitutions(found: dict[str, NormalForce], frictions: tuple[FrictionTerm, ...]) -> tuple[dict[Any, Any],
@@ -193,11 +202,9 @@ def core(form: MatrixForm, note: str = "", *, analysis: bool = True) -> Derivati
     given, says why the later stages are missing: each stage that would have run (:func:`later_stages`)
     gets a note of its own with that reason, so every missing part is named."""
     elimination = eliminate(form.constraints, form.model)
-    shown = _display(form, elimination, None, None, _plain, _plain)
+    display, _, _ = _display(form, elimination, None, None, _plain, _plain)
     notes = tuple(StageNote(stage, note, "budget") for stage in later_stages(form, analysis=analysis)) if note else ()
-    return Derivation(problem=form.problem, model=form.model, lagrange=form.lagrange, elimination=elimination,
-                      raw_accelerations=None, raw_multipliers=None, constraint_forces=None, form=form,
-                      notes=notes, **shown)
+    return Derivation(form=form, elimination=elimination, display=display, notes=notes)
 
 
 def later_stages(form: MatrixForm, *, analysis: bool = True) -> tuple[str, ...]:
@@ -313,9 +320,11 @@ def _shown_normal(value: Any, elimination: Elimination) -> Any:
 
 
 def _display(form: MatrixForm, elimination: Elimination, raw_acc: tuple[Any, ...] | None,
-             raw_lam: tuple[Any, ...] | None, show: Any, show_sum: Any) -> dict[str, Any]:
-    """The display forms of the derivation's steps and results (``show``/``show_sum``: :func:`tidy` and
-    :func:`tidy_sum`, or the identity when display simplification ran out of budget)."""
+             raw_lam: tuple[Any, ...] | None, show: Any, show_sum: Any) -> tuple[Display, dict[str, Any] | None,
+                                                                             dict[str, Any] | None]:
+    """The display forms of the derivation's steps, and of its accelerations and multipliers by name (None when not
+    solved); ``show``/``show_sum`` are :func:`tidy` and :func:`tidy_sum`, or the identity when display simplification
+    ran out of budget."""
     problem, model, constraints, lagrange = form.problem, form.model, form.constraints, form.lagrange
     eliminated_acc = _eliminated_accelerations(constraints, model, elimination)
     multipliers = None if raw_lam is None else {
@@ -325,30 +334,29 @@ def _display(form: MatrixForm, elimination: Elimination, raw_acc: tuple[Any, ...
     lhs = tuple(r - g for r, g in zip(lagrange.momenta_rates, lagrange.gradients, strict=True))
     rhs = tuple(q + c for q, c in zip(form.generalized_forces, lagrange.constraint_forces, strict=True))
     kinetic, potential = show_sum(model.kinetic), show_sum(model.potential)
-    return {
-        "kinetic": kinetic,
-        "potential": potential,
-        "lagrangian": kinetic - potential,
-        "constraints": tuple(
+    display = Display(
+        kinetic=kinetic,
+        potential=potential,
+        lagrangian=kinetic - potential,
+        constraints=tuple(
             ConstraintTerms(c.name, c.kind, c.expression, c.on, tuple(show(a) for a in c.coefficients),
                             show(c.offset), show(c.acceleration_rhs), c.multiplier)
             for c in constraints),
-        "force_terms": tuple(ForceTerm(t.label, tuple(show(x) for x in t.generalized)) for t in form.loads),
-        "momenta": tuple(show_sum(p) for p in lagrange.momenta),
-        "momenta_rates": tuple(show_sum(p) for p in lagrange.momenta_rates),
-        "gradients": tuple(show_sum(g) for g in lagrange.gradients),
-        "generalized_forces": tuple(show(x) for x in form.generalized_forces),
-        "equations": tuple(show_sum(e) for e in lagrange.equations),
-        "equation_sides": tuple((show_sum(a), show_sum(b)) for a, b in zip(lhs, rhs, strict=True)),
-        "eliminated_accelerations": eliminated_acc,
-        "constrained_sides": tuple(
+        force_terms=tuple(ForceTerm(t.label, tuple(show(x) for x in t.generalized)) for t in form.loads),
+        momenta=tuple(show_sum(p) for p in lagrange.momenta),
+        momenta_rates=tuple(show_sum(p) for p in lagrange.momenta_rates),
+        gradients=tuple(show_sum(g) for g in lagrange.gradients),
+        generalized_forces=tuple(show(x) for x in form.generalized_forces),
+        equations=tuple(show_sum(e) for e in lagrange.equations),
+        equation_sides=tuple((show_sum(a), show_sum(b)) for a, b in zip(lhs, rhs, strict=True)),
+        eliminated_accelerations=eliminated_acc,
+        constrained_sides=tuple(
             (show_sum(elimination.apply(a.xreplace(eliminated_acc))), show_sum(elimination.apply(b)))
             for a, b in zip(lhs, rhs, strict=True)),
-        "mass_matrix": sympy.ImmutableMatrix(lagrange.mass_matrix.applyfunc(show_sum)),
-        "forcing": sympy.ImmutableMatrix(lagrange.forcing.applyfunc(show_sum)),
-        "accelerations": accelerations,
-        "multipliers": multipliers,
-    }
+        mass_matrix=sympy.ImmutableMatrix(lagrange.mass_matrix.applyfunc(show_sum)),
+        forcing=sympy.ImmutableMatrix(lagrange.forcing.applyfunc(show_sum)),
+    )
+    return display, accelerations, multipliers
 
 
 def _eliminated_accelerations(constraints: tuple[ConstraintTerms, ...], model: Model,
@@ -387,13 +395,13 @@ def _constraint_force(react: Reaction, multiplier: Any, terms: ConstraintTerms,
     return ConstraintForce(react.name, None, common, tuple(per_particle), react.note)
 
 
-def _check_free_symbols(derivation: Derivation) -> None:
+def _check_free_symbols(form: MatrixForm, display: Display, solution: Solution,
+                        friction: tuple[FrictionResult, ...]) -> None:
     """Every symbol in a result must be declared (style rule 5): a cheap guard against slips."""
-    problem = derivation.problem
-    allowed = set(problem.symbols.values()) | set(derivation.multiplier_symbols)
-    allowed |= set(derivation.model.accelerations)
-    allowed |= {f.term.normal for f in derivation.friction}  # coupled normal forces stay symbols
-    for name, expr in {**(derivation.accelerations or {}), **(derivation.multipliers or {})}.items():
+    allowed = set(form.problem.symbols.values()) | {c.multiplier for c in display.constraints}
+    allowed |= set(form.model.accelerations)
+    allowed |= {f.term.normal for f in friction}  # coupled normal forces stay symbols
+    for name, expr in {**(solution.accelerations or {}), **(solution.multipliers or {})}.items():
         stray = expr.free_symbols - allowed
         if stray:
             raise DerivationError(

@@ -55,13 +55,15 @@ from lagsolve.mechanics.identities import Zero, numerically_zero, proved_zero, z
 from lagsolve.mechanics.linsolve import SIZE_LIMIT, solve_structured
 from lagsolve.mechanics.model import Model, time_derivative
 from lagsolve.mechanics.partials import partial
+from lagsolve.mechanics.results import Canonical
 from lagsolve.mechanics.ringsolve import coupled
 from lagsolve.mechanics.simplify import measure, smallest, tidy, tidy_sum
 from lagsolve.mechanics.stages import Stages, StageSkipped, StageTooLarge
 from lagsolve.problem.names import momentum_symbol
 
 if TYPE_CHECKING:
-    from lagsolve.mechanics.results import Analysis, Derivation
+    from lagsolve.mechanics.results import Analysis
+    from lagsolve.problem.schema import Problem
 
 #: the statements of :attr:`Hamiltonian.form`
 T_PLUS_V, T2_T0_V, T2_T0_V0 = "T + V", "T2 - T0 + V", "T2 - T0 + V0"
@@ -165,19 +167,17 @@ class Hamiltonian:
         return bracket, partial_t, forces
 
 
-def with_hamiltonian(derivation: Derivation, stages: Stages) -> Derivation:
-    """``derivation`` (with its analysis) with ``hamiltonian`` filled in by the stage of that name, or
-    ``hamiltonian_note`` saying why not: the reason it does not apply, or the stage's note."""
-    if derivation.analysis is None:
-        return derivation
-    found = stages.run("hamiltonian", hamiltonian, derivation.analysis, derivation.problem.dissipation)
+def canonical_form(analysis: Analysis, problem: Problem, stages: Stages) -> Canonical:
+    """The :class:`~lagsolve.mechanics.results.Canonical` part of a derivation: the Hamiltonian of its analysis,
+    found by the stage of that name, or why not: the reason it does not apply, or the stage's note."""
+    found = stages.run("hamiltonian", hamiltonian, analysis, problem.dissipation)
     if found is None:
         note = stages.note_for("hamiltonian")
-        return dataclasses.replace(derivation, hamiltonian_note=note.reason if note is not None else "did not finish")
+        return Canonical(note=note.reason if note is not None else "did not finish")
     result, reason = found
     if result is None:
         stages.skip("hamiltonian", reason, "n/a")  # not applicable: said in the Hamiltonian section itself
-    return dataclasses.replace(derivation, hamiltonian=result, hamiltonian_note=reason)
+    return Canonical(result, reason)
 
 
 def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonian | None, str]:

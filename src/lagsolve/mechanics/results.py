@@ -8,10 +8,13 @@ every stage name the results without importing the stages that run it (no import
 
 from __future__ import annotations
 
+import typing
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Generic, TypeVar, overload
 
 from lagsolve.notebook import shown
+
+T = TypeVar("T")
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.conserved import Conservation, MotionSystem
@@ -22,15 +25,15 @@ if TYPE_CHECKING:
     from lagsolve.mechanics.forces import ForceTerm
     from lagsolve.mechanics.friction import FrictionTerm
     from lagsolve.mechanics.integrability import Classification
-    from lagsolve.mechanics.lagrange import LagrangeTerms
+    from lagsolve.mechanics.lagrange import LagrangeTerms  # noqa: F401 - named in _Part["..."] below
     from lagsolve.mechanics.linearize import Linearization
     from lagsolve.mechanics.matrix_form import MatrixForm
     from lagsolve.mechanics.minimal import ReducedSystem
-    from lagsolve.mechanics.model import Model
+    from lagsolve.mechanics.model import Model  # noqa: F401 - named in _Part["..."] below
     from lagsolve.mechanics.stages import StageNote
     from lagsolve.mechanics.steady import SteadyMotion
     from lagsolve.mechanics.sticking import Sticking
-    from lagsolve.problem.schema import Problem
+    from lagsolve.problem.schema import Problem  # noqa: F401 - named in _Part["..."] below
 
 
 @dataclass(frozen=True)
@@ -82,57 +85,137 @@ class FrictionResult:
 
 
 @dataclass(frozen=True)
-class Derivation:
-    """Everything derived for one problem (immutable; nothing to "compute first").
+class Display:
+    """The display forms of the derivation's steps (simplified for reading; plain when display simplification ran
+    out of its budget): the energies, the constraints' coefficients, the force terms, Lagrange's equations term by
+    term and as (left, right) sides before and after using the constraints, and the matrix form."""
 
-    Display forms (simplified): ``kinetic``, ``potential``, ``lagrangian``, ``constraints``
-    (coefficients), ``momenta``, ``momenta_rates``, ``gradients``, ``generalized_forces``,
-    ``equations`` (left minus right side), ``equation_sides`` and ``constrained_sides``
-    (each equation as (left, right), before and after using the constraints), ``mass_matrix``
-    and ``forcing`` (the matrix form), ``accelerations``, ``multipliers``,
-    ``constraint_forces``. Raw forms: ``model``, ``lagrange`` (matrix form) and
-    ``raw_accelerations``/``raw_multipliers`` (the augmented solve, unsimplified).
-    Analysis (:mod:`lagsolve.mechanics.analysis`): ``analysis`` with every step, and the
-    contract forms ``reduced``, ``conserved``, ``effective_potential`` (format section 2).
-
-    The matrix form is always there. A later stage that ran out of its share of the budget,
-    or did not apply, leaves its results ``None`` and says why in ``notes``
-    (:mod:`lagsolve.mechanics.stages`).
-    """
-
-    problem: Problem
-    model: Model
     kinetic: Any
     potential: Any
     lagrangian: Any
     constraints: tuple[ConstraintTerms, ...]
     force_terms: tuple[ForceTerm, ...]
-    lagrange: LagrangeTerms
     momenta: tuple[Any, ...]
     momenta_rates: tuple[Any, ...]
     gradients: tuple[Any, ...]
     generalized_forces: tuple[Any, ...]
     equations: tuple[Any, ...]
     equation_sides: tuple[tuple[Any, Any], ...]
-    elimination: Elimination
     eliminated_accelerations: dict[Any, Any]
     constrained_sides: tuple[tuple[Any, Any], ...]
-    raw_accelerations: tuple[Any, ...] | None
-    raw_multipliers: tuple[Any, ...] | None
-    accelerations: dict[str, Any] | None
-    multipliers: dict[str, Any] | None
-    constraint_forces: dict[str, ConstraintForce] | None
-    friction: tuple[FrictionResult, ...] = ()
+    mass_matrix: Any
+    forcing: Any
+
+
+@dataclass(frozen=True)
+class Solution:
+    """The explicit solve: the raw (unsimplified) accelerations and multipliers, their display forms by name and
+    the forces of constraint; each None when its stage did not finish (the notes say why)."""
+
+    raw_accelerations: tuple[Any, ...] | None = None
+    raw_multipliers: tuple[Any, ...] | None = None
+    accelerations: dict[str, Any] | None = None
+    multipliers: dict[str, Any] | None = None
+    constraint_forces: dict[str, ConstraintForce] | None = None
+
+
+@dataclass(frozen=True)
+class Contract:
+    """The format's section 2 forms of the analysis: ``reduced``, ``conserved``, ``effective_potential``
+    (:func:`lagsolve.mechanics.analysis.contract_forms`; all None without an analysis)."""
+
     reduced: dict[str, Any] | None = None
     conserved: dict[str, Any] | None = None
     effective_potential: dict[str, Any] | None = None
-    analysis: Any = None  # lagsolve.mechanics.analysis.Analysis: classification, reduction, conservation, ...
-    form: MatrixForm | None = None  # the unsolved matrix form the numeric stage compiles
-    mass_matrix: Any = None  # display form of M
-    forcing: Any = None  # display form of F
+
+
+@dataclass(frozen=True)
+class Canonical:
+    """The Hamiltonian formulation (``hamiltonian``, a :class:`lagsolve.mechanics.hamiltonian.Hamiltonian`) or
+    why there is none (``note``: not applicable, or its stage did not finish)."""
+
+    hamiltonian: Any = None
+    note: str = ""
+
+
+class _Part(Generic[T]):
+    """A name read through one part: ``derivation.kinetic`` is ``derivation.display.kinetic`` (typed ``T``)."""
+
+    def __init__(self, part: str, name: str | None = None) -> None:
+        self.part, self.name = part, name
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = self.name or name
+
+    @overload
+    def __get__(self, obj: None, owner: type | None = None) -> _Part[T]: ...
+
+    @overload
+    def __get__(self, obj: object, owner: type | None = None) -> T: ...
+
+    def __get__(self, obj: object, owner: type | None = None) -> T | _Part[T]:
+        if obj is None:
+            return self
+        return typing.cast(T, getattr(getattr(obj, self.part), self.name or ""))
+
+
+@dataclass(frozen=True)
+class Derivation:
+    """Everything derived for one problem (immutable; nothing to "compute first"), composed of parts, each built
+    before the one constructor call in :func:`lagsolve.mechanics.derivation.derive`:
+
+    - ``form``: the matrix form (:class:`~lagsolve.mechanics.matrix_form.MatrixForm`: the problem, its model,
+      Lagrange's terms, the raw constraints, loads and friction terms), always there;
+    - ``elimination``: the dependent variables the constraints give, put into every display form;
+    - ``display``: the display forms of the steps (:class:`Display`);
+    - ``solution``: the explicit solve and the forces of constraint (:class:`Solution`);
+    - ``friction``: each friction contact's normal force, forces and sticking (:class:`FrictionResult`);
+    - ``analysis`` (:class:`Analysis`, None when not asked for) and its ``contract`` forms (:class:`Contract`);
+    - ``canonical``: the Hamiltonian formulation or why there is none (:class:`Canonical`);
+    - ``notes``: each later stage that ran out of its share of the budget, or did not apply, and why.
+
+    The names people and the reports read are properties over the parts (``kinetic``, ``accelerations``,
+    ``constraint_forces``, ``hamiltonian``, ...). A later stage that did not finish leaves its result None.
+    """
+
+    form: MatrixForm
+    elimination: Elimination
+    display: Display
+    solution: Solution = Solution()
+    friction: tuple[FrictionResult, ...] = ()
+    analysis: Any = None  # lagsolve.mechanics.results.Analysis: classification, reduction, conservation, ...
+    contract: Contract = Contract()
+    canonical: Canonical = Canonical()
     notes: tuple[StageNote, ...] = ()
-    hamiltonian: Any = None  # lagsolve.mechanics.hamiltonian.Hamiltonian: momenta, H, Hamilton's equations, Routhian
-    hamiltonian_note: str = ""  # why there is no Hamiltonian (not applicable, or its stage did not finish)
+
+    problem = _Part["Problem"]("form")
+    model = _Part["Model"]("form")
+    lagrange = _Part["LagrangeTerms"]("form")
+    kinetic = _Part["Any"]("display")
+    potential = _Part["Any"]("display")
+    lagrangian = _Part["Any"]("display")
+    constraints = _Part["tuple[ConstraintTerms, ...]"]("display")
+    force_terms = _Part["tuple[ForceTerm, ...]"]("display")
+    momenta = _Part["tuple[Any, ...]"]("display")
+    momenta_rates = _Part["tuple[Any, ...]"]("display")
+    gradients = _Part["tuple[Any, ...]"]("display")
+    generalized_forces = _Part["tuple[Any, ...]"]("display")
+    equations = _Part["tuple[Any, ...]"]("display")
+    equation_sides = _Part["tuple[tuple[Any, Any], ...]"]("display")
+    eliminated_accelerations = _Part["dict[Any, Any]"]("display")
+    constrained_sides = _Part["tuple[tuple[Any, Any], ...]"]("display")
+    mass_matrix = _Part["Any"]("display")
+    forcing = _Part["Any"]("display")
+    raw_accelerations = _Part["tuple[Any, ...] | None"]("solution")
+    raw_multipliers = _Part["tuple[Any, ...] | None"]("solution")
+    accelerations = _Part["dict[str, Any] | None"]("solution")
+    multipliers = _Part["dict[str, Any] | None"]("solution")
+    constraint_forces = _Part["dict[str, ConstraintForce] | None"]("solution")
+    reduced = _Part["dict[str, Any] | None"]("contract")
+    conserved = _Part["dict[str, Any] | None"]("contract")
+    effective_potential = _Part["dict[str, Any] | None"]("contract")
+    hamiltonian = _Part["Any"]("canonical")
+    hamiltonian_note = _Part["str"]("canonical", "note")
 
     @property
     def multiplier_symbols(self) -> tuple[Any, ...]:
