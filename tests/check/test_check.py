@@ -33,6 +33,7 @@ from lagsolve.check.compare import (
     check,
 )
 from lagsolve.mechanics.derivation import Derivation, derive
+from lagsolve.mechanics.results import Canonical, Contract
 from lagsolve.problem.load import load_text
 from mechanics_support import derived_file, shipped
 
@@ -249,8 +250,7 @@ def test_unknown_conserved_quantity_is_a_mismatch() -> None:
 def test_analysis_not_derived_yet_is_unchecked() -> None:
     """Without analysis results the expected reduced and V_eff answers are 'not derived', not failures; a claimed
     conserved quantity is still checked by its rate along the equations of motion."""
-    bare = dataclasses.replace(variant("hole_table", HOLE_ANALYSIS), reduced=None, conserved=None,
-                               effective_potential=None, hamiltonian=None)
+    bare = dataclasses.replace(variant("hole_table", HOLE_ANALYSIS), contract=Contract(), canonical=Canonical())
     report = check(bare)
     conserved = [v for v in report.verdicts if v.quantity == "conserved"]
     rest = [v for v in report.verdicts if v.quantity != "conserved"]
@@ -301,8 +301,8 @@ def test_claimed_constant_is_checked_numerically_on_a_surface_no_coordinate_solv
 def test_analysis_given_as_text_is_read_safely() -> None:
     """Analysis results in their JSON text form are read through the safe parser and compared."""
     derivation = variant("hole_table", HOLE_ANALYSIS)
-    as_text = dataclasses.replace(
-        derivation, conserved={k: sympy.sstr(v) for k, v in (derivation.conserved or {}).items()})
+    as_text = dataclasses.replace(derivation, contract=dataclasses.replace(
+        derivation.contract, conserved={k: sympy.sstr(v) for k, v in (derivation.conserved or {}).items()}))
     found = {f"{v.quantity}.{v.name}": v for v in check(as_text).verdicts}
     assert found["conserved.p_theta"].status == OK
 
