@@ -235,7 +235,7 @@ def output_schema() -> dict[str, Any]:
             "required": ["coordinate", "expression"]}]},
         "analysis": {"type": ["object", "null"], "description": "classification, reduction, reasons, equilibria "
                                                                 "(docs/format.md, Output)"},
-        "hamiltonian": _hamiltonian(text, texts, by_name),
+        "hamiltonian": _hamiltonian_schema(),
         "notes": {"type": "array", "items": _closed({"stage": text, "kind": text, "reason": text},
                                                     ("stage", "kind", "reason"))},
         "units": _units_schema(),
@@ -266,26 +266,14 @@ def _units_schema() -> dict[str, Any]:
                            "('constraint' is the unit of its expression)"}
 
 
-def _hamiltonian(text: dict[str, Any], texts: dict[str, Any], by_name: dict[str, Any]) -> dict[str, Any]:
-    """The ``hamiltonian`` key: the formulation, ``{not_applicable: reason}``, or null (stage not finished)."""
-    routhian = _closed({"cyclic": texts, "expression": text, "velocities": by_name,
-                        "equations": _by_name(_closed({"lhs": text, "rhs": text}, ("lhs", "rhs")))},
-                       ("cyclic", "expression", "velocities", "equations"))
-    bracket = _closed({"quantity": text, "bracket": text, "partial_t": text, "forces": text, "rate": text,
-                       "verified": {"enum": ["symbolic", "numeric", "differ"]}},
-                      ("quantity", "bracket", "partial_t", "forces", "rate", "verified"))
-    formulation = _closed({
-        "coordinates": texts,
-        "momenta": {**by_name, "description": "p_<q> = dL/d<q>_dot, in the coordinates and velocities"},
-        "velocities": {**by_name, "description": "<q>_dot in the coordinates and momenta"},
-        "H": {**text, "description": "the Hamiltonian in the coordinates and momenta (and t)"},
-        "form": {"enum": ["T + V", "T2 - T0 + V", "T2 - T0 + V0", None]},
-        "equations": {**by_name, "description": "<q>_dot and p_<q>_dot, Hamilton's equations"},
-        "routhian": {"anyOf": [{"type": "null"}, routhian]},
-        "poisson_brackets": _by_name(bracket),
-    }, ("coordinates", "momenta", "velocities", "H", "form", "equations", "routhian", "poisson_brackets"))
-    return {"anyOf": [{"type": "null"}, formulation, _closed({"not_applicable": text}, ("not_applicable",))],
-            "description": "Hamiltonian mechanics (docs/format.md, Output)"}
+def _hamiltonian_schema() -> dict[str, Any]:
+    """``hamiltonian``: the formulation, ``{not_applicable: reason}``, or null (stage not finished, or no analysis);
+    generated from the records the JSON is written from
+    (:data:`lagsolve.render.sections.hamiltonian.HamiltonianPart`)."""
+    from lagsolve.render.model import json_schema
+    from lagsolve.render.sections.hamiltonian import HamiltonianPart
+
+    return {**json_schema(HamiltonianPart), "description": "Hamiltonian mechanics (docs/format.md, Output)"}
 
 
 def grades_schema() -> dict[str, Any]:

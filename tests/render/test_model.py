@@ -16,10 +16,11 @@ import sympy
 
 from lagsolve.render.model import Expr, JsonPrinter, NotationPrinter, Rows, json_schema, present, records, shown
 from lagsolve.render.notation import Notation
+from lagsolve.render.sections.hamiltonian import HamiltonianSection, NotApplicable, NotDerived
 from lagsolve.render.sections.units import UnitsSection
 
 #: the section records migrated to the presentation model (each one's whole tree of records is checked)
-MIGRATED = [UnitsSection]
+MIGRATED = [UnitsSection, HamiltonianSection, NotApplicable, NotDerived]
 
 jsonschema = pytest.importorskip("jsonschema")
 
@@ -101,3 +102,20 @@ def test_a_field_without_metadata_is_an_error() -> None:
 
     with pytest.raises(TypeError, match=r"Bare\.value has no presentation metadata"):
         present(Bare(), JsonPrinter())
+
+
+@dataclass(frozen=True)
+class _Why:
+    reason: str = shown(json=None, terminal=True)
+
+
+def test_a_record_without_json_fields_is_null_there() -> None:
+    """A template-only record (why a section is missing) is null in the JSON and in its schema; a union of records
+    is described by each one's schema, once each."""
+    assert present(_Why("stopped"), JsonPrinter()) is None
+    assert present(_Why("stopped"), NotationPrinter("text", Notation(["x"]))) == {"reason": "stopped"}
+    assert json_schema(_Why) == {"type": "null"}
+    union = json_schema(_Inner | _Why | None)
+    assert union == {"anyOf": [json_schema(_Inner), {"type": "null"}]}
+    validator = jsonschema.Draft202012Validator(union)
+    assert list(validator.iter_errors(None)) == [] and list(validator.iter_errors({"more": "3"})) == []

@@ -19,6 +19,7 @@ from lagsolve.render.report import (
     sections_summary,
 )
 from lagsolve.render.sections import Sections, build
+from lagsolve.render.sections.hamiltonian import HamiltonianSection, NotApplicable, NotDerived
 from lagsolve.render.units import unit_tex
 
 Shipped = Callable[[str], Derivation]
@@ -157,11 +158,11 @@ def test_hamiltonian_section_follows_the_minimal_coordinates(shipped_derivation:
     h = derivation.hamiltonian
     assert h is not None
     sections = build(derivation)
-    parts = sections.hamiltonian.parts
-    assert parts is not None
-    assert [c.coordinate for c in parts.canonical] == list(h.coordinates)
-    assert [c.momentum for c in parts.canonical] == list(h.momentum_symbols)
-    assert parts.expression == h.expression
+    section = sections.hamiltonian
+    assert isinstance(section, HamiltonianSection)
+    assert [c.coordinate for c in section.coordinates] == list(h.coordinates)
+    assert [c.momentum for c in section.coordinates] == list(h.momentum_symbols)
+    assert section.expression == h.expression
     data = sections_json(sections)["hamiltonian"]
     assert data["coordinates"] == [q.name for q in h.coordinates]
     assert list(data["momenta"]) == [p.name for p in h.momentum_symbols]
@@ -169,8 +170,26 @@ def test_hamiltonian_section_follows_the_minimal_coordinates(shipped_derivation:
     assert len(context["coordinates"]) == len(h.coordinates)
     text = _text(derivation)
     wanted = [f"    {text(sympy.Symbol(c.coordinate.name + '_dot'))} = {text(c.rate)},  "
-              f"ṗ{text(c.momentum)[1:]} = {text(c.momentum_rate)}" for c in parts.canonical]
+              f"ṗ{text(c.momentum)[1:]} = {text(c.momentum_rate)}" for c in section.coordinates]
     assert _in_order(sections_summary(sections).splitlines(), wanted)
+
+
+@pytest.mark.parametrize(("missing", "json", "sentence", "line"), [
+    (NotApplicable("a velocity constraint remains"), {"not_applicable": "a velocity constraint remains"},
+     "Not applicable: a velocity constraint remains.", "  Hamiltonian: not applicable: a velocity constraint remains"),
+    (NotDerived("did not finish"), None, "Not applicable: did not finish.", None),
+    (None, None, None, None),
+], ids=["not applicable", "not derived", "no analysis"])
+def test_a_missing_hamiltonian_is_said_alike_in_every_format(bead: Derivation, missing: object, json: object,
+                                                               sentence: str | None, line: str | None) -> None:
+    """Without a formulation, the JSON writes why (null when its stage did not finish or there is no analysis), the
+    reports say why (no section without an analysis) and the terminal names a physical reason only."""
+    sections = dataclasses.replace(build(bead), hamiltonian=missing)
+    assert sections_json(sections)["hamiltonian"] == json
+    markdown, summary = render_sections(sections, "md"), sections_summary(sections)
+    assert ("## Hamiltonian mechanics" in markdown) is (sentence is not None)
+    assert sentence is None or f"\n{sentence}\n" in markdown
+    assert [x for x in summary.splitlines() if "Hamiltonian" in x] == ([line] if line else [])
 
 
 def test_units_section_rows_are_the_tables_rows(bead: Derivation) -> None:
@@ -225,7 +244,7 @@ def test_a_compact_hamiltonian_is_projected_in_matrix_form() -> None:
 
     derivation = derive(load_problem(Path(__file__).resolve().parents[2] / "problems" / "triple_pendulum.yaml"))
     sections = build(derivation)
-    assert sections.hamiltonian.parts.compact
+    assert isinstance(sections.hamiltonian, HamiltonianSection) and sections.hamiltonian.compact
     context = sections_context(sections)["hamiltonian"]
     assert context["expression"] == "" and context["remainder"]
     assert all(c["inverse"] == c["momentum_rate"] == "" and c["momentum_value"] for c in context["coordinates"])

@@ -7,7 +7,8 @@ partial lays it out. :func:`present` walks a record with a :class:`Printer` (LaT
 returns plain data: the templates' context, the terminal's, or the JSON result. :func:`json_schema` describes
 the JSON that :func:`present` writes, from the same declarations, so the output schema cannot drift from the
 output. A field declared without :func:`shown` is an error of :func:`present`, never a value silently missing
-from one format.
+from one format. A record none of whose fields is in the JSON (a template-only record, such as why a section is
+missing) is written as null there.
 
 Types: :data:`Expr` is an expression (printed by the printer; a string in the JSON), :data:`Rows` a matrix (one
 expression in the templates, a list of rows in the JSON). A value with a ``present(printer)`` method prints
@@ -164,7 +165,9 @@ def present(value: Any, printer: Printer, *, kind: str = "expression") -> Any:
     return printer.expr(value)
 
 
-def _record(record: Any, printer: Printer) -> dict[str, Any]:
+def _record(record: Any, printer: Printer) -> dict[str, Any] | None:
+    if printer.kind == "json" and not _in_json(type(record)):
+        return None
     out: dict[str, Any] = {}
     hints = _hints(type(record))
     for field in dataclasses.fields(record):
@@ -187,6 +190,11 @@ def _record(record: Any, printer: Printer) -> dict[str, Any]:
         else:
             out[key] = shown_value
     return out
+
+
+def _in_json(cls: type) -> bool:
+    """Whether the JSON writes any field of record class ``cls`` (else it writes the record as null)."""
+    return any(metadata(f, cls).json is not None for f in dataclasses.fields(cls))
 
 
 def _key(name: str, meta: Shown, printer: Printer) -> str | None:
@@ -219,9 +227,15 @@ def _kind(hint: Any) -> str:
     return next((k for k in map(_kind, typing.get_args(hint)) if k == "rows"), "expression")
 
 
-def json_schema(cls: type, *, root: bool = False) -> dict[str, Any]:
+def json_schema(cls: Any, *, root: bool = False) -> dict[str, Any]:
     """The JSON Schema (draft 2020-12) of what :func:`present` writes for a record of class ``cls`` with the JSON
-    printer: an object with the fields' JSON keys, closed; a key is required unless its field is ``optional``."""
+    printer: an object with the fields' JSON keys, closed; a key is required unless its field is ``optional``
+    (null for a record none of whose fields is in the JSON). ``cls`` may also be a type such as a union of
+    records (``A | B | None``: any of their schemas)."""
+    if not (isinstance(cls, type) and dataclasses.is_dataclass(cls)):
+        return _schema_of(cls)
+    if not _in_json(cls):
+        return {"type": "null"}
     properties: dict[str, Any] = {}
     required: list[str] = []
     hints = _hints(cls)
@@ -232,7 +246,7 @@ def json_schema(cls: type, *, root: bool = False) -> dict[str, Any]:
         hint = hints[field.name]
         if meta.inline:
             inner = json_schema(_record_class(hint))
-            properties.update(inner["properties"])
+            properties.update(inner.get("properties", {}))
             required += inner.get("required", [])
             continue
         key = meta.json or field.name
@@ -270,7 +284,9 @@ def _schema_of(hint: Any, meta: Shown | None = None) -> dict[str, Any]:
             return {"type": "string"}
         return _schema_of(args[0], meta)
     if origin in (types.UnionType, typing.Union):
-        options = [_schema_of(a, meta) for a in args]
+        options: list[dict[str, Any]] = []
+        for option in (_schema_of(a, meta) for a in args):
+            options += [] if option in options else [option]
         return options[0] if len(options) == 1 else {"anyOf": options}
     if origin is Literal:
         return {"enum": list(args)}

@@ -24,7 +24,6 @@ from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.render.analysis_report import analysis_context, analysis_json, analysis_summary, contract_json
 from lagsolve.render.formats import FORMATS
-from lagsolve.render.hamiltonian_report import hamiltonian_context, hamiltonian_json, hamiltonian_summary
 from lagsolve.render.mathml import typeset
 from lagsolve.render.model import JsonPrinter, NotationPrinter, present
 from lagsolve.render.notation import FILTERS, Notation, symbol_table, to_json
@@ -144,7 +143,7 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
         "forces": forces,
         "friction": friction,
         "analysis": analysis_context(sections.analysis, note, math),
-        "hamiltonian": hamiltonian_context(sections.hamiltonian, note, math),
+        "hamiltonian": present(sections.hamiltonian, NotationPrinter(math, note)),
         "notes": [n.sentence() for n in core.notes],
         "symbols": symbol_table(dict(core.symbols), note),
         "math": math,
@@ -338,7 +337,7 @@ def sections_json(sections: Sections) -> dict[str, Any]:
         },
         **contract_json(core.contract),
         "analysis": analysis_json(sections.analysis),
-        "hamiltonian": hamiltonian_json(sections.hamiltonian),
+        "hamiltonian": present(sections.hamiltonian, JsonPrinter()),
         "notes": [{"stage": n.stage, "kind": n.kind, "reason": n.reason} for n in core.notes],
         **({"units": present(sections.units, JsonPrinter())} if sections.units is not None else {}),
     }
@@ -388,7 +387,8 @@ def sections_summary(sections: Sections) -> str:
         if f.held is not None and f.held[2] is not None:
             lines.append(f"    sticks while mu_s >= {text(f.held[2])} (holding force {text(f.held[0])})")
     lines += analysis_summary(sections.analysis, note)
-    lines += hamiltonian_summary(sections.hamiltonian, note)
+    lines += text_lines("_hamiltonian.txt.j2",
+                        {"hamiltonian": present(sections.hamiltonian, NotationPrinter("text", note))})
     if core.notes:
         lines.append("  not completed:")
         lines += [f"    {n.sentence()}" for n in core.notes]

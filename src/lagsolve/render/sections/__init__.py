@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 
 from lagsolve.render.sections.analysis import AnalysisSection, analysis_section
 from lagsolve.render.sections.core import CoreSections, core_sections
-from lagsolve.render.sections.hamiltonian import HamiltonianSection, hamiltonian_section
+from lagsolve.render.sections.hamiltonian import HamiltonianPart, hamiltonian_section
 from lagsolve.render.sections.units import UnitsSection, units_section
 
 if TYPE_CHECKING:
@@ -31,7 +31,7 @@ class Sections:
 
     core: CoreSections
     analysis: AnalysisSection | None  # None: the derivation carries no analysis
-    hamiltonian: HamiltonianSection
+    hamiltonian: HamiltonianPart  # None: the derivation carries no analysis
     units: UnitsSection | None  # None: the problem declares no unit
 
 
