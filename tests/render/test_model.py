@@ -16,10 +16,11 @@ import sympy
 
 from lagsolve.render.model import Expr, JsonPrinter, NotationPrinter, Rows, json_schema, present, records, shown
 from lagsolve.render.notation import Notation
+from lagsolve.render.sections.analysis import AnalysisSection
 from lagsolve.render.sections.units import UnitsSection
 
 #: the section records migrated to the presentation model (each one's whole tree of records is checked)
-MIGRATED = [UnitsSection]
+MIGRATED = [UnitsSection, AnalysisSection]
 
 jsonschema = pytest.importorskip("jsonschema")
 
