@@ -233,8 +233,7 @@ def output_schema() -> dict[str, Any]:
         "effective_potential": {"anyOf": [{"type": "null"}, {"type": "object", "properties": {
             "coordinate": text, "expression": text, "equilibria": {"type": "array", "items": equilibrium}},
             "required": ["coordinate", "expression"]}]},
-        "analysis": {"type": ["object", "null"], "description": "classification, reduction, reasons, equilibria "
-                                                                "(docs/format.md, Output)"},
+        "analysis": _analysis_schema(),
         "hamiltonian": _hamiltonian_schema(),
         "notes": {"type": "array", "items": _closed({"stage": text, "kind": text, "reason": text},
                                                     ("stage", "kind", "reason"))},
@@ -252,6 +251,16 @@ def output_schema() -> dict[str, Any]:
         "additionalProperties": False,
         "$defs": {"name": _NAME},
     }
+
+
+def _analysis_schema() -> dict[str, Any]:
+    """``analysis``: null when the derivation carries no analysis; generated from the record the JSON is written
+    from (:class:`lagsolve.render.sections.analysis.AnalysisSection`)."""
+    from lagsolve.render.model import json_schema
+    from lagsolve.render.sections.analysis import AnalysisSection
+
+    return {"anyOf": [{"type": "null"}, json_schema(AnalysisSection)],
+            "description": "classification, reduction, reasons, equilibria (docs/format.md, Output)"}
 
 
 def _units_schema() -> dict[str, Any]:

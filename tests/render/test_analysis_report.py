@@ -1,4 +1,4 @@
-"""The analysis in the reports (``lagsolve.render.analysis_report``): JSON contract shapes,
+"""The analysis in the reports (``lagsolve.render.sections.analysis`` presented): JSON contract shapes,
 worked-solution sections and terminal lines."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import json
 
 import pytest
 
-from lagsolve.render.analysis_report import analysis_context
+from lagsolve.render.model import NotationPrinter, present
 from lagsolve.render.notation import Notation
 from lagsolve.render.report import render, result_dict, summary
 from lagsolve.render.sections.analysis import analysis_section
@@ -82,7 +82,8 @@ def test_context_is_plain_data(hole):
     for name in ("hole_table", "knife_edge", "rotating_tube", "double_pendulum", "spherical_pendulum"):
         derivation = derived_file(name)
         note = Notation([c.name for c in derivation.problem.coordinates])
-        check(analysis_context(analysis_section(derivation), note))
+        for kind in ("latex", "mathml", "text"):
+            check(present(analysis_section(derivation), NotationPrinter(kind, note)))
 
 
 def test_summary_shows_the_analysis(hole):

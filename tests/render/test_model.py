@@ -16,11 +16,12 @@ import sympy
 
 from lagsolve.render.model import Expr, JsonPrinter, NotationPrinter, Rows, json_schema, present, records, shown
 from lagsolve.render.notation import Notation
+from lagsolve.render.sections.analysis import AnalysisSection
 from lagsolve.render.sections.hamiltonian import HamiltonianSection, NotApplicable, NotDerived
 from lagsolve.render.sections.units import UnitsSection
 
 #: the section records migrated to the presentation model (each one's whole tree of records is checked)
-MIGRATED = [UnitsSection, HamiltonianSection, NotApplicable, NotDerived]
+MIGRATED = [UnitsSection, HamiltonianSection, NotApplicable, NotDerived, AnalysisSection]
 
 jsonschema = pytest.importorskip("jsonschema")
 
@@ -119,3 +120,47 @@ def test_a_record_without_json_fields_is_null_there() -> None:
     assert union == {"anyOf": [json_schema(_Inner), {"type": "null"}]}
     validator = jsonschema.Draft202012Validator(union)
     assert list(validator.iter_errors(None)) == [] and list(validator.iter_errors({"more": "3"})) == []
+
+
+@dataclass(frozen=True)
+class _Pair:
+    symbol: Expr = shown(json=None)
+    value: Expr = shown()
+
+
+@dataclass(frozen=True)
+class _Flag:
+    on: bool = shown()
+
+
+@dataclass(frozen=True)
+class _Part:
+    pairs: tuple[_Pair, ...] = shown(keyed="symbol", keyed_value="value")
+    one: _Pair | None = shown(keyed="symbol", keyed_value="value")
+    flag: _Flag | None = shown(inline=True)
+    matrix: Rows = shown(blank_zero=True)
+
+
+@dataclass(frozen=True)
+class _Parts:
+    part: _Part | None = shown(absent="why")
+    why: str = shown(json=None)
+
+
+def test_keyed_values_absent_parts_and_optional_inline_records() -> None:
+    """``keyed_value`` writes {name: value} (for one record too, null for None); ``absent`` writes {"note": why}
+    in place of a None part; an inline None adds no key and its keys are not required; a zero matrix is blank in
+    the templates."""
+    x, y = sympy.symbols("x y")
+    part = _Part((_Pair(x, y ** 2), _Pair(y, x)), None, None, sympy.zeros(2, 2))
+    assert present(_Parts(part, ""), JsonPrinter()) == {"part": {
+        "pairs": {"x": "y**2", "y": "x"}, "one": None, "matrix": [["0", "0"], ["0", "0"]]}}
+    changed = dataclasses.replace(part, one=_Pair(x, y), flag=_Flag(True))
+    assert present(changed, JsonPrinter())["one"] == {"x": "y"} and present(changed, JsonPrinter())["on"] is True
+    assert present(_Parts(None, "not derived"), JsonPrinter()) == {"part": {"note": "not derived"}}
+    latex = present(_Parts(part, ""), NotationPrinter("latex", Notation(["x", "y"])))
+    assert latex["part"]["matrix"] == "" and latex["part"]["pairs"][0] == {"symbol": "x", "value": "y^{2}"}
+    validator = jsonschema.Draft202012Validator(json_schema(_Parts))
+    for value in (_Parts(part, ""), _Parts(changed, ""), _Parts(None, "why")):
+        assert list(validator.iter_errors(present(value, JsonPrinter()))) == []
+    assert list(validator.iter_errors({"part": {"note": 1}}))

@@ -19,6 +19,7 @@ from lagsolve.render.report import (
     sections_summary,
 )
 from lagsolve.render.sections import Sections, build
+from lagsolve.render.sections.analysis import Agreement
 from lagsolve.render.sections.hamiltonian import HamiltonianSection, NotApplicable, NotDerived
 from lagsolve.render.units import unit_tex
 
@@ -224,12 +225,12 @@ def test_agreement_sentence_is_written_once_for_markdown_and_latex(bead: Derivat
     analysis = sections.analysis
     assert analysis is not None and analysis.reduced is not None and not analysis.reduced.trivial
     changed = dataclasses.replace(sections, analysis=dataclasses.replace(
-        analysis, reduced=dataclasses.replace(analysis.reduced, agreement=agreement)))
+        analysis, reduced=dataclasses.replace(analysis.reduced, agreement=Agreement(agreement))))
     markdown, latex = render_sections(changed, "md"), render_sections(changed, "tex")
     assert "\n" + OLD_SENTENCES[agreement].format(warning="**Warning**") + "\n" in markdown
     assert "\n" + OLD_SENTENCES[agreement].format(warning="\\textbf{Warning}") + "\n" in latex
     assert changed.analysis is not None and changed.analysis.reduced is not None
-    phrase = changed.analysis.reduced.agreement_text[0]
+    phrase = changed.analysis.reduced.agreement.phrase
     assert any(line.startswith("  minimal coordinates: ") and line.endswith(f"({phrase})")
                for line in sections_summary(changed).splitlines())
 

@@ -42,11 +42,13 @@ class Shown:
     ``json``: its key in the JSON ("" for the field's own name; None: not in the JSON). ``template``: False
     keeps it out of the templates' context (a value only the JSON contract writes). ``terminal``: the text
     printer (the terminal summary) shows it. ``optional``: the JSON leaves the key out when the value is empty
-    (None, False, "", an empty list). ``inline``: the JSON merges the value's keys into the enclosing object.
-    ``keyed``: the JSON writes a list of records as an object keyed by this field of each. ``blank_zero``: the
-    templates get "" for an expression equal to 0 (they test it as false). ``unit``: what the value measures
-    (for the schema's description). ``partial``: the template partial that lays out a section. ``doc``: the
-    schema's description.
+    (None, False, "", an empty list). ``inline``: the JSON merges the value's keys into the enclosing object
+    (none for a None value). ``keyed``: the JSON writes a list of records (or one record) as an object keyed by
+    this field of each; with ``keyed_value``, each key's value is only that field of the record (``{name:
+    value}``). ``absent``: the JSON writes ``{"note": <that sibling field>}`` in place of a None value (a part
+    not derived, with the reason why). ``blank_zero``: the templates get "" for an expression (or a matrix)
+    equal to 0 (they test it as false). ``unit``: what the value measures (for the schema's description).
+    ``partial``: the template partial that lays out a section. ``doc``: the schema's description.
     """
 
     json: str | None = ""
@@ -55,6 +57,8 @@ class Shown:
     optional: bool = False
     inline: bool = False
     keyed: str | None = None
+    keyed_value: str | None = None
+    absent: str | None = None
     blank_zero: bool = False
     unit: str | None = None
     partial: str | None = None
@@ -138,6 +142,8 @@ def _empty(value: Any) -> bool:
 
 
 def _zero(value: Any) -> bool:
+    if getattr(value, "is_zero_matrix", None) is True:
+        return True
     return getattr(value, "is_zero", None) is True or (isinstance(value, int | float) and value == 0)
 
 
@@ -181,8 +187,10 @@ def _record(record: Any, printer: Printer) -> dict[str, Any] | None:
         kind = _kind(hints.get(field.name))
         if meta.blank_zero and printer.kind != "json" and _zero(value):
             shown_value: Any = ""
-        elif meta.keyed is not None and printer.kind == "json":
-            shown_value = {str(getattr(item, meta.keyed)): present(item, printer, kind=kind) for item in value}
+        elif printer.kind == "json" and value is None and meta.absent is not None:
+            shown_value = {"note": present(getattr(record, meta.absent), printer)}
+        elif meta.keyed is not None and printer.kind == "json" and value is not None:
+            shown_value = _keyed(value, meta, printer, kind)
         else:
             shown_value = present(value, printer, kind=kind)
         if meta.inline and printer.kind == "json":
@@ -195,6 +203,19 @@ def _record(record: Any, printer: Printer) -> dict[str, Any] | None:
 def _in_json(cls: type) -> bool:
     """Whether the JSON writes any field of record class ``cls`` (else it writes the record as null)."""
     return any(metadata(f, cls).json is not None for f in dataclasses.fields(cls))
+
+
+def _keyed(value: Any, meta: Shown, printer: Printer, kind: str) -> dict[str, Any]:
+    """A list of records (or one record) as an object keyed by the field ``meta.keyed`` of each; the values are
+    the records, or only their field ``meta.keyed_value``."""
+    items = value if isinstance(value, tuple | list) else (value,)
+    if meta.keyed_value is None:
+        return {str(getattr(item, str(meta.keyed))): present(item, printer, kind=kind) for item in items}
+    out = {}
+    for item in items:
+        inner = _kind(_hints(type(item)).get(meta.keyed_value))
+        out[str(getattr(item, str(meta.keyed)))] = present(getattr(item, meta.keyed_value), printer, kind=inner)
+    return out
 
 
 def _key(name: str, meta: Shown, printer: Printer) -> str | None:
@@ -247,10 +268,12 @@ def json_schema(cls: Any, *, root: bool = False) -> dict[str, Any]:
         if meta.inline:
             inner = json_schema(_record_class(hint))
             properties.update(inner.get("properties", {}))
-            required += inner.get("required", [])
+            required += [] if _nullable(hint) else inner.get("required", [])
             continue
         key = meta.json or field.name
-        properties[key] = _schema_of(hint, meta)
+        properties[key] = _schema_of(hint, meta) if meta.absent is None else {"anyOf": [
+            _schema_of(_not_none(hint), meta), {"type": "object", "properties": {"note": {"type": "string"}},
+                                                "required": ["note"], "additionalProperties": False}]}
         if meta.doc or meta.unit:
             properties[key] = {**properties[key], "description": _description(meta)}
         if not meta.optional:
@@ -264,6 +287,17 @@ def json_schema(cls: Any, *, root: bool = False) -> dict[str, Any]:
 def _description(meta: Shown) -> str:
     unit = f" (in the unit of {meta.unit})" if meta.unit else ""
     return (meta.doc + unit).strip()
+
+
+def _nullable(hint: Any) -> bool:
+    """Whether ``hint`` admits None (``X | None``)."""
+    return type(None) in typing.get_args(hint)
+
+
+def _not_none(hint: Any) -> Any:
+    """``X`` of a hint ``X | None`` (the hint itself otherwise)."""
+    args = [a for a in typing.get_args(hint) if a is not type(None)]
+    return args[0] if _nullable(hint) and len(args) == 1 else hint
 
 
 def _record_class(hint: Any) -> type:
@@ -290,10 +324,9 @@ def _schema_of(hint: Any, meta: Shown | None = None) -> dict[str, Any]:
         return options[0] if len(options) == 1 else {"anyOf": options}
     if origin is Literal:
         return {"enum": list(args)}
+    if meta is not None and meta.keyed is not None and (origin in (tuple, list) or dataclasses.is_dataclass(hint)):
+        return _keyed_schema(_record_class(args[0] if args else hint), meta)
     if origin in (tuple, list):
-        if meta is not None and meta.keyed is not None:
-            item = _record_class(args[0])
-            return {"type": "object", "additionalProperties": json_schema(item)}
         if origin is tuple and not (len(args) == 2 and args[1] is Ellipsis):
             return {"type": "array", "prefixItems": [_schema_of(a) for a in args], "items": False}
         return {"type": "array", "items": _schema_of(args[0])}
@@ -301,6 +334,12 @@ def _schema_of(hint: Any, meta: Shown | None = None) -> dict[str, Any]:
         value = _schema_of(args[1]) if args else {}
         return {"type": "object", "additionalProperties": value}
     return _scalar_schema(hint)
+
+
+def _keyed_schema(item: type, meta: Shown) -> dict[str, Any]:
+    """An object keyed by a field of each record: the records, or only their field ``meta.keyed_value``."""
+    value = json_schema(item) if meta.keyed_value is None else _schema_of(_hints(item)[meta.keyed_value])
+    return {"type": "object", "additionalProperties": value}
 
 
 def _scalar_schema(hint: Any) -> dict[str, Any]:

@@ -22,7 +22,7 @@ from jinja2.sandbox import ImmutableSandboxedEnvironment
 
 from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation
-from lagsolve.render.analysis_report import analysis_context, analysis_json, analysis_summary, contract_json
+from lagsolve.render.analysis_report import contract_json
 from lagsolve.render.formats import FORMATS
 from lagsolve.render.mathml import typeset
 from lagsolve.render.model import JsonPrinter, NotationPrinter, present
@@ -142,7 +142,7 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
         "unilateral": [{"name": c.name, "multiplier": tex(c.multiplier)} for c in core.constraints if c.unilateral],
         "forces": forces,
         "friction": friction,
-        "analysis": analysis_context(sections.analysis, note, math),
+        "analysis": present(sections.analysis, NotationPrinter(math, note)),
         "hamiltonian": present(sections.hamiltonian, NotationPrinter(math, note)),
         "notes": [n.sentence() for n in core.notes],
         "symbols": symbol_table(dict(core.symbols), note),
@@ -336,7 +336,7 @@ def sections_json(sections: Sections) -> dict[str, Any]:
             for f in core.friction
         },
         **contract_json(core.contract),
-        "analysis": analysis_json(sections.analysis),
+        "analysis": present(sections.analysis, JsonPrinter()),
         "hamiltonian": present(sections.hamiltonian, JsonPrinter()),
         "notes": [{"stage": n.stage, "kind": n.kind, "reason": n.reason} for n in core.notes],
         **({"units": present(sections.units, JsonPrinter())} if sections.units is not None else {}),
@@ -386,7 +386,7 @@ def sections_summary(sections: Sections) -> str:
         lines += [f"    |F| on {m.name} (normal force and friction) = {text(m.magnitude)}" for m in f.members]
         if f.held is not None and f.held[2] is not None:
             lines.append(f"    sticks while mu_s >= {text(f.held[2])} (holding force {text(f.held[0])})")
-    lines += analysis_summary(sections.analysis, note)
+    lines += text_lines("_analysis.txt.j2", {"analysis": present(sections.analysis, NotationPrinter("text", note))})
     lines += text_lines("_hamiltonian.txt.j2",
                         {"hamiltonian": present(sections.hamiltonian, NotationPrinter("text", note))})
     if core.notes:

@@ -1,21 +1,25 @@
 """The analysis sections of a report, as data: how each constraint integrates, the minimal coordinates,
-the conserved quantities, the effective potential with its equilibria, and the normal modes.
+the conserved quantities, the effective potential with its equilibria, the steady motions and the normal modes.
 
-Built once by :func:`analysis_section`; :mod:`lagsolve.render.analysis_report` projects it onto the
-templates (``templates/*/_analysis.*.j2``), the JSON key ``analysis`` and the terminal. Each record holds
-the expressions a report shows (an equilibrium's conditions already in the symbol of its value, q₀), and,
-where the JSON contract gives them as derived, those too. Nothing here simplifies.
+Built once by :func:`analysis_section`. Every field says how each format shows it
+(:func:`lagsolve.render.model.shown`): the templates (``templates/*/_analysis.*.j2``), the JSON key ``analysis``
+and the terminal lines (``templates/text/_analysis.txt.j2``) are all :func:`lagsolve.render.model.present` of the
+one record. Each record holds the expressions a report shows (an equilibrium's conditions already in the symbol
+of its value, q₀) and, where the JSON contract gives them as derived (in q), those too, as records the templates
+do not see. A layout one format needs is a value that prints itself (:class:`Pfaffian`, :class:`Indices`,
+:class:`ModeShape`, :class:`Agreement`). Nothing here simplifies.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import sympy
 
+from lagsolve.enums import TextEnum
 from lagsolve.mechanics.integrability import Integrability
-from lagsolve.render.sections.core import Substitution
+from lagsolve.render.model import Expr, Printer, Rows, shown
 
 if TYPE_CHECKING:
     from lagsolve.mechanics.equilibria import EffectivePotential
@@ -25,10 +29,41 @@ if TYPE_CHECKING:
     from lagsolve.mechanics.results import Derivation
     from lagsolve.mechanics.steady import SteadyMotion
 
-Expr = Any
+_STRINGS: dict[str, Any] = {"type": "array", "items": {"type": "string"}}
 
-#: how the equations in minimal coordinates compare with the multiplier route (``Reduced.agreement``): the
-#: terminal's phrase, the reports' sentence (the same in every format), and whether it is a warning
+
+# -- values that print themselves -----------------------------------------------------------------
+
+
+class Agreement(TextEnum):
+    """How the equations in minimal coordinates compare with the multiplier route: the JSON writes the word;
+    the templates and the terminal get it with its sentence (the same in every report format), whether that is
+    a warning, and the terminal's phrase (:data:`AGREEMENT`)."""
+
+    SYMBOLIC = "symbolic"
+    UNCHECKED = "unchecked"
+    NUMERIC = "numeric"
+    DIFFER = "differ"
+
+    @property
+    def phrase(self) -> str:
+        return AGREEMENT[self.value][0]
+
+    @property
+    def sentence(self) -> str:
+        return AGREEMENT[self.value][1]
+
+    @property
+    def warning(self) -> bool:
+        return AGREEMENT[self.value][2]
+
+    def present(self, printer: Printer) -> Any:
+        if printer.kind == "json":
+            return self.value
+        return {"kind": self.value, "phrase": self.phrase, "sentence": self.sentence, "warning": self.warning}
+
+
+#: each :class:`Agreement`: the terminal's phrase, the reports' sentence, and whether it is a warning
 AGREEMENT: dict[str, tuple[str, str, bool]] = {
     "symbolic": ("agrees with the multiplier route",
                  "Solved for the accelerations they give exactly the accelerations of the multiplier route above, "
@@ -46,217 +81,380 @@ AGREEMENT: dict[str, tuple[str, str, bool]] = {
 
 
 @dataclass(frozen=True)
-class Classified:
-    """A constraint by integrability: its Pfaffian form Σ w dx (``differential``), an integrating ``factor``,
-    the ``integral`` and its ``constant``, the coordinate it ``solved`` for, a Frobenius ``witness``."""
+class Pfaffian:
+    """A velocity constraint's Pfaffian form Σ w dx: in LaTeX ``a dq_1 + ... + b dt`` with zero terms left out,
+    elsewhere the sum of the terms w·dx (a template value: the JSON does not write it)."""
 
-    name: str
-    kind: Integrability
-    note: str
-    differential: tuple[tuple[Expr, Expr], ...]  # (coefficient, variable)
-    exact: bool
-    factor: Expr | None
-    integral: Expr | None
-    constant: Expr | None
-    solved: tuple[Expr, Expr] | None
-    witness: tuple[tuple[Expr, Expr, Expr], Expr] | None
+    differential: tuple[tuple[Any, Any], ...]  # (coefficient, variable)
+
+    def present(self, printer: Printer) -> str:
+        if printer.kind != "latex":
+            return printer.expr(sum((w * sympy.Symbol(f"d{x.name}") for w, x in self.differential), sympy.Integer(0)))
+        out = ""
+        for w, x in self.differential:
+            if w == 0:
+                continue
+            negative = not isinstance(w, sympy.Add) and w.could_extract_minus_sign()
+            size = -w if negative else w
+            coefficient = "" if size == 1 else (r"\left(" + printer.expr(size) + r"\right)\,"
+                                                if isinstance(size, sympy.Add) else printer.expr(size) + r"\,")
+            sign = ("-" if negative else "") if not out else (" - " if negative else " + ")
+            out += f"{sign}{coefficient}d{printer.expr(x)}"
+        return out or "0"
+
+
+@dataclass(frozen=True)
+class Indices:
+    """The variables of a component of ω∧dω: a list in the JSON, the subscript ``xyt`` (``x,y,t`` when a name
+    is longer than one character) in the templates."""
+
+    variables: tuple[Any, ...]
+
+    SCHEMA: ClassVar[dict[str, Any]] = _STRINGS
+
+    def present(self, printer: Printer) -> Any:
+        printed = [printer.expr(x) for x in self.variables]
+        if printer.kind == "json":
+            return printed
+        return "".join(printed) if all(len(p) == 1 for p in printed) else ",".join(printed)
+
+
+@dataclass(frozen=True)
+class ModeShape:
+    """A normal mode's shape u: by coordinate in the JSON, a row (1, -1) in the templates and the terminal."""
+
+    coordinates: tuple[Any, ...]
+    components: tuple[Any, ...]
+
+    SCHEMA: ClassVar[dict[str, Any]] = {"type": "object", "additionalProperties": {"type": "string"}}
+
+    def present(self, printer: Printer) -> Any:
+        if printer.kind == "json":
+            return {q.name: printer.expr(x) for q, x in zip(self.coordinates, self.components, strict=True)}
+        if printer.kind == "latex":
+            return r"\left(" + ", ".join(printer.expr(c) for c in self.components) + r"\right)"
+        return printer.expr(sympy.Tuple(*self.components))
+
+
+# -- records --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Binding:
+    """``symbol`` = ``value`` (a coordinate, velocity or momentum and what it equals); ``{name: value}`` in the
+    JSON where a field lists them ``keyed``."""
+
+    symbol: Expr = shown(json=None, terminal=True)
+    value: Expr = shown(terminal=True)
+
+
+@dataclass(frozen=True)
+class Witness:
+    """A non-zero component of ω∧dω: the constraint is nonholonomic (Frobenius)."""
+
+    variables: Indices = shown()
+    value: Expr = shown()
+
+
+@dataclass(frozen=True)
+class Classified:
+    """A constraint by integrability: its Pfaffian ``form``, an integrating ``factor`` (1 when ``exact``), the
+    ``integral`` ψ and its ``constant``, the coordinate it ``solved`` for (``restated``: the solved form says more
+    than ψ = C), a Frobenius ``witness``."""
+
+    name: str = shown(json=None, terminal=True)
+    kind: Integrability = shown(json="class", terminal=True)
+    form: Pfaffian | None = shown(json=None)  # None: holonomic as given
+    exact: bool = shown(json=None)
+    factor: Expr | None = shown(optional=True)
+    integral: Expr | None = shown(optional=True)
+    constant: Expr | None = shown(optional=True)
+    solved: Binding | None = shown(optional=True, keyed="symbol", keyed_value="value", terminal=True)
+    restated: bool = shown(json=None)
+    witness: Witness | None = shown(json="frobenius", optional=True)
+    note: str = shown(optional=True)
+
+
+@dataclass(frozen=True)
+class Dependent:
+    """A coordinate the constraints fix, ``symbol`` = ``value`` (``source``: the constraint, when known)."""
+
+    symbol: Expr = shown(json=None)
+    value: Expr = shown()
+    source: str = shown(json=None)
+
+
+@dataclass(frozen=True)
+class Equation:
+    """Lagrange's equation for ``coordinate``: ``lhs`` = ``rhs``."""
+
+    coordinate: Expr = shown()
+    lhs: Expr = shown()
+    rhs: Expr = shown()
 
 
 @dataclass(frozen=True)
 class Reduced:
-    """The system in minimal coordinates (``trivial``: no coordinate was eliminated)."""
+    """The system in minimal coordinates (trivial when no coordinate was eliminated): the JSON gives every
+    coordinate's generalized force, the templates only those that are not zero (``forces``)."""
 
-    independent: tuple[Expr, ...]
-    dependent: tuple[Substitution, ...]
-    velocities: tuple[tuple[Expr, Expr], ...]
-    constants: tuple[Expr, ...]
-    kinetic: Expr
-    potential: Expr
-    lagrangian: Expr
-    forces: tuple[tuple[Expr, Expr], ...]  # (coordinate, generalized force), every coordinate
-    equations: tuple[tuple[Expr, Expr, Expr], ...]  # (coordinate, lhs, rhs)
-    accelerations: tuple[tuple[Expr, Expr], ...]  # (q̈, value)
-    agreement: str
-    all_coordinates: bool
+    independent: tuple[Expr, ...] = shown(json=None, terminal=True)
+    dependent: tuple[Dependent, ...] = shown(keyed="symbol", keyed_value="value", terminal=True)
+    velocities: tuple[Binding, ...] = shown(json=None)
+    constants: tuple[Expr, ...] = shown()
+    kinetic: Expr = shown(json=None)
+    potential: Expr = shown(json=None)
+    lagrangian: Expr = shown()
+    generalized_forces: tuple[Binding, ...] = shown(keyed="symbol", keyed_value="value", template=False)
+    forces: tuple[Binding, ...] = shown(json=None)
+    equations: tuple[Equation, ...] = shown(json=None)
+    accelerations: tuple[Binding, ...] = shown(json=None)
+    agreement: Agreement = shown(terminal=True)
+    all_coordinates: bool = shown(json=None)
 
     @property
     def trivial(self) -> bool:
         return not self.dependent
 
-    @property
-    def agreement_text(self) -> tuple[str, str, bool]:
-        """(terminal phrase, report sentence, warning) for ``agreement`` (:data:`AGREEMENT`)."""
-        return AGREEMENT.get(self.agreement, AGREEMENT["differ"])
+
+@dataclass(frozen=True)
+class Jacobi:
+    """What the Jacobi integral h is: the total energy T + V or not."""
+
+    equals_total_energy: bool = shown(terminal=True)
+
+
+@dataclass(frozen=True)
+class Shift:
+    """A symmetry's flow on one coordinate, δq = ξ ε (``is_one``: ξ = 1, written as δq = ε)."""
+
+    coordinate: Expr = shown(json=None)
+    value: Expr = shown()
+    is_one: bool = shown(json=None)
+
+
+@dataclass(frozen=True)
+class Symmetry:
+    """The translation or rotation whose momentum a conserved quantity is (Noether), with its flow ξ on each
+    coordinate it moves."""
+
+    symmetry: str = shown(terminal=True)
+    generator: tuple[Shift, ...] = shown(keyed="coordinate", keyed_value="value")
 
 
 @dataclass(frozen=True)
 class Conserved:
-    """A conserved quantity, ``symbol`` = ``expression`` (p_q for a momentum, h for the energy function)."""
+    """A conserved quantity, ``symbol`` = ``expression`` (p_q for a momentum, h for the energy function), with
+    why it is conserved."""
 
-    name: str
-    kind: str
-    symbol: Expr
-    expression: Expr
-    coordinate: Expr | None
-    reason: str
-    equals_energy: bool | None
-    moving: bool
-    flags: tuple[str, ...]
-    symmetry: str = ""  # the translation or rotation whose momentum it is (Noether)
-    generator: tuple[tuple[Expr, Expr], ...] = ()  # (coordinate, ξ) for each coordinate the flow moves
+    name: str = shown(json=None)
+    kind: str = shown(json=None, terminal=True)
+    symbol: Expr = shown(json=None, terminal=True)
+    expression: Expr = shown(json=None, terminal=True)
+    coordinate: Expr | None = shown(json=None)
+    reason: str = shown()
+    jacobi: Jacobi | None = shown(inline=True, terminal=True)  # the Jacobi integral's
+    flags: tuple[str, ...] = shown(json=None)
+    flow: Symmetry | None = shown(inline=True, terminal=True)  # a symmetry's momentum's
 
 
 @dataclass(frozen=True)
 class Contact:
-    """A unilateral constraint's multiplier ``symbol`` = ``value`` at an equilibrium; ``admissible`` False when
-    it would pull, None when its sign depends on the parameters."""
+    """A unilateral constraint's ``multiplier`` = ``value`` at an equilibrium; ``admissible`` False when it would
+    pull, None when its sign depends on the parameters."""
 
-    constraint: str
-    symbol: Expr
-    value: Expr
-    admissible: bool | None
+    constraint: str = shown(json=None, terminal=True)
+    multiplier: Expr = shown(json=None)
+    value: Expr = shown(terminal=True)
+    admissible: bool | None = shown(json=None, terminal=True)
 
 
 @dataclass(frozen=True)
 class Contacts:
-    """The unilateral constraints at one equilibrium, with the verdict over all of them."""
+    """The unilateral constraints at one equilibrium, with the verdict over all of them (False: one would pull,
+    None: a sign depends on the parameters, True: all push)."""
 
-    checks: tuple[Contact, ...]
+    admissible: bool | None = shown(terminal=True)
+    checks: tuple[Contact, ...] = shown(json="contact", keyed="constraint", keyed_value="value", terminal=True)
 
-    @property
-    def admissible(self) -> bool | None:
-        verdicts = [c.admissible for c in self.checks]
-        return False if False in verdicts else (None if None in verdicts else True)
+
+@dataclass(frozen=True)
+class DerivedEquilibrium:
+    """An equilibrium of the effective potential as the JSON gives it, in the coordinate q itself."""
+
+    condition: Expr = shown()
+    exists_if: Expr | None = shown()
+    stability_condition: Expr | None = shown()
+    frequency_squared_at: Expr | None = shown()
 
 
 @dataclass(frozen=True)
 class Equilibrium:
-    """An equilibrium of the effective potential as shown (in q₀) and, ``derived``, as the JSON gives it."""
+    """An equilibrium of the effective potential as shown (in q₀: ``value``, or None when shown by its
+    ``condition`` = ``lhs`` = ``rhs``) and, ``derived``, as the JSON gives it."""
 
-    value: Expr | None  # None: shown by its condition
-    condition: Expr
-    exists_if: Expr | None
-    curvature: Expr | None
-    stable: bool | None
-    stability_condition: Expr | None
-    frequency: Expr | None
-    frequency_squared: Expr | None
-    contact: Contacts
-    derived: Any  # the mechanics Equilibrium (in q): condition, exists_if, ... for the contract
+    value: Expr | None = shown(json=None, terminal=True)
+    condition: Expr = shown(json=None)
+    lhs: Expr = shown(json=None, terminal=True)
+    rhs: Expr = shown(json=None, terminal=True)
+    exists_if: Expr | None = shown(json=None)
+    curvature: Expr | None = shown(json=None)
+    stable: bool | None = shown(json=None, terminal=True)
+    stability_condition: Expr | None = shown(json=None, terminal=True)
+    frequency_squared: Expr | None = shown(json=None, terminal=True)
+    derived: DerivedEquilibrium = shown(inline=True, template=False)
+    contact: Contacts | None = shown(inline=True, terminal=True)  # None: no unilateral constraint
 
 
 @dataclass(frozen=True)
 class CyclicValue:
-    coordinate: Expr
-    momentum: Expr
-    velocity: Expr  # the symbol q_dot
-    value: Expr
+    """A cyclic coordinate's constant momentum and the velocity it gives."""
+
+    coordinate: Expr = shown()
+    momentum: Expr = shown()
+    velocity: Expr = shown()
+    value: Expr = shown()
 
 
 @dataclass(frozen=True)
 class Effective:
     """The effective potential of one coordinate q, with the symbol ``at`` (q₀) of its equilibria."""
 
-    coordinate: Expr
-    at: Expr
-    velocity: Expr
-    cyclic: tuple[CyclicValue, ...]
-    routhian: Expr
-    mass: Expr
-    expression: Expr
-    equation: tuple[Expr, Expr]
-    damped: bool
-    equilibria: tuple[Equilibrium, ...]
+    coordinate: Expr = shown(json=None, terminal=True)
+    at: Expr = shown(json=None, terminal=True)
+    velocity: Expr = shown(json=None)
+    cyclic: tuple[CyclicValue, ...] = shown(json=None)
+    mass: Expr = shown()
+    routhian: Expr = shown()
+    expression: Expr = shown(json=None, terminal=True)
+    lhs: Expr = shown(json=None)
+    rhs: Expr = shown(json=None)
+    damped: bool = shown(json=None)
+    equilibria: tuple[Equilibrium, ...] = shown(terminal=True)
+
+
+@dataclass(frozen=True)
+class Held:
+    """A momentum held at its value during a steady motion: its ``coordinate``, ``momentum`` = ``value``."""
+
+    coordinate: Expr = shown()
+    momentum: Expr = shown(terminal=True)
+    value: Expr = shown()
+
+
+@dataclass(frozen=True)
+class Limits:
+    """The slow and the fast steady rate, well inside the range where both are real."""
+
+    slow: Expr = shown()
+    fast: Expr = shown()
+
+
+@dataclass(frozen=True)
+class DerivedSteady:
+    """The steady motions as the JSON gives them, in the coordinate's own name (standing for its steady value)."""
+
+    coordinate: Expr = shown()
+    rate: Expr = shown()
+    held: tuple[Binding, ...] = shown(keyed="symbol", keyed_value="value")
+    velocities: tuple[Binding, ...] = shown(keyed="symbol", keyed_value="value")
+    momentum: Binding = shown(keyed="symbol", keyed_value="value")
+    condition: Expr = shown()
+    coefficients: tuple[Expr, ...] = shown()
+    excluded: tuple[Expr, ...] = shown()
+    values: tuple[Expr, ...] = shown()
+    exists_if: Expr | None = shown()
+    slow_fast: tuple[Expr, Expr] | None = shown()
+    mass: Expr = shown()
+    curvature: Expr = shown()
+    frequency_squared: Expr = shown()
+    frequency_squared_at: Expr | None = shown()
+    eliminated: Binding | None = shown(keyed="symbol", keyed_value="value")
+    stable: bool | None = shown()
+    stability_condition: Expr | None = shown()
+    verified: str = shown()
 
 
 @dataclass(frozen=True)
 class Steady:
     """The steady motions about the effective potential's coordinate, written in its symbol ``at`` (q₀); the
-    rate's velocity symbol ``velocity`` stands for the constant rate Ω (``derived``: the mechanics record)."""
+    rate's velocity symbol ``velocity`` stands for the constant rate Ω (``derived``: as the JSON gives them)."""
 
-    coordinate: Expr
-    coordinate_velocity: Expr
-    coordinate_acceleration: Expr
-    at: Expr
-    rate: Expr
-    velocity: Expr
-    held: tuple[tuple[Expr, Expr, Expr], ...]  # (coordinate, momentum symbol, ∂L/∂q̇) of each held momentum
-    velocities: tuple[tuple[Expr, Expr], ...]  # (velocity symbol, value) of the held coordinates
-    momentum: tuple[Expr, Expr]  # (p of the rate, its value at the steady motion)
-    condition: Expr
-    excluded: tuple[Expr, ...]
-    roots: tuple[Expr, ...]
-    square: Expr | None
-    exists_if: Expr | None
-    limits: tuple[Expr, Expr] | None
-    mass: Expr
-    frequency_squared: Expr
-    frequency_squared_at: Expr | None
-    eliminated: tuple[Expr, Expr] | None
-    stable: bool | None
-    stability_condition: Expr | None
-    verified: str
-    derived: Any
+    coordinate: Expr = shown(json=None)
+    qdot: Expr = shown(json=None)
+    qddot: Expr = shown(json=None)
+    at: Expr = shown(json=None, terminal=True)
+    rate: Expr = shown(json=None)
+    velocity: Expr = shown(json=None, terminal=True)
+    held: tuple[Held, ...] = shown(json=None, terminal=True)
+    velocities: tuple[Binding, ...] = shown(json=None)
+    momentum: Binding = shown(json=None)
+    condition: Expr = shown(json=None)
+    lhs: Expr = shown(json=None, terminal=True)
+    rhs: Expr = shown(json=None, terminal=True)
+    excluded: tuple[Expr, ...] = shown(json=None)  # each as the equation e = 0
+    roots: tuple[Expr, ...] = shown(json=None, terminal=True)  # empty when ``square`` gives them
+    square: Expr | None = shown(json=None, terminal=True)
+    exists_if: Expr | None = shown(json=None, terminal=True)
+    limits: Limits | None = shown(json=None)
+    mass: Expr = shown(json=None)
+    frequency_squared: Expr = shown(json=None, terminal=True)
+    frequency_squared_at: Expr | None = shown(json=None, terminal=True)
+    eliminated: Binding | None = shown(json=None)
+    stable: bool | None = shown(json=None, terminal=True)
+    stability_condition: Expr | None = shown(json=None, terminal=True)
+    verified: str = shown(json=None)
+    derived: DerivedSteady = shown(inline=True, template=False)
 
 
 @dataclass(frozen=True)
 class Mode:
-    """An equilibrium of the linearization and its small oscillations."""
+    """An equilibrium of the linearization and its small oscillations (``free``: coordinates left arbitrary)."""
 
-    point: tuple[tuple[Expr, Expr], ...]
-    free: tuple[Expr, ...]
-    mass: Expr
-    stiffness: Expr
-    gyroscopic: Expr
-    damping: Expr
-    squared_frequencies: tuple[Expr, ...] | None
-    frequencies: tuple[Expr | None, ...] | None
-    stable: bool | None
-    note: str
-    contact: Contacts
-    shapes: tuple[tuple[Expr, ...], ...] | None = None  # one mode shape per ω², in the same order
+    point: tuple[Binding, ...] = shown(keyed="symbol", keyed_value="value", terminal=True)
+    mass: Rows = shown()
+    stiffness: Rows = shown()
+    gyroscopic: Rows = shown(blank_zero=True)
+    damping: Rows = shown(blank_zero=True)
+    squared_frequencies: tuple[Expr, ...] | None = shown(terminal=True)
+    shapes: tuple[ModeShape, ...] | None = shown(json="mode_shapes", terminal=True)  # one per ω², in order
+    stable: bool | None = shown(terminal=True)
+    free: tuple[Expr, ...] = shown(optional=True, terminal=True)
+    note: str = shown(optional=True)
+    contact: Contacts | None = shown(inline=True, terminal=True)
 
 
 @dataclass(frozen=True)
 class Modes:
-    coordinates: tuple[Expr, ...]
-    equilibria: tuple[Mode, ...]
-    search: str = ""  # how the equilibria were found, when they may not be all
+    """The equilibria of the linearization (``search``: how they were found, when they may not be all)."""
+
+    coordinates: tuple[Expr, ...] = shown()
+    equilibria: tuple[Mode, ...] = shown(terminal=True)
+    search: str = shown("", optional=True)
 
 
 @dataclass(frozen=True)
 class AnalysisSection:
-    """Every part of the analysis a report shows; each ``*_note`` says why a part is absent."""
+    """Every part of the analysis a report shows; each ``*_note`` says why a part is absent (the JSON writes
+    ``{"note": ...}`` in its place)."""
 
-    constraints: tuple[Classified, ...]
-    reduced: Reduced | None
-    reduced_note: str
-    system: str
-    conserved: tuple[Conserved, ...]
-    conserved_notes: tuple[str, ...]
-    cyclic: tuple[Expr, ...]
-    effective: Effective | None
-    effective_note: str
-    modes: Modes | None
-    linearization_note: str
-    steady: Steady | None = None
-    steady_note: str = ""
+    constraints: tuple[Classified, ...] = shown(keyed="name", terminal=True)
+    reduced: Reduced | None = shown(absent="reduced_note", terminal=True)
+    reduced_note: str = shown(json=None)
+    system: str = shown(json=None)
+    conserved: tuple[Conserved, ...] = shown(keyed="name", terminal=True)
+    conserved_notes: tuple[str, ...] = shown()
+    verified: str = shown(json=None)  # how each conserved quantity was verified
+    effective: Effective | None = shown(json="effective_potential", absent="effective_note", terminal=True)
+    effective_note: str = shown(json=None)
+    steady: Steady | None = shown(json="steady_motions", absent="steady_note", terminal=True)
+    steady_note: str = shown(json=None)
+    modes: Modes | None = shown(json="linearization", absent="linearization_note", terminal=True)
+    linearization_note: str = shown(json=None)
+    equilibria_note: str = shown(json=None)  # why no equilibrium is shown
 
-    @property
-    def velocity_constraints(self) -> bool:
-        return any(k.kind != Integrability.HOLONOMIC for k in self.constraints)
 
-    @property
-    def verified(self) -> str:
-        """How every conserved quantity was verified: one sentence, the same in every report format."""
-        full = ", with the constraints," if self.system == "full" else ""
-        return f"Each was verified: its time derivative along the equations of motion{full} simplifies to zero."
-
-    @property
-    def equilibria_note(self) -> str:
-        """Why no equilibrium is shown: the linearization's note when the coordinates are left, else the
-        effective potential's."""
-        return self.linearization_note if "coordinates are left" in self.effective_note else self.effective_note
+# -- the builder ----------------------------------------------------------------------------------
 
 
 def analysis_section(derivation: Derivation) -> AnalysisSection | None:
@@ -265,83 +463,75 @@ def analysis_section(derivation: Derivation) -> AnalysisSection | None:
     if analysis is None:
         return None
     conservation = analysis.conservation
+    full = ", with the constraints," if analysis.system.kind == "full" else ""
     return AnalysisSection(
         constraints=tuple(_classified(k) for k in analysis.classification),
         reduced=_reduced(analysis.reduced, derivation) if analysis.reduced is not None else None,
         reduced_note=analysis.reduced_note,
         system=analysis.system.kind,
-        conserved=tuple(
-            Conserved(c.name, c.kind, sympy.Symbol("h") if c.kind == "jacobi" else sympy.Symbol(c.name),
-                      c.expression, c.coordinate, c.reason, c.equals_energy, c.moving, tuple(c.flags), c.symmetry,
-                      _generator(c.generator, analysis.system.model.coordinates))
-            for c in conservation.quantities),
+        conserved=tuple(_conserved(c, analysis.system.model.coordinates) for c in conservation.quantities),
         conserved_notes=tuple(conservation.notes),
-        cyclic=tuple(conservation.cyclic),
+        verified=f"Each was verified: its time derivative along the equations of motion{full} simplifies to zero.",
         effective=(_effective(analysis.effective_potential, analysis.effective_contact, derivation)
                    if analysis.effective_potential is not None else None),
         effective_note=analysis.effective_note,
-        modes=_modes(analysis.linearization, analysis.modes_contact) if analysis.linearization is not None else None,
-        linearization_note=analysis.linearization_note,
         steady=_steady(analysis.steady, derivation) if analysis.steady is not None else None,
         steady_note=analysis.steady_note,
+        modes=_modes(analysis.linearization, analysis.modes_contact) if analysis.linearization is not None else None,
+        linearization_note=analysis.linearization_note,
+        equilibria_note=(analysis.linearization_note if "coordinates are left" in analysis.effective_note
+                         else analysis.effective_note),
     )
 
 
-def _generator(flow: tuple[Any, ...], coordinates: tuple[Any, ...]) -> tuple[tuple[Any, Any], ...]:
-    """The coordinates a symmetry's flow moves, with its component ξ for each."""
-    return tuple((q, x) for q, x in zip(coordinates, flow, strict=False) if x != 0)
-
-
-def _steady(s: SteadyMotion, derivation: Derivation) -> Steady:
-    q0 = equilibrium_symbol(s.coordinate, derivation.problem.symbols)
-
-    def at(expr: Any) -> Any:
-        return expr.xreplace({s.coordinate: q0}) if isinstance(expr, sympy.Basic) else expr
-
-    model = derivation.model
-    k = model.coordinates.index(s.coordinate)
-    return Steady(
-        coordinate=s.coordinate, coordinate_velocity=model.velocities[k],
-        coordinate_acceleration=model.accelerations[k], at=q0, rate=s.rate, velocity=s.velocity,
-        held=tuple((c, p, value) for c, p, value in s.held),
-        velocities=tuple((v, at(value)) for v, value in s.velocities),
-        momentum=(s.momentum[0], at(s.momentum[1])), condition=at(s.condition),
-        excluded=tuple(at(e) for e in s.excluded), roots=tuple(at(r) for r in s.roots), square=at(s.square),
-        exists_if=at(s.exists_if), limits=(at(s.limits[0]), at(s.limits[1])) if s.limits is not None else None,
-        mass=at(s.mass), frequency_squared=at(s.frequency_squared), frequency_squared_at=at(s.frequency_squared_at),
-        eliminated=(s.eliminated[0], at(s.eliminated[1])) if s.eliminated is not None else None,
-        stable=s.stable, stability_condition=at(s.stability_condition), verified=s.verified, derived=s)
+def _conserved(c: Any, coordinates: tuple[Any, ...]) -> Conserved:
+    """A conserved quantity, with the coordinates its symmetry's flow moves and ξ for each."""
+    generator = tuple(Shift(q, x, x == 1) for q, x in zip(coordinates, c.generator, strict=False) if x != 0)
+    return Conserved(
+        name=c.name, kind=c.kind, symbol=sympy.Symbol("h") if c.kind == "jacobi" else sympy.Symbol(c.name),
+        expression=c.expression, coordinate=c.coordinate, reason=c.reason,
+        jacobi=Jacobi(bool(c.equals_energy)) if c.kind == "jacobi" else None, flags=tuple(c.flags),
+        flow=Symmetry(c.symmetry, generator) if c.symmetry else None)
 
 
 def _classified(k: Classification) -> Classified:
+    solved = Binding(*k.solved) if k.solved else None
     return Classified(
-        name=k.name, kind=k.kind, note=k.note, differential=tuple(zip(k.form, k.variables, strict=True)),
-        exact=k.exact, factor=k.factor, integral=k.integral, constant=k.constant,
-        solved=tuple(k.solved) if k.solved else None,
-        witness=(tuple(k.witness[0]), k.witness[1]) if k.witness is not None else None,
+        name=k.name, kind=k.kind,
+        form=Pfaffian(tuple(zip(k.form, k.variables, strict=True))) if k.kind != Integrability.HOLONOMIC else None,
+        exact=k.exact, factor=k.factor, integral=k.integral, constant=k.constant, solved=solved,
+        restated=solved is not None and k.integral != solved.symbol,
+        witness=Witness(Indices(tuple(k.witness[0])), k.witness[1]) if k.witness is not None else None,
+        note=k.note,
     )
 
 
 def _reduced(r: ReducedSystem, derivation: Derivation) -> Reduced:
+    forces = tuple(Binding(q, f) for q, f in zip(r.independent, r.generalized_forces, strict=True))
     return Reduced(
         independent=tuple(r.independent),
-        dependent=tuple(Substitution(q, v, r.substitution.sources.get(q, ""))
+        dependent=tuple(Dependent(q, v, r.substitution.sources.get(q, ""))
                         for q, v in r.substitution.positions.items()),
-        velocities=tuple(r.substitution.velocities.items()),
+        velocities=tuple(Binding(v, e) for v, e in r.substitution.velocities.items()),
         constants=tuple(r.constants),
         kinetic=r.kinetic, potential=r.potential, lagrangian=r.lagrangian,
-        forces=tuple(zip(r.independent, r.generalized_forces, strict=True)),
-        equations=tuple((q, lhs, rhs) for q, (lhs, rhs) in zip(r.independent, r.equation_sides, strict=True))
+        generalized_forces=forces, forces=tuple(f for f in forces if f.value != 0),
+        equations=tuple(Equation(q, lhs, rhs) for q, (lhs, rhs) in zip(r.independent, r.equation_sides, strict=True))
         if r.equation_sides else (),
-        accelerations=tuple((c.acceleration, r.accelerations[c.name]) for c in derivation.problem.coordinates
+        accelerations=tuple(Binding(c.acceleration, r.accelerations[c.name]) for c in derivation.problem.coordinates
                             if c.name in r.accelerations),
-        agreement=r.agreement,
+        agreement=Agreement(r.agreement),
         all_coordinates=len(r.independent) == len(derivation.problem.coordinates),
     )
 
 
-def _contacts(checks: Any) -> Contacts:
-    return Contacts(tuple(Contact(c.constraint, sympy.Symbol(f"lambda_{c.constraint}"), c.multiplier, c.admissible)
+def _contacts(checks: Any) -> Contacts | None:
+    """The unilateral constraints at one equilibrium (None when there are none)."""
+    if not checks:
+        return None
+    verdicts = [c.admissible for c in checks]
+    return Contacts(False if False in verdicts else (None if None in verdicts else True),
+                    tuple(Contact(c.constraint, sympy.Symbol(f"lambda_{c.constraint}"), c.multiplier, c.admissible)
                           for c in checks))
 
 
@@ -363,26 +553,65 @@ def _effective(v: EffectivePotential, contact: Any, derivation: Derivation) -> E
     equilibria = []
     for e, check in zip(v.equilibria, contact or ((),) * len(v.equilibria), strict=True):
         power = e.condition.lhs == q or (isinstance(e.condition.lhs, sympy.Pow) and e.condition.lhs.base == q)
+        condition = at(e.condition)
         equilibria.append(Equilibrium(
             value=e.value if e.value is not None and not power else None,
-            condition=at(e.condition), exists_if=at(e.exists_if),
+            condition=condition, lhs=condition.lhs, rhs=condition.rhs, exists_if=at(e.exists_if),
             curvature=at(e.curvature_at if e.curvature_at is not None else e.curvature)
             if e.curvature is not None else None,
-            stable=e.stable, stability_condition=at(e.stability_condition), frequency=at(e.frequency),
+            stable=e.stable, stability_condition=at(e.stability_condition),
             frequency_squared=at(e.frequency_squared_at if e.frequency_squared_at is not None else e.frequency_squared)
             if e.frequency_squared is not None else None,
-            contact=_contacts(check), derived=e))
+            derived=DerivedEquilibrium(e.condition, e.exists_if, e.stability_condition, e.frequency_squared_at),
+            contact=_contacts(check)))
     model = derivation.model
     return Effective(
         coordinate=q, at=q0, velocity=model.velocities[model.coordinates.index(q)],
         cyclic=tuple(CyclicValue(c, p, sympy.Symbol(f"{c.name}_dot"), w) for c, p, w in v.cyclic),
-        routhian=v.routhian, mass=v.mass, expression=v.expression, equation=tuple(v.equation),
+        routhian=v.routhian, mass=v.mass, expression=v.expression, lhs=v.equation[0], rhs=v.equation[1],
         damped=v.damped, equilibria=tuple(equilibria))
 
 
+def _derived_steady(d: SteadyMotion) -> DerivedSteady:
+    return DerivedSteady(
+        coordinate=d.coordinate, rate=d.rate, held=tuple(Binding(p, value) for _, p, value in d.held),
+        velocities=tuple(Binding(v, value) for v, value in d.velocities), momentum=Binding(*d.momentum),
+        condition=d.condition.lhs, coefficients=tuple(d.coefficients), excluded=tuple(d.excluded),
+        values=tuple(d.roots), exists_if=d.exists_if, slow_fast=tuple(d.limits) if d.limits is not None else None,
+        mass=d.mass, curvature=d.curvature, frequency_squared=d.frequency_squared,
+        frequency_squared_at=d.frequency_squared_at,
+        eliminated=Binding(*d.eliminated) if d.eliminated is not None else None,
+        stable=d.stable, stability_condition=d.stability_condition, verified=d.verified)
+
+
+def _steady(s: SteadyMotion, derivation: Derivation) -> Steady:
+    q0 = equilibrium_symbol(s.coordinate, derivation.problem.symbols)
+
+    def at(expr: Any) -> Any:
+        return expr.xreplace({s.coordinate: q0}) if isinstance(expr, sympy.Basic) else expr
+
+    model = derivation.model
+    k = model.coordinates.index(s.coordinate)
+    condition = at(s.condition)
+    return Steady(
+        coordinate=s.coordinate, qdot=model.velocities[k], qddot=model.accelerations[k], at=q0, rate=s.rate,
+        velocity=s.velocity, held=tuple(Held(c, p, value) for c, p, value in s.held),
+        velocities=tuple(Binding(v, at(value)) for v, value in s.velocities),
+        momentum=Binding(s.momentum[0], at(s.momentum[1])), condition=condition, lhs=condition.lhs,
+        rhs=condition.rhs, excluded=tuple(sympy.Eq(at(e), 0) for e in s.excluded),
+        roots=tuple(at(r) for r in s.roots) if s.square is None else (), square=at(s.square),
+        exists_if=at(s.exists_if), limits=Limits(at(s.limits[0]), at(s.limits[1])) if s.limits is not None else None,
+        mass=at(s.mass), frequency_squared=at(s.frequency_squared), frequency_squared_at=at(s.frequency_squared_at),
+        eliminated=Binding(s.eliminated[0], at(s.eliminated[1])) if s.eliminated is not None else None,
+        stable=s.stable, stability_condition=at(s.stability_condition), verified=s.verified,
+        derived=_derived_steady(s))
+
+
 def _modes(lin: Linearization, contact: Any) -> Modes:
-    return Modes(tuple(lin.coordinates), tuple(
-        Mode(point=tuple(m.point), free=tuple(m.free), mass=m.mass, stiffness=m.stiffness, gyroscopic=m.gyroscopic,
-             damping=m.damping, squared_frequencies=m.squared_frequencies, frequencies=m.frequencies,
-             stable=m.stable, note=m.note, contact=_contacts(check), shapes=m.shapes)
+    coordinates = tuple(lin.coordinates)
+    return Modes(coordinates, tuple(
+        Mode(point=tuple(Binding(q, x) for q, x in m.point), mass=m.mass, stiffness=m.stiffness,
+             gyroscopic=m.gyroscopic, damping=m.damping, squared_frequencies=m.squared_frequencies,
+             shapes=tuple(ModeShape(coordinates, tuple(u)) for u in m.shapes) if m.shapes is not None else None,
+             stable=m.stable, free=tuple(m.free), note=m.note, contact=_contacts(check))
         for m, check in zip(lin.modes, contact or ((),) * len(lin.modes), strict=True)), lin.search)
