@@ -25,8 +25,6 @@ REDESIGNED = (
 
 #: functions over a limit today, to be split by a later step of issue 30 ("module.py::function")
 LATER = {
-    "mechanics/geometry_bodies.py::_planar",
-    "mechanics/geometry_links.py::springs",
     "render/sketch.py::views",
     "render/sketch.py::__init__",
     "mechanics/numeric_equilibria.py::numeric_linearization",
