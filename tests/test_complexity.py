@@ -27,7 +27,6 @@ REDESIGNED = (
 LATER = {
     "render/sketch.py::views",
     "render/sketch.py::__init__",
-    "mechanics/numeric_equilibria.py::numeric_linearization",
     "mechanics/dimensions.py::dimension_issues",
     "check/states.py::__init__",
     "mechanics/equilibria.py::effective_potential",
