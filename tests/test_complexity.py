@@ -27,7 +27,6 @@ REDESIGNED = (
 LATER = {
     "render/sketch.py::views",
     "render/sketch.py::__init__",
-    "mechanics/dimensions.py::dimension_issues",
     "check/states.py::__init__",
     "mechanics/equilibria.py::effective_potential",
     "mechanics/steady.py::steady_motions",
@@ -40,7 +39,6 @@ LATER = {
     "problem/readers/simulation.py::simulation",
     "mechanics/algebra.py::_monomial_factor_terms",
     "mechanics/symmetry.py::symmetries",
-    "mechanics/dimensions.py::_of",
     "check/diagnose.py::constant_relation",
     "sweep/rk.py::integrate_batch",
     "sweep/run.py::_batched",
