@@ -28,7 +28,6 @@ LATER = {
     "render/sketch.py::views",
     "render/sketch.py::__init__",
     "check/states.py::__init__",
-    "mechanics/steady.py::steady_motions",
     "problem/readers/constraints.py::constraints",
     "mechanics/linearize.py::_mode",
     "render/checks.py::describe",
