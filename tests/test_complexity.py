@@ -29,7 +29,6 @@ LATER = {
     "render/sketch.py::__init__",
     "check/states.py::__init__",
     "problem/readers/constraints.py::constraints",
-    "mechanics/linearize.py::_mode",
     "render/checks.py::describe",
     "numeric/potential.py::potential_curve",
     "mechanics/mode_shapes.py::_null_space",
