@@ -31,7 +31,6 @@ LATER = {
     "problem/readers/constraints.py::constraints",
     "render/checks.py::describe",
     "numeric/potential.py::potential_curve",
-    "mechanics/mode_shapes.py::_null_space",
     "mechanics/algebra.py::count_ops",
     "problem/readers/simulation.py::simulation",
     "mechanics/algebra.py::_monomial_factor_terms",
