@@ -34,7 +34,6 @@ LATER = {
     "mechanics/algebra.py::count_ops",
     "problem/readers/simulation.py::simulation",
     "mechanics/algebra.py::_monomial_factor_terms",
-    "mechanics/symmetry.py::symmetries",
     "check/diagnose.py::constant_relation",
     "sweep/rk.py::integrate_batch",
     "sweep/run.py::_batched",
