@@ -18,6 +18,7 @@ import functools
 from typing import Any
 
 import sympy
+from sympy.core.function import _coeff_isneg
 
 
 @functools.lru_cache(maxsize=8192, typed=True)
@@ -73,6 +74,22 @@ def _monomial_factor_terms(expr: Any) -> Any:
     content, primitive = expr.as_content_primitive(radical=False, clear=False)
     if not primitive.is_Add:
         return None
+    terms = _monomials(primitive)
+    if terms is None:
+        return None
+    if all(c.is_negative for c, _ in terms):
+        content = -content
+        terms = [(-c, powers) for c, powers in terms]
+    common, gcd = _common_monomial(terms)
+    numers = _quotients(terms, common, gcd)
+    coeff, rest, numer = _content_and_sum(common, gcd, numers)
+    grouped = _keep_coeff(coeff, rest * numer / sympy.S.One, clear=False)
+    return _keep_coeff(content, grouped, clear=False, sign=True)
+
+
+def _monomials(primitive: Any) -> list[tuple[Any, dict[Any, int]]] | None:
+    """Each term of the sum ``primitive`` as (rational coefficient, {base: positive integer power}), the bases
+    symbols or functions ``factor_terms`` leaves alone; None when a term is no such monomial."""
     terms = []
     for term in primitive.args:
         coefficient, factors = term.as_coeff_mul()
@@ -85,20 +102,35 @@ def _monomial_factor_terms(expr: Any) -> Any:
                 return None
             powers[base] = int(exp)
         terms.append((coefficient, powers))
-    if all(c.is_negative for c, _ in terms):
-        content = -content
-        terms = [(-c, powers) for c, powers in terms]
+    return terms
+
+
+def _common_monomial(terms: list[tuple[Any, dict[Any, int]]]) -> tuple[dict[Any, int], Any]:
+    """The greatest common monomial of the terms (the least power of each base every term has) and the gcd of
+    their coefficients."""
     common = dict(terms[0][1])
     for _, powers in terms[1:]:
         common = {b: min(e, powers[b]) for b, e in common.items() if b in powers}
     gcd = terms[0][0]
     for c, _ in terms[1:]:
         gcd = gcd.gcd(c)
+    return common, gcd
+
+
+def _quotients(terms: list[tuple[Any, dict[Any, int]]], common: dict[Any, int], gcd: Any) -> list[Any]:
+    """Each term divided by the common monomial and the gcd of the coefficients."""
     numers = []
     for c, powers in terms:
         left = [b if powers[b] - common.get(b, 0) == 1 else b ** (powers[b] - common.get(b, 0))
                 for b in powers if powers[b] > common.get(b, 0)]
         numers.append((c / gcd) * (sympy.Mul(*left) / sympy.S.One))
+    return numers
+
+
+def _content_and_sum(common: dict[Any, int], gcd: Any, numers: list[Any]) -> tuple[Any, Any, Any]:
+    """The numeric coefficient and the rest of ``gcd * monomial``, and the sum of the quotients, as ``gcd_terms``
+    with ``clear=False`` leaves them: a fractional coefficient goes back into the terms when one of them then has
+    an integer coefficient."""
     monomial = sympy.Mul(*[b if e == 1 else b ** e for b, e in common.items()])
     cont = gcd * (monomial / sympy.S.One)
     coeff, rest = cont.as_coeff_Mul()
@@ -109,8 +141,7 @@ def _monomial_factor_terms(expr: Any) -> Any:
         spread = numer / d
         if any(a.as_coeff_Mul()[0].is_Integer for a in spread.args):
             numer, coeff = spread, n * unit
-    grouped = _keep_coeff(coeff, rest * numer / sympy.S.One, clear=False)
-    return _keep_coeff(content, grouped, clear=False, sign=True)
+    return coeff, rest, numer
 
 
 def _plain_base(base: Any) -> bool:
@@ -382,6 +413,46 @@ def _engine_polynomial(expr: Any) -> bool:
     return True
 
 
+def _negated(product: Any) -> Any:
+    """``-product`` for a product with a negative coefficient, as ``count_ops`` takes it: the rest of ``-1*x``,
+    else the product negated."""
+    return product.as_two_terms()[1] if product.args[0] is sympy.S.NegativeOne else -product
+
+
+def _fraction_ops(product: Any, args: list[Any]) -> int | None:
+    """The DIV (and NEG of an integer numerator) of a product ``sympy.fraction`` splits, its denominator (unless
+    an integer) and numerator (unless an integer) put on ``args`` to be walked; None when the denominator is 1 (the
+    product is walked as it is)."""
+    n, d = sympy.fraction(product)
+    if n.is_Integer:
+        args.append(d)
+        return 1 + bool(n < 0)  # DIV, NEG
+    if d is not sympy.S.One:
+        if not d.is_Integer:
+            args.append(d)
+        args.append(n)
+        return 1  # DIV
+    return None
+
+
+def _sum_ops(terms: tuple[Any, ...], args: list[Any]) -> int:
+    """The ADD or SUB between the terms of a sum (and a NEG when every term is negative), each term put on ``args``
+    to be walked, a negative one negated."""
+    count = 0
+    negative = 0
+    for i, term in enumerate(terms):
+        if _coeff_isneg(term):
+            negative += 1
+            args.append(-term)
+        else:
+            args.append(term)
+        count += i > 0  # ADD or SUB
+    if negative == len(terms):
+        count += 1  # -x - y = NEG + SUB
+    # -x + y is SUB where ADD was counted: the same number
+    return count
+
+
 def _divides(factor: Any) -> bool:
     """``sympy.fraction`` puts (part of) this factor of a product in the denominator: a fraction, or a power (or
     ``exp``) whose exponent is negative or a product not known to be positive."""
@@ -406,7 +477,6 @@ def count_ops(expr: Any) -> int:
     operations counted as integers instead of collected as a sum of symbols (``ADD + 2*MUL + SIN``) whose
     coefficients are added at the end: the same number, at a fraction of the cost (counting was a tenth of a
     small derivation). A test holds the two equal on every expression the shipped problems measure."""
-    from sympy.core.function import _coeff_isneg
     from sympy.core.operations import LatticeOp
 
     count = 0
@@ -420,32 +490,14 @@ def count_ops(expr: Any) -> int:
         elif a.is_Mul:
             if _coeff_isneg(a):
                 count += 1  # NEG
-                a = a.as_two_terms()[1] if a.args[0] is sympy.S.NegativeOne else -a
+                a = _negated(a)
             if any(_divides(f) for f in a.args):  # else fraction(a) is (a, 1): nothing to count here
-                n, d = sympy.fraction(a)
-                if n.is_Integer:
-                    count += 1 + bool(n < 0)  # DIV, NEG
-                    args.append(d)
-                    continue
-                if d is not sympy.S.One:
-                    if not d.is_Integer:
-                        args.append(d)
-                    count += 1  # DIV
-                    args.append(n)
+                divisions = _fraction_ops(a, args)
+                if divisions is not None:
+                    count += divisions
                     continue
         elif a.is_Add:
-            terms = a.args
-            negative = 0
-            for i, term in enumerate(terms):
-                if _coeff_isneg(term):
-                    negative += 1
-                    args.append(-term)
-                else:
-                    args.append(term)
-                count += i > 0  # ADD or SUB
-            if negative == len(terms):
-                count += 1  # -x - y = NEG + SUB
-            # -x + y is SUB where ADD was counted: the same number
+            count += _sum_ops(a.args, args)
             continue
         if a.is_Pow and a.exp is sympy.S.NegativeOne:
             count += 1  # DIV

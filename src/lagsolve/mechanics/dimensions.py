@@ -170,25 +170,41 @@ class UnitAlgebra:
             return None
 
     def _of(self, expr: Any) -> Any:
-        one = registry().dimensionless
-        if expr.is_zero is True and expr.is_Number:
-            return None  # 0 has every dimension
+        """The unit of ``expr`` from its tree (module docstring), not cached: by the kind of its head."""
         if expr.is_Number or expr.is_NumberSymbol or expr in (sympy.pi, sympy.E, sympy.I):
-            return one
+            return self._number(expr)
         if expr.is_Symbol:
             return self.symbols.get(expr)
         if expr.is_Add:
             return self._sum(expr)
         if expr.is_Mul:
-            units = [self.of(a) for a in expr.args]
-            if any(u is None for u in units):
-                return None
-            out = one
-            for u in units:
-                out = out * u
-            return out
+            return self._product(expr)
         if expr.is_Pow:
             return self._power(expr)
+        return self._function(expr)
+
+    @staticmethod
+    def _number(expr: Any) -> Any:
+        """A number is dimensionless, but 0 has every dimension (None)."""
+        if expr.is_zero is True and expr.is_Number:
+            return None  # 0 has every dimension
+        return registry().dimensionless
+
+    def _product(self, expr: Any) -> Any:
+        """The product of the factors' units; None when one is unknown."""
+        units = [self.of(a) for a in expr.args]
+        if any(u is None for u in units):
+            return None
+        out = registry().dimensionless
+        for u in units:
+            out = out * u
+        return out
+
+    def _function(self, expr: Any) -> Any:
+        """The unit of a function's value, its arguments checked: a pure function's and ``atan2``'s are
+        dimensionless, ``Abs`` keeps its argument's, a declared function has the unit declared for it, anything
+        else (Piecewise, Subs, ...) is checked inside and its own unit unknown."""
+        one = registry().dimensionless
         if isinstance(expr, _PURE):
             self._pure(expr, expr.args[0])
             return one
@@ -201,13 +217,7 @@ class UnitAlgebra:
             self.of(expr.args[0])
             return one
         if isinstance(expr, sympy.Derivative):
-            unit = self.of(expr.expr)
-            for var, n in expr.variable_count:
-                v = self.of(var)
-                if unit is None or v is None:
-                    return None
-                unit = unit / v ** int(n)
-            return unit
+            return self._derivative(expr)
         if isinstance(expr, sympy.core.function.AppliedUndef):
             for a in expr.args:
                 self.of(a)
@@ -216,6 +226,17 @@ class UnitAlgebra:
             if isinstance(a, sympy.Expr):
                 self.of(a)
         return None
+
+    def _derivative(self, expr: Any) -> Any:
+        """The unit of f over that of x to the n, for each variable x differentiated n times; None when one is
+        unknown."""
+        unit = self.of(expr.expr)
+        for var, n in expr.variable_count:
+            v = self.of(var)
+            if unit is None or v is None:
+                return None
+            unit = unit / v ** int(n)
+        return unit
 
     def _sum(self, expr: Any, shown: Any = None, what: str = "") -> Any:
         first: tuple[Any, Any] | None = None
@@ -323,17 +344,32 @@ def dimension_issues(problem: Problem) -> list[Issue]:
     :func:`check_dimensions`); empty for a problem that declares no unit."""
     if not problem.has_units:
         return []
-    units = algebra(problem)
-    issues: list[Issue] = []
-    lines = problem.lines
+    fields = _Fields(problem, algebra(problem))
+    _check_members(problem, fields)
+    _check_energies(problem, fields)
+    _check_forces(problem, fields)
+    _check_constraints(problem, fields)
+    _check_friction(problem, fields)
+    return fields.issues
 
-    def need(where: str, expr: Any, dim: Dimension | None, what: str = "", why: str = "", hint: str = "") -> Any:
+
+@dataclass
+class _Fields:
+    """The check of a problem's fields against the dimensions they must have, and the issues it found."""
+
+    problem: Problem
+    units: UnitAlgebra
+    issues: list[Issue] = field(default_factory=list)
+
+    def need(self, where: str, expr: Any, dim: Dimension | None, what: str = "", why: str = "",
+             hint: str = "") -> Any:
         """Check ``expr`` at ``where`` (its dimension must be ``dim`` unless None); its unit, or None."""
-        line = _line(lines, where)
+        problem, units = self.problem, self.units
+        line = _line(problem.lines, where)
         try:
             unit = units.of(expr)
         except _Mismatch as bad:
-            issues.append(Issue(problem.source, line, where, bad.message, bad.hint))
+            self.issues.append(Issue(problem.source, line, where, bad.message, bad.hint))
             return None
         if unit is None or dim is None or dimension(unit) == dim:
             return unit
@@ -341,12 +377,16 @@ def dimension_issues(problem: Problem) -> list[Issue]:
         name = what or _NAMES.get(dim, "")
         wanted = _ARTICLE.get(name, f"a {name}" if name else "")
         written = _text(problem.texts.get(where) or expr)  # the field as the file writes it
-        issues.append(Issue(problem.source, line, where,
-                            f"{written} has dimension {describe(found)}, but it must be "
-                            f"{wanted + ' (' if wanted else ''}{dimension_text(dim)}{')' if wanted else ''}{why}",
-                            hint or _hint(expr, found, dim, units)))
+        self.issues.append(Issue(problem.source, line, where,
+                                 f"{written} has dimension {describe(found)}, but it must be "
+                                 f"{wanted + ' (' if wanted else ''}{dimension_text(dim)}{')' if wanted else ''}{why}",
+                                 hint or _hint(expr, found, dim, units)))
         return unit
 
+
+def _check_members(problem: Problem, fields: _Fields) -> None:
+    """Masses, positions, inertias and angular velocities of the particles and bodies, and the gravity."""
+    need = fields.need
     for p in problem.particles:
         need(f"particles.{p.name}.mass", p.mass, MASS)
         for i, r in enumerate(p.position):
@@ -362,41 +402,62 @@ def dimension_issues(problem: Problem) -> list[Issue]:
                  "rate", " (an angular velocity, rad/s)")
     for i, g in enumerate(problem.gravity or ()):
         need(f"gravity[{i}]", g, ACCELERATION)
+
+
+def _check_energies(problem: Problem, fields: _Fields) -> None:
+    """The kinetic and potential energies, and the dissipation function (a power)."""
     for key, dim in (("kinetic", ENERGY), ("potential", ENERGY), ("dissipation", POWER)):
         value = getattr(problem, key)
         if value is not None:
-            need(key, value, dim, why=" (the Rayleigh dissipation function, d(energy)/dt)" if key == "dissipation"
-                 else "")
+            fields.need(key, value, dim, why=" (the Rayleigh dissipation function, d(energy)/dt)"
+                        if key == "dissipation" else "")
+
+
+def _check_forces(problem: Problem, fields: _Fields) -> None:
+    """Each generalized force (Q*q an energy) and each force on a particle (a force)."""
     coordinates = {c.name: c for c in problem.coordinates}
     for i, f in enumerate(problem.forces):
         if f.coordinate is not None:
-            q_unit = units.symbols.get(coordinates[f.coordinate].symbol)
-            wanted = None if q_unit is None else dimension(unit_of("J") / q_unit)
-            kind = "" if q_unit is None else ("torque" if not dimension(q_unit) else
-                                             "force" if dimension(q_unit) == LENGTH else "generalized force")
-            why = f", so that Q*{f.coordinate} is an energy" + (
-                f" ({f.coordinate} is an angle)" if kind == "torque" else
-                f" ({f.coordinate} is a length)" if kind == "force" else "")
-            hint = ""
-            if kind == "torque" and q_unit is not None:
-                hint = (f"a generalized force on an angle is a torque: multiply the force by its lever arm, or check "
-                        f"the units declared for {_symbols_of(f.value[0])}")
-            elif kind == "force":
-                hint = (f"a generalized force on a length is a force, the one along {f.coordinate}; check the "
-                        f"expression and the units declared for {_symbols_of(f.value[0])}")
-            need(f"forces[{i}].value", f.value[0], wanted, kind, why, hint)
+            q_unit = fields.units.symbols.get(coordinates[f.coordinate].symbol)
+            fields.need(f"forces[{i}].value", f.value[0], *_generalized_force(f, q_unit))
         else:
             for k, v in enumerate(f.value):
-                need(f"forces[{i}].force[{k}]", v, FORCE)
+                fields.need(f"forces[{i}].force[{k}]", v, FORCE)
+
+
+def _generalized_force(force: Any, q_unit: Any) -> tuple[Dimension | None, str, str, str]:
+    """What a generalized force on a coordinate of unit ``q_unit`` must be: its dimension (unknown without the
+    coordinate's unit), its name (a torque for an angle, a force for a length), why, and a hint."""
+    wanted = None if q_unit is None else dimension(unit_of("J") / q_unit)
+    kind = "" if q_unit is None else ("torque" if not dimension(q_unit) else
+                                     "force" if dimension(q_unit) == LENGTH else "generalized force")
+    why = f", so that Q*{force.coordinate} is an energy" + (
+        f" ({force.coordinate} is an angle)" if kind == "torque" else
+        f" ({force.coordinate} is a length)" if kind == "force" else "")
+    hint = ""
+    if kind == "torque" and q_unit is not None:
+        hint = (f"a generalized force on an angle is a torque: multiply the force by its lever arm, or check "
+                f"the units declared for {_symbols_of(force.value[0])}")
+    elif kind == "force":
+        hint = (f"a generalized force on a length is a force, the one along {force.coordinate}; check the "
+                f"expression and the units declared for {_symbols_of(force.value[0])}")
+    return wanted, kind, why, hint
+
+
+def _check_constraints(problem: Problem, fields: _Fields) -> None:
+    """Each constraint (homogeneous: the rule for sums checks it) and its contact point (lengths)."""
     for c in problem.constraints:
-        need(f"constraints.{c.name}.{c.kind}", c.expression, None)
+        fields.need(f"constraints.{c.name}.{c.kind}", c.expression, None)
         for k, r in enumerate(c.at or ()):
-            need(f"constraints.{c.name}.at[{k}]", r, LENGTH)
+            fields.need(f"constraints.{c.name}.at[{k}]", r, LENGTH)
+
+
+def _check_friction(problem: Problem, fields: _Fields) -> None:
+    """The friction coefficients, kinetic and static (pure numbers)."""
     for fr in problem.friction:
-        need(f"friction.{fr.name}.coefficient", fr.coefficient, (), "dimensionless")
+        fields.need(f"friction.{fr.name}.coefficient", fr.coefficient, (), "dimensionless")
         if fr.static is not None:
-            need(f"friction.{fr.name}.static", fr.static, (), "dimensionless")
-    return issues
+            fields.need(f"friction.{fr.name}.static", fr.static, (), "dimensionless")
 
 
 def _line(lines: Mapping[str, int], where: str) -> int:

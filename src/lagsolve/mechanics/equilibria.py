@@ -33,6 +33,7 @@ Notes
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
@@ -109,27 +110,78 @@ def effective_potential(system: MotionSystem, conservation: Conservation,
     model = system.model
     cyclic = [q for q in conservation.cyclic if any(c.coordinate == q for c in conservation.quantities)]
     rest = [i for i, q in enumerate(model.coordinates) if q not in cyclic]
-    if system.kind != "reduced":
-        return None, "needs minimal coordinates (no constraint left)"
-    if len(rest) != 1:
-        return None, f"{len(rest)} coordinates are left after removing the cyclic ones (one is needed)"
-    if friction:
-        return None, "Coulomb friction acts: equilibria are not isolated points"
+    why_not = _why_not_reducible(system, rest, friction)
+    if why_not:
+        return None, why_not
     L = model.lagrangian
-    if not proved_zero(sympy.diff(L, model.time)):
-        return None, "L depends explicitly on the time"
     k = rest[0]
     q, qd, qdd = model.coordinates[k], model.velocities[k], model.accelerations[k]
     force = system.generalized_forces[k]
-    if not proved_zero(force.xreplace({v: 0 for v in model.velocities})):
-        return None, f"a generalized force acts on {q.name} at rest, so it has no potential"
     indices = [model.coordinates.index(c) for c in cyclic]
     velocities = [model.velocities[i] for i in indices]
     momenta = [momentum_symbol(c) for c in cyclic]
-    if any(sympy.diff(L, v, 3) != 0 for v in model.velocities):
-        return None, "T is not quadratic in the velocities"
-    # L = 1/2 v^T A v + (b + C qd)^T v + (terms without v), v the cyclic velocities
+    part = _cyclic_part(L, velocities, momenta, qd, model.velocities)
+    if part is None:
+        return None, "the cyclic velocities cannot be solved from their momenta"
     at_zero = {v: 0 for v in model.velocities}
+    at_rest = {v: tidy(e) for v, e in zip(velocities, part.inverse * (part.P - part.b), strict=True)}
+    solution = {v: _display(e) for v, e in zip(velocities, part.inverse * (part.P - part.b - part.C * qd),
+                                                 strict=True)}
+    # Routh: L_R = 1/2 m_eff qd^2 + g1 qd - V_eff, with (module docstring)
+    mass = _effective_mass(L, qd, part)
+    if mass == 0:
+        return None, f"{q.name} has no inertia once the cyclic motion is removed"
+    gyroscopic = _display(sympy.diff(L, qd).xreplace({**at_zero, **at_rest}).xreplace({qd: 0}))
+    potential = _drop_constants(_raw_potential(L, at_zero, part), q)
+    lhs = mass * qdd + sympy.diff(mass, q) * qd**2 / 2
+    rhs = -sympy.diff(potential, q)
+    if not _routh_form_holds(system, qdd, solution, (lhs, rhs, force)):
+        return None, "the Routh form could not be verified against the reduced equation"
+    routhian = mass * qd**2 / 2 + gyroscopic * qd - potential
+    equilibria = tuple(_equilibria(potential, mass, q, momenta))
+    return EffectivePotential(q, tuple(zip(cyclic, momenta, (solution[v] for v in velocities), strict=True)),
+                              routhian, mass, potential, (tidy_sum(lhs), _display(rhs)), equilibria,
+                              damped=not proved_zero(force)), ""
+
+
+def _why_not_reducible(system: MotionSystem, rest: list[int], friction: bool) -> str:
+    """Why ``system`` has no effective potential in the one coordinate ``rest`` leaves (its index), or ``""``:
+    it needs minimal coordinates, one coordinate besides the cyclic ones, no friction, no time in L, no
+    generalized force on the coordinate at rest, and T quadratic in the velocities."""
+    model = system.model
+    if system.kind != "reduced":
+        return "needs minimal coordinates (no constraint left)"
+    if len(rest) != 1:
+        return f"{len(rest)} coordinates are left after removing the cyclic ones (one is needed)"
+    if friction:
+        return "Coulomb friction acts: equilibria are not isolated points"
+    L = model.lagrangian
+    if not proved_zero(sympy.diff(L, model.time)):
+        return "L depends explicitly on the time"
+    k = rest[0]
+    if not proved_zero(system.generalized_forces[k].xreplace({v: 0 for v in model.velocities})):
+        return f"a generalized force acts on {model.coordinates[k].name} at rest, so it has no potential"
+    if any(sympy.diff(L, v, 3) != 0 for v in model.velocities):
+        return "T is not quadratic in the velocities"
+    return ""
+
+
+@dataclass(frozen=True)
+class _CyclicPart:
+    """L = 1/2 v^T A v + (b + C qd)^T v + (terms without v), v the cyclic velocities: :math:`A^{-1}`, b, C, and
+    the momenta P of the cyclic coordinates."""
+
+    velocities: list[Any]
+    inverse: Any
+    b: Any
+    C: Any
+    P: Any
+
+
+def _cyclic_part(L: Any, velocities: list[Any], momenta: list[Any], qd: Any, all_velocities: Iterable[Any]
+                 ) -> _CyclicPart | None:
+    """The part of L in the cyclic ``velocities`` (:class:`_CyclicPart`); None when A cannot be inverted."""
+    at_zero = {v: 0 for v in all_velocities}
     A = sympy.Matrix(len(velocities), len(velocities), lambda i, j: sympy.diff(L, velocities[i], velocities[j]))
     b = sympy.Matrix([sympy.diff(L, v).xreplace(at_zero) for v in velocities])
     C = sympy.Matrix([sympy.diff(L, v, qd) for v in velocities])
@@ -137,27 +189,32 @@ def effective_potential(system: MotionSystem, conservation: Conservation,
     try:
         inverse = A.inv(method="LU").applyfunc(lambda e: tidy(sympy.cancel(e))) if velocities else A
     except (ValueError, ZeroDivisionError):
-        return None, "the cyclic velocities cannot be solved from their momenta"
-    at_rest = {v: tidy(e) for v, e in zip(velocities, inverse * (P - b), strict=True)}
-    solution = {v: _display(e) for v, e in zip(velocities, inverse * (P - b - C * qd), strict=True)}
-    # Routh: L_R = 1/2 m_eff qd^2 + g1 qd - V_eff, with (module docstring)
-    mass = _display(sympy.diff(L, qd, 2) - (C.T * inverse * C)[0, 0]) if velocities else tidy(sympy.diff(L, qd, 2))
-    if mass == 0:
-        return None, f"{q.name} has no inertia once the cyclic motion is removed"
-    gyroscopic = _display(sympy.diff(L, qd).xreplace({**at_zero, **at_rest}).xreplace({qd: 0}))
-    raw = -L.xreplace(at_zero) + ((P - b).T * inverse * (P - b))[0, 0] / 2 if velocities else -L.xreplace(at_zero)
-    potential = _drop_constants(raw, q)
-    lhs = mass * qdd + sympy.diff(mass, q) * qd**2 / 2
-    rhs = -sympy.diff(potential, q)
-    # the reduced equation, with the cyclic velocities written through the momenta, must read lhs = rhs + Q
+        return None
+    return _CyclicPart(velocities, inverse, b, C, P)
+
+
+def _effective_mass(L: Any, qd: Any, part: _CyclicPart) -> Any:
+    """:math:`m_{eff} = \\partial^2L/\\partial\\dot q^2 - C^TA^{-1}C`."""
+    if part.velocities:
+        return _display(sympy.diff(L, qd, 2) - (part.C.T * part.inverse * part.C)[0, 0])
+    return tidy(sympy.diff(L, qd, 2))
+
+
+def _raw_potential(L: Any, at_zero: dict[Any, Any], part: _CyclicPart) -> Any:
+    """:math:`V_{eff} = -L|_{\\dot q = v = 0} + \\tfrac12(p - b)^TA^{-1}(p - b)`, its constants not yet
+    dropped."""
+    if part.velocities:
+        return -L.xreplace(at_zero) + ((part.P - part.b).T * part.inverse * (part.P - part.b))[0, 0] / 2
+    return -L.xreplace(at_zero)
+
+
+def _routh_form_holds(system: MotionSystem, qdd: Any, solution: dict[Any, Any], equation: tuple[Any, Any, Any]
+                      ) -> bool:
+    """Whether the reduced equation, with the cyclic velocities written through the momenta (``solution``),
+    reads lhs = rhs + Q (``equation`` is lhs, rhs, Q); True when the system has no acceleration for it."""
+    lhs, rhs, force = equation
     acceleration = system.accelerations[qdd].xreplace(solution) if qdd in system.accelerations else None
-    if acceleration is not None and not proved_zero(lhs.xreplace({qdd: acceleration}) - rhs - force):
-        return None, "the Routh form could not be verified against the reduced equation"
-    routhian = mass * qd**2 / 2 + gyroscopic * qd - potential
-    equilibria = tuple(_equilibria(potential, mass, q, momenta))
-    return EffectivePotential(q, tuple(zip(cyclic, momenta, (solution[v] for v in velocities), strict=True)),
-                              routhian, mass, potential, (tidy_sum(lhs), _display(rhs)), equilibria,
-                              damped=not proved_zero(force)), ""
+    return acceleration is None or proved_zero(lhs.xreplace({qdd: acceleration}) - rhs - force)
 
 
 def _display(expr: Any) -> Any:

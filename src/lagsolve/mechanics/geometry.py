@@ -76,44 +76,13 @@ def geometry(problem: Problem) -> Geometry:
 
     coordinates = [c.symbol for c in problem.coordinates]
     variables = {*coordinates, problem.time}
-    rods: list[Rod] = []
-    surfaces: list[Surface] = []
-    curves: list[Curve] = []
-    strings: list[String] = []
     particles = {p.name: p for p in problem.particles}
-    rest: dict[str, list[Any]] = {}  # per particle, the constraints on it alone that are no rod or plane
-    for constraint in problem.constraints:
-        on = [name for name in constraint.on if name in particles]
-        if not on and not constraint.on and len(particles) == 1:
-            on = list(particles)  # the one particle a constraint without "on" can act on
-        if not on or len(on) > 2 or len(on) != len(constraint.on or on):
-            continue
-        if constraint.kind != ConstraintKind.HOLONOMIC:
-            if len(on) == 1 and geometry_curves.holds(constraint, problem) is not None:
-                rest.setdefault(on[0], []).append(constraint)
-            continue
-        shape = _classify(constraint, [particles[name] for name in on], coordinates, variables)
-        if isinstance(shape, Rod):
-            rods.append(shape)
-        elif isinstance(shape, Surface):
-            surfaces.append(replace(shape, solid=_solid(shape, problem)))
-        elif isinstance(shape, Curve):
-            curves.append(shape)
-        elif len(on) == 1:
-            rest.setdefault(on[0], []).append(constraint)
-        else:
-            string = geometry_links.string(problem, constraint, [particles[n] for n in on], coordinates)
-            if string is not None:
-                strings.append(string)
-    revolutions: list[Revolution] = []
-    for name, constraints in rest.items():
-        shape = geometry_curves.joint(problem, particles[name], constraints, coordinates, variables)
-        if isinstance(shape, Surface):
-            surfaces.append(replace(shape, solid=_solid(shape, problem)))
-        elif isinstance(shape, Curve):
-            curves.append(shape)
-        elif isinstance(shape, Revolution):
-            revolutions.append(shape)
+    shapes, rest = _constraint_shapes(problem, particles, coordinates, variables)
+    shapes += _joint_shapes(problem, particles, rest, coordinates, variables)
+    rods: list[Rod] = _of_kind(shapes, Rod)
+    surfaces: list[Surface] = [replace(s, solid=_solid(s, problem)) for s in _of_kind(shapes, Surface)]
+    curves: list[Curve] = _of_kind(shapes, Curve)
+    revolutions: list[Revolution] = _of_kind(shapes, Revolution)
     held = {c.particle for c in curves} | {r.particle for r in revolutions}
     rods += _implied_rods(problem, coordinates, variables, rods, held)
     rods += geometry_links.axles(problem, coordinates)
@@ -123,13 +92,70 @@ def geometry(problem: Problem) -> Geometry:
     markers = geometry_links.markers(problem)
     springs = geometry_links.springs(problem, coordinates, markers)
     blades = geometry_links.blades(problem, coordinates)
-    # what can hold a particle against gravity besides a floor: a rod from a fixed point, a wire, a surface
-    holding = {r.end.particle for r in rods if r.start.particle is None} | held | {s.particle for s in surfaces}
+    holding = _holding(rods, held, surfaces)
     surfaces += [replace(s, solid=_solid(s, problem))
                  for s in geometry_links.supports(problem, coordinates, holding, surfaces)]
     gravity = tuple(problem.gravity) if problem.gravity is not None else ()
-    return Geometry(tuple(rods), tuple(surfaces), tuple(curves), tuple(revolutions), tuple(strings),
+    return Geometry(tuple(rods), tuple(surfaces), tuple(curves), tuple(revolutions), tuple(_of_kind(shapes, String)),
                     tuple(springs), tuple(blades), tuple(bodies), (), markers, gravity)
+
+
+def _constraint_shapes(problem: Problem, particles: dict[str, Any], coordinates: list[Any],
+                       variables: set[Any]) -> tuple[list[Any], dict[str, list[Any]]]:
+    """The rods, surfaces, curves and strings the constraints on one or two particles are each alone, in the
+    constraints' order, and per particle the constraints on it alone that are none of these (for
+    :func:`_joint_shapes`)."""
+    shapes: list[Any] = []
+    rest: dict[str, list[Any]] = {}  # per particle, the constraints on it alone that are no rod or plane
+    for constraint in problem.constraints:
+        on = _acted_on(constraint, particles)
+        if not on:
+            continue
+        if constraint.kind != ConstraintKind.HOLONOMIC:
+            if len(on) == 1 and geometry_curves.holds(constraint, problem) is not None:
+                rest.setdefault(on[0], []).append(constraint)
+            continue
+        shape = _classify(constraint, [particles[name] for name in on], coordinates, variables)
+        if shape is None and len(on) == 1:
+            rest.setdefault(on[0], []).append(constraint)
+        elif shape is None:
+            shape = geometry_links.string(problem, constraint, [particles[n] for n in on], coordinates)
+        if shape is not None:
+            shapes.append(shape)
+    return shapes, rest
+
+
+def _acted_on(constraint: Any, particles: dict[str, Any]) -> list[str]:
+    """The one or two particles a constraint acts on (the one particle, for a constraint without ``on`` in a
+    problem with one); none when it names no particle, more than two, or a body."""
+    on = [name for name in constraint.on if name in particles]
+    if not on and not constraint.on and len(particles) == 1:
+        on = list(particles)  # the one particle a constraint without "on" can act on
+    if not on or len(on) > 2 or len(on) != len(constraint.on or on):
+        return []
+    return on
+
+
+def _joint_shapes(problem: Problem, particles: dict[str, Any], rest: dict[str, list[Any]], coordinates: list[Any],
+                  variables: set[Any]) -> list[Any]:
+    """The surface, curve or surface of revolution each particle's remaining constraints leave it on together."""
+    shapes: list[Any] = []
+    for name, constraints in rest.items():
+        shape = geometry_curves.joint(problem, particles[name], constraints, coordinates, variables)
+        if shape is not None:
+            shapes.append(shape)
+    return shapes
+
+
+def _of_kind(shapes: list[Any], kind: type) -> list[Any]:
+    """The shapes of one kind, in their order."""
+    return [s for s in shapes if isinstance(s, kind)]
+
+
+def _holding(rods: list[Rod], held: set[str], surfaces: list[Surface]) -> set[Any]:
+    """The particles something other than a floor holds against gravity: a rod from a fixed point, a wire or
+    surface of revolution (``held``), a surface."""
+    return {r.end.particle for r in rods if r.start.particle is None} | held | {s.particle for s in surfaces}
 
 
 def sketch(form: MatrixForm) -> Geometry:
@@ -182,59 +208,92 @@ def _cartesian_symbols(position: tuple[Any, ...], coordinates: list[Any]) -> lis
 def _cartesian_shape(constraint: Any, particles: list[Any], cartesian: list[Any], coordinates: list[Any]) -> Any:
     """A surface (linear in the first particle's position) or a distance (quadratic) constraint."""
     psi = sympy.expand(constraint.expression)
-    mine = [s for s in cartesian[0] if s is not None]
-    own = set(mine)
-    others = set(coordinates) - own
     gradient = [sympy.diff(psi, s) if s is not None else sympy.Integer(0) for s in cartesian[0]]
-    first = particles[0]
-    if all(not (g.free_symbols & set(coordinates)) for g in gradient) and any(g != 0 for g in gradient):
-        # linear: n . r + c = 0, or n . (r - r_other) + c = 0 for a surface carried by another particle
-        base = particles[1].position if len(particles) == 2 else tuple(sympy.Integer(0) for _ in gradient)
-        if len(base) != len(gradient):
-            return None
-        rest = sympy.expand(psi - sum((g * (s - b) for g, s, b in zip(gradient, cartesian[0], base, strict=True)
-                                       if s is not None), sympy.Integer(0)))
-        if rest.free_symbols & set(coordinates):
-            return None
-        size = sum((g * g for g in gradient), sympy.Integer(0))
-        point = tuple(sympy.simplify(b - rest * g / size) for g, b in zip(gradient, base, strict=True))
-        carrier = particles[1].name if len(particles) == 2 else None
-        return Surface(constraint.name, first.name, point, tuple(gradient), constraint.unilateral, carrier=carrier)
-    # quadratic: psi = k |r - c|^2 + const with the same k for every component
-    if any(s is None for s in cartesian[0]):
+    if _linear(gradient, coordinates):
+        return _surface(constraint, psi, particles, cartesian[0], gradient, coordinates)
+    sphere = _sphere(psi, cartesian[0], coordinates)
+    if sphere is None:
         return None
-    second = [sympy.diff(psi, s, 2) for s in cartesian[0]]
+    centre, length = sphere
+    if len(particles) == 2:
+        return _rod_between(constraint, particles, cartesian[0], centre, length)
+    return _about_a_fixed_centre(constraint, particles[0], cartesian[0], centre, length, coordinates)
+
+
+def _linear(gradient: list[Any], coordinates: list[Any]) -> bool:
+    """Whether a constraint with this gradient in a particle's Cartesian coordinates is linear in them (and not
+    free of them)."""
+    return all(not (g.free_symbols & set(coordinates)) for g in gradient) and any(g != 0 for g in gradient)
+
+
+def _surface(constraint: Any, psi: Any, particles: list[Any], symbols: list[Any], gradient: list[Any],
+             coordinates: list[Any]) -> Surface | None:
+    """The plane of a linear constraint: n . r + c = 0, or n . (r - r_other) + c = 0 for a surface carried by the
+    second particle; None when the rest of the constraint holds coordinates."""
+    first = particles[0]
+    base = particles[1].position if len(particles) == 2 else tuple(sympy.Integer(0) for _ in gradient)
+    if len(base) != len(gradient):
+        return None
+    rest = sympy.expand(psi - sum((g * (s - b) for g, s, b in zip(gradient, symbols, base, strict=True)
+                                   if s is not None), sympy.Integer(0)))
+    if rest.free_symbols & set(coordinates):
+        return None
+    size = sum((g * g for g in gradient), sympy.Integer(0))
+    point = tuple(sympy.simplify(b - rest * g / size) for g, b in zip(gradient, base, strict=True))
+    carrier = particles[1].name if len(particles) == 2 else None
+    return Surface(constraint.name, first.name, point, tuple(gradient), constraint.unilateral, carrier=carrier)
+
+
+def _sphere(psi: Any, symbols: list[Any], coordinates: list[Any]) -> tuple[list[Any], Any] | None:
+    """The centre and radius of a quadratic constraint psi = k |r - c|^2 + const with the same k for every
+    component (every component a coordinate, the centre free of them); None for any other."""
+    if any(s is None for s in symbols):
+        return None
+    second = [sympy.diff(psi, s, 2) for s in symbols]
     if len(set(second)) != 1:
         return None
     k: Any = second[0] / 2
     if k == 0 or k.free_symbols & set(coordinates):
         return None
-    centre = [sympy.expand(s - sympy.diff(psi, s) / (2 * k)) for s in mine]
-    if any(c.free_symbols & own for c in centre):
+    centre = [sympy.expand(s - sympy.diff(psi, s) / (2 * k)) for s in symbols]
+    if any(c.free_symbols & set(symbols) for c in centre):
         return None
-    mixed = sympy.expand(psi - k * sum(((s - c) ** 2 for s, c in zip(mine, centre, strict=True)), sympy.Integer(0)))
+    mixed = sympy.expand(psi - k * sum(((s - c) ** 2 for s, c in zip(symbols, centre, strict=True)),
+                                       sympy.Integer(0)))
     if mixed.free_symbols & set(coordinates):
         return None
     square = sympy.simplify(-mixed / k)
-    length = sympy.sqrt(square)
-    if len(particles) == 2:
-        other = particles[1]
-        target = [v for s, v in zip(cartesian[0], first.position, strict=True) if s is not None]
-        partner = [v for s, v in zip(cartesian[0], other.position, strict=True) if s is not None]
-        if len(partner) != len(target) or any(sympy.expand(c - p) != 0 for c, p in zip(centre, partner, strict=True)):
-            return None
-        if constraint.unilateral:
-            return None
-        return Rod(Anchor(other.name), Anchor(first.name), length, constraint.name)
+    return centre, sympy.sqrt(square)
+
+
+def _rod_between(constraint: Any, particles: list[Any], symbols: list[Any], centre: list[Any], length: Any
+                 ) -> Rod | None:
+    """A rod between two particles, when the sphere's centre is the second particle (and the constraint is
+    two-sided)."""
+    first, other = particles
+    target = [v for s, v in zip(symbols, first.position, strict=True) if s is not None]
+    partner = [v for s, v in zip(symbols, other.position, strict=True) if s is not None]
+    if len(partner) != len(target) or any(sympy.expand(c - p) != 0 for c, p in zip(centre, partner, strict=True)):
+        return None
+    if constraint.unilateral:
+        return None
+    return Rod(Anchor(other.name), Anchor(first.name), length, constraint.name)
+
+
+def _about_a_fixed_centre(constraint: Any, particle: Any, symbols: list[Any], centre: list[Any], length: Any,
+                          coordinates: list[Any]) -> Rod | Curve | None:
+    """A rod from a pivot at the sphere's centre, or a solid sphere or cylinder for a unilateral constraint; None
+    when the centre moves with another coordinate."""
+    others = set(coordinates) - set(symbols)
     if any(c.free_symbols & others for c in centre):
         return None
     full = []
     it = iter(centre)
-    for s, v in zip(cartesian[0], first.position, strict=True):
+    for s, v in zip(symbols, particle.position, strict=True):
         full.append(next(it) if s is not None else v)
     if constraint.unilateral:
-        return Curve(constraint.name, first.name, None, (), tuple(full), length, closed=True, solid=True)
-    return Rod(Anchor(None, tuple(full)), Anchor(first.name), length, constraint.name)
+        return Curve(constraint.name, particle.name, None, (), tuple(full), length, closed=True, solid=True)
+    return Rod(Anchor(None, tuple(full)), Anchor(particle.name), length, constraint.name)
 
 
 def _implied_rods(problem: Problem, coordinates: list[Any], variables: set[Any], explicit: list[Rod],

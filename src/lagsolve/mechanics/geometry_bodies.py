@@ -96,47 +96,13 @@ def _position(problem: Problem, name: str) -> tuple[Any, ...]:
 
 def _planar(problem: Problem, body: Any, coordinates: list[Any], variables: set[Any]
             ) -> tuple[Body, list[Surface | Curve], list[Rod]]:
+    """A body in the plane drawn as a bar, disc or plate (module docstring), the lines and curves its contacts
+    touch, and the rods that link it to a member when they do not turn with it."""
     centre = tuple(body.position)
     omega = body.angular_velocity[0]
     angle = _angle(omega, problem)
-    pivot: Anchor | None = None
-    radius = None
-    contact: tuple[Any, ...] = ()
-    touched: list[Surface | Curve] = []
+    pivot, radius, contact, touched = _held_points(problem, body, coordinates, variables)
     links: list[Rod] = []
-    groups: dict[str, list[Any]] = {}
-    for constraint in problem.constraints:
-        if constraint.at is not None and constraint.on and constraint.on[0] == body.name:
-            groups.setdefault(str(constraint.at), []).append(constraint)
-    for group in groups.values():
-        at = tuple(group[0].at)
-        offset = [p - c for p, c in zip(at, centre, strict=True)]
-        carrier = group[0].on[1] if len(group[0].on) > 1 else None
-        base = _position(problem, carrier) if carrier is not None else tuple(sympy.Integer(0) for _ in at)
-        relative = tuple(p - b for p, b in zip(at, base, strict=True))
-        # the constraints that restrict where the point can be (one relating it to a coordinate it does not hold,
-        # the rolling angle, leaves its locus alone)
-        inside = {q for q in coordinates if any(p.has(q) for p in relative)}
-        holonomic = [c for c in group if c.kind == ConstraintKind.HOLONOMIC
-                     and not (c.expression.free_symbols & set(coordinates)) - inside]
-        solved = solve_together(problem, relative, holonomic, coordinates, variables)
-        attached = _turns_with(offset, omega, problem)
-        if solved is not None:
-            shape, _, free = solved
-            if not free and carrier is None and not any(s.free_symbols & variables for s in shape):
-                pivot = Anchor(None, shape)
-            elif len(free) == 1 and not attached:
-                absolute = tuple(b + s for b, s in zip(base, shape, strict=True))
-                unilateral = any(c.unilateral for c in holonomic)
-                label = ", ".join(c.name for c in holonomic)
-                element = line_or_curve(label, body.name, absolute, free[0], [], coordinates, variables,
-                                        unilateral, carrier)
-                if isinstance(element, Surface):  # the material is beyond the contact, away from the centre
-                    element = replace(element, solid=tuple(offset))
-                touched.append(element)
-        if not attached and radius is None:
-            radius = _length(offset, coordinates)
-            contact = at if radius is not None else ()
     if radius is None and pivot is None:
         radius, contact, floor = _rolling(problem, body, coordinates)
         touched += floor
@@ -146,6 +112,83 @@ def _planar(problem: Problem, body: Any, coordinates: list[Any], variables: set[
     kind = "bar" if pivot is not None else "disc" if radius is not None else "plate"
     rate = None if angle is not None else omega
     return Body(body.name, kind, centre, radius, angle, rate, pivot, contact=contact), touched, links
+
+
+def _held_points(problem: Problem, body: Any, coordinates: list[Any], variables: set[Any]
+                 ) -> tuple[Anchor | None, Any, tuple[Any, ...], list[Surface | Curve]]:
+    """What the constraints ``at:`` points of the body make of it: the pivot (the last point they hold fixed),
+    the radius and contact point of the first point that keeps its direction from the centre (a disc's rim),
+    and the lines and curves the points touch."""
+    centre = tuple(body.position)
+    omega = body.angular_velocity[0]
+    pivot: Anchor | None = None
+    radius = None
+    contact: tuple[Any, ...] = ()
+    touched: list[Surface | Curve] = []
+    for group in _groups_at(problem, body).values():
+        at = tuple(group[0].at)
+        offset = [p - c for p, c in zip(at, centre, strict=True)]
+        attached = _turns_with(offset, omega, problem)
+        held, element = _held_point(problem, body, group, offset, attached, coordinates, variables)
+        if held is not None:
+            pivot = held
+        if element is not None:
+            touched.append(element)
+        if not attached and radius is None:
+            radius = _length(offset, coordinates)
+            contact = at if radius is not None else ()
+    return pivot, radius, contact, touched
+
+
+def _groups_at(problem: Problem, body: Any) -> dict[str, list[Any]]:
+    """The constraints ``at:`` a point of the body (named first in ``on``), grouped by the point."""
+    groups: dict[str, list[Any]] = {}
+    for constraint in problem.constraints:
+        if constraint.at is not None and constraint.on and constraint.on[0] == body.name:
+            groups.setdefault(str(constraint.at), []).append(constraint)
+    return groups
+
+
+def _held_point(problem: Problem, body: Any, group: list[Any], offset: list[Any], attached: bool,
+                coordinates: list[Any], variables: set[Any]) -> tuple[Anchor | None, Surface | Curve | None]:
+    """What the constraints ``group`` at one point of the body make of it: a pivot when they hold it fixed (on
+    nothing that moves), the line or curve it slides or rolls along when they leave it one coordinate and it does
+    not turn with the body (``attached``), else neither."""
+    at = tuple(group[0].at)
+    carrier = group[0].on[1] if len(group[0].on) > 1 else None
+    base = _position(problem, carrier) if carrier is not None else tuple(sympy.Integer(0) for _ in at)
+    relative = tuple(p - b for p, b in zip(at, base, strict=True))
+    holonomic = _restricting(group, relative, coordinates)
+    solved = solve_together(problem, relative, holonomic, coordinates, variables)
+    if solved is None:
+        return None, None
+    shape, _, free = solved
+    if not free and carrier is None and not any(s.free_symbols & variables for s in shape):
+        return Anchor(None, shape), None
+    if len(free) == 1 and not attached:
+        absolute = tuple(b + s for b, s in zip(base, shape, strict=True))
+        return None, _touched(body, holonomic, absolute, free[0], offset, carrier, coordinates, variables)
+    return None, None
+
+
+def _restricting(group: list[Any], relative: tuple[Any, ...], coordinates: list[Any]) -> list[Any]:
+    """The holonomic constraints of ``group`` that restrict where the point can be (one relating it to a
+    coordinate it does not hold, the rolling angle, leaves its locus alone)."""
+    inside = {q for q in coordinates if any(p.has(q) for p in relative)}
+    return [c for c in group if c.kind == ConstraintKind.HOLONOMIC
+            and not (c.expression.free_symbols & set(coordinates)) - inside]
+
+
+def _touched(body: Any, holonomic: list[Any], absolute: tuple[Any, ...], free: Any, offset: list[Any],
+             carrier: str | None, coordinates: list[Any], variables: set[Any]) -> Surface | Curve:
+    """The line or curve a point of the body moves along (``absolute``, a function of ``free``); a line is solid
+    beyond the contact, away from the centre."""
+    unilateral = any(c.unilateral for c in holonomic)
+    label = ", ".join(c.name for c in holonomic)
+    element = line_or_curve(label, body.name, absolute, free, [], coordinates, variables, unilateral, carrier)
+    if isinstance(element, Surface):  # the material is beyond the contact, away from the centre
+        element = replace(element, solid=tuple(offset))
+    return element
 
 
 def _length(offset: list[Any], coordinates: list[Any]) -> Any:

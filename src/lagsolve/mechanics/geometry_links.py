@@ -213,24 +213,40 @@ def springs(problem: Problem, coordinates: list[Any], marked: tuple[tuple[str, t
     if not members:
         return []
     measures = _measures(problem, coordinates, members)
-    out: list[Spring] = []
     terms = list(sympy.Add.make_args(problem.potential)) if problem.potential is not None else []
+    out: list[Spring] = []
     for term in terms:
-        for w, start, end, wall in measures:
-            if not _function_of(term, w, coordinates):
-                continue
-            k = next(i for i, q in enumerate(coordinates) if sympy.diff(w, q) != 0)
-            q = coordinates[k]
-            slope = sympy.simplify(sympy.diff(term, q) / sympy.diff(w, q))  # h'(w)
-            curvature = sympy.simplify(sympy.diff(slope, q) / sympy.diff(w, q))  # h''(w)
-            if curvature != 0 and not curvature.free_symbols & set(coordinates):
-                length = sympy.simplify(w - slope / curvature)
-                out.append(Spring(_label(term, "spring"), "spring", start, end, wall, length))
-            elif start.particle is None and not wall:
-                out.append(Spring(_label(term, "centre"), "centre", start, end))
-            else:
-                continue
-            break
+        spring = _spring(term, measures, coordinates)
+        if spring is not None:
+            out.append(spring)
+    for term in _damping_terms(problem, coordinates):
+        damper = _damper(term, measures, problem, coordinates)
+        if damper is not None:
+            out.append(damper)
+    return out
+
+
+def _spring(term: Any, measures: list[tuple], coordinates: list[Any]) -> Spring | None:
+    """The spring (a term h(w) with constant h''(w): its natural length is where h' vanishes) or centre of force
+    (a term in the distance from a fixed point) that a term of the potential is, through the first measure it is a
+    function of that makes it one; None when it is neither."""
+    for w, start, end, wall in measures:
+        if not _function_of(term, w, coordinates):
+            continue
+        k = next(i for i, q in enumerate(coordinates) if sympy.diff(w, q) != 0)
+        q = coordinates[k]
+        slope = sympy.simplify(sympy.diff(term, q) / sympy.diff(w, q))  # h'(w)
+        curvature = sympy.simplify(sympy.diff(slope, q) / sympy.diff(w, q))  # h''(w)
+        if curvature != 0 and not curvature.free_symbols & set(coordinates):
+            length = sympy.simplify(w - slope / curvature)
+            return Spring(_label(term, "spring"), "spring", start, end, wall, length)
+        if start.particle is None and not wall:
+            return Spring(_label(term, "centre"), "centre", start, end)
+    return None
+
+
+def _damping_terms(problem: Problem, coordinates: list[Any]) -> list[Any]:
+    """The terms of the dissipation function, then b q̇²/2 for each generalized force -b q̇ (b constant)."""
     rates = {c.velocity: c.symbol for c in problem.coordinates}
     damping = list(sympy.Add.make_args(problem.dissipation)) if problem.dissipation is not None else []
     for force in problem.forces:
@@ -240,13 +256,18 @@ def springs(problem: Problem, coordinates: list[Any], marked: tuple[tuple[str, t
             if b != 0 and not b.free_symbols & (set(rates) | set(coordinates)) and sympy.expand(
                     force.value[0] + b * q.velocity) == 0:
                 damping.append(b * q.velocity ** 2 / 2)
-    for term in damping:
-        moved = term.xreplace(rates)  # the rate of w is a function of the rates as w is of the coordinates
-        for w, start, end, wall in measures:
-            if _linear(w, coordinates) and _function_of(moved, w, coordinates):
-                out.append(Spring(_label(term, "damper"), "damper", start, end, wall))
-                break
-    return out
+    return damping
+
+
+def _damper(term: Any, measures: list[tuple], problem: Problem, coordinates: list[Any]) -> Spring | None:
+    """The damper a dissipation term is along the first linear measure it is a function of (of its rate), or
+    None."""
+    rates = {c.velocity: c.symbol for c in problem.coordinates}
+    moved = term.xreplace(rates)  # the rate of w is a function of the rates as w is of the coordinates
+    for w, start, end, wall in measures:
+        if _linear(w, coordinates) and _function_of(moved, w, coordinates):
+            return Spring(_label(term, "damper"), "damper", start, end, wall)
+    return None
 
 
 def _linear(w: Any, coordinates: list[Any]) -> bool:

@@ -278,6 +278,8 @@ def _principal(value: Any) -> Any:
 
 def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any, rest: dict[Any, Any],
           values: dict[str, float] | None = None, free: tuple[Any, ...] = ()) -> Mode:
+    """The equilibrium ``point`` with M₀, G, D and K there and, without gyroscopic or damping terms, its normal
+    modes; on a continuum (the coordinates ``free``) its stability is left open and the note says so."""
     at = {**dict(point), **rest}
     M0 = sympy.Matrix(mass).xreplace(at).applyfunc(tidy)
     K = K_all.xreplace(at).applyfunc(tidy)
@@ -290,42 +292,71 @@ def _mode(point: tuple[tuple[Any, Any], ...], mass: Any, K_all: Any, C_all: Any,
     if any(e != 0 for e in (*G, *D)):
         note = "gyroscopic or damping terms: normal modes are not computed"
     else:
-        s = sympy.Dummy("s")
-        # the Poly is canonical, however the determinant is written: Berkowitz's is the quickest to write
-        polynomial = sympy.Poly(_determinant(K - s * M0), s)
-        roots = sympy.roots(polynomial) if _splits(polynomial, s) else {}
-        if sum(roots.values()) != polynomial.degree() or any(r.has(sympy.I) for r in roots):
-            # Cardano's radicals of a real frequency carry complex numbers: a numeric ω² says more
-            note = "the characteristic polynomial does not split into real factors of degree 2 or less"
-            numeric = _numeric_squares(M0, K, values)
-            if numeric is not None:
-                squares, stable, frequencies, shapes = numeric
-                note += "; ω² and the mode shapes are numeric, at the simulation values"
-        else:
-            ordered = sorted((tidy(r) for r, k in roots.items() for _ in range(k)), key=sympy.default_sort_key)
-            squares = tuple(ordered)
-            signs = [sign_core(r)[0] for r in squares]
-            if None in signs and -1 not in signs:
-                definite = _definiteness(M0, K)
-                if definite == 1:
-                    signs = [1] * len(signs)  # K positive definite: every ω² is positive
-                elif definite == -1:
-                    signs = [-1 if x is None else x for x in signs] if signs.count(None) == 1 else signs
-                    stable = False
-            if stable is None:
-                stable = False if -1 in signs else (True if all(x == 1 for x in signs) else None)
-            frequencies = tuple(tidy(sympy.sqrt(r)) if x == 1 else None for r, x in zip(squares, signs, strict=True))
-            shapes = exact_shapes(M0, K, squares)
-            if shapes is None:
-                shapes = _numeric_shapes_at(M0, K, squares, values)
-                if shapes is not None:
-                    note = "the mode shapes are numeric, at the simulation values"
+        squares, frequencies, stable, shapes, note = _normal_modes(M0, K, values)
     if free:
         # along the continuum ω² = 0 is neutral: stable only in the other directions, so not decided here
         stable = None if stable is not False else False
         note = _continuum_note(free, K.rows) + (f"; {note}" if note else "")
     return Mode(point, sympy.ImmutableMatrix(M0), sympy.ImmutableMatrix(G), sympy.ImmutableMatrix(D),
                 sympy.ImmutableMatrix(K), squares, frequencies, stable, note, free, shapes)
+
+
+def _normal_modes(M0: Any, K: Any, values: dict[str, float] | None) -> tuple[Any, Any, bool | None, Any, str]:
+    """The ω² (roots of det(K - ω² M₀)), ω, stability, mode shapes and a note: exact when the characteristic
+    polynomial splits into real factors of degree 2 or less, else numeric at the simulation ``values`` (none
+    without them)."""
+    s = sympy.Dummy("s")
+    # the Poly is canonical, however the determinant is written: Berkowitz's is the quickest to write
+    polynomial = sympy.Poly(_determinant(K - s * M0), s)
+    roots = sympy.roots(polynomial) if _splits(polynomial, s) else {}
+    if sum(roots.values()) != polynomial.degree() or any(r.has(sympy.I) for r in roots):
+        # Cardano's radicals of a real frequency carry complex numbers: a numeric ω² says more
+        return _numeric_modes(M0, K, values)
+    return _exact_modes(M0, K, roots, values)
+
+
+def _numeric_modes(M0: Any, K: Any, values: dict[str, float] | None) -> tuple[Any, Any, bool | None, Any, str]:
+    """:func:`_normal_modes` at the simulation ``values``, for a characteristic polynomial that does not split."""
+    note = "the characteristic polynomial does not split into real factors of degree 2 or less"
+    numeric = _numeric_squares(M0, K, values)
+    if numeric is None:
+        return None, None, None, None, note
+    squares, stable, frequencies, shapes = numeric
+    return squares, frequencies, stable, shapes, note + "; ω² and the mode shapes are numeric, at the simulation values"
+
+
+def _exact_modes(M0: Any, K: Any, roots: dict[Any, int], values: dict[str, float] | None
+                 ) -> tuple[Any, Any, bool | None, Any, str]:
+    """:func:`_normal_modes` from the exact ``roots`` (with their multiplicities): ω for each positive ω², and
+    the mode shapes exact, else numeric at the simulation ``values`` (the note says so)."""
+    ordered = sorted((tidy(r) for r, k in roots.items() for _ in range(k)), key=sympy.default_sort_key)
+    squares = tuple(ordered)
+    signs, stable = _signs(M0, K, squares)
+    frequencies = tuple(tidy(sympy.sqrt(r)) if x == 1 else None for r, x in zip(squares, signs, strict=True))
+    note = ""
+    shapes = exact_shapes(M0, K, squares)
+    if shapes is None:
+        shapes = _numeric_shapes_at(M0, K, squares, values)
+        if shapes is not None:
+            note = "the mode shapes are numeric, at the simulation values"
+    return squares, frequencies, stable, shapes, note
+
+
+def _signs(M0: Any, K: Any, squares: tuple[Any, ...]) -> tuple[list[int | None], bool | None]:
+    """The sign of each ω² (None where undecided; K's definiteness decides those its factors leave open), and
+    whether the equilibrium is stable: not when an ω² is negative, yes when every one is positive, else None."""
+    signs = [sign_core(r)[0] for r in squares]
+    stable = None
+    if None in signs and -1 not in signs:
+        definite = _definiteness(M0, K)
+        if definite == 1:
+            signs = [1] * len(signs)  # K positive definite: every ω² is positive
+        elif definite == -1:
+            signs = [-1 if x is None else x for x in signs] if signs.count(None) == 1 else signs
+            stable = False
+    if stable is None:
+        stable = False if -1 in signs else (True if all(x == 1 for x in signs) else None)
+    return signs, stable
 
 
 def _numeric_shapes_at(M0: Any, K: Any, squares: tuple[Any, ...],

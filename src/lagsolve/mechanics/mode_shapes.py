@@ -85,35 +85,55 @@ def _null_space(N: Any, multiplicity: int) -> list[tuple[Any, ...]] | None:
     n = N.rows
     nonzero = [[not _zero(e) for e in N.row(i)] for i in range(n)]
     if not any(any(row) for row in nonzero):
-        vectors = [tuple(sympy.Integer(1 if i == j else 0) for i in range(n)) for j in range(n)]
-        return vectors[:multiplicity] if multiplicity <= n else None
+        return _unit_vectors(n, multiplicity)
     if multiplicity == 1:
-        adjugate = N.adjugate(method="berkowitz")
-        for j in range(n):
-            column = [expand(adjugate[i, j]) for i in range(n)]
-            if any(ops(c) > 2 * SHAPE_LIMIT for c in column):
-                return None
-            if all(_zero(c) for c in column):
-                continue
-            u = _scaled(column)
-            return [u] if u is not None and _checked(N, u) else None
-        return None
+        return _adjugate_vector(N)
     if multiplicity == n - 1 and n == 3:
-        i, w = next((i, N.row(i)) for i in range(n) if any(nonzero[i]))
-        lead = next(j for j in range(n) if nonzero[i][j])
-        vectors = []
-        for j in range(n):
-            if j == lead:
-                continue
-            column = [sympy.Integer(0)] * n
-            column[j] = sympy.Integer(1)
-            column[lead] = -w[j] / w[lead]
-            u = _scaled(column)
-            if u is None or not _checked(N, u):
-                return None
-            vectors.append(u)
-        return vectors
+        return _plane_of_a_row(N, nonzero)
     return None
+
+
+def _unit_vectors(n: int, multiplicity: int) -> list[tuple[Any, ...]] | None:
+    """The first ``multiplicity`` unit vectors of n dimensions (N = 0: every vector is in its null space)."""
+    vectors = [tuple(sympy.Integer(1 if i == j else 0) for i in range(n)) for j in range(n)]
+    return vectors[:multiplicity] if multiplicity <= n else None
+
+
+def _adjugate_vector(N: Any) -> list[tuple[Any, ...]] | None:
+    """The one vector of N's null space (N of rank n - 1): the first non-zero column of its adjugate, scaled and
+    checked; None when a column is too large or none passes."""
+    n = N.rows
+    adjugate = N.adjugate(method="berkowitz")
+    for j in range(n):
+        column = [expand(adjugate[i, j]) for i in range(n)]
+        if any(ops(c) > 2 * SHAPE_LIMIT for c in column):
+            return None
+        if all(_zero(c) for c in column):
+            continue
+        u = _scaled(column)
+        return [u] if u is not None and _checked(N, u) else None
+    return None
+
+
+def _plane_of_a_row(N: Any, nonzero: list[list[bool]]) -> list[tuple[Any, ...]] | None:
+    """The two vectors of the null space of a 3 × 3 N of rank 1 (``nonzero`` marks its non-zero entries): those
+    orthogonal to its first non-zero row w, one for each component j but w's first non-zero one (lead), with
+    u_j = 1 and u_lead = -w_j/w_lead; None when one is too large or fails the check."""
+    n = N.rows
+    i, w = next((i, N.row(i)) for i in range(n) if any(nonzero[i]))
+    lead = next(j for j in range(n) if nonzero[i][j])
+    vectors = []
+    for j in range(n):
+        if j == lead:
+            continue
+        column = [sympy.Integer(0)] * n
+        column[j] = sympy.Integer(1)
+        column[lead] = -w[j] / w[lead]
+        u = _scaled(column)
+        if u is None or not _checked(N, u):
+            return None
+        vectors.append(u)
+    return vectors
 
 
 def _scaled(column: list[Any]) -> tuple[Any, ...] | None:

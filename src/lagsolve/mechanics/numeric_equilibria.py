@@ -42,8 +42,33 @@ def numeric_linearization(system: MotionSystem, values: dict[str, float], initia
         When a parameter has no value; :class:`NoEquilibriumFound` when no equilibrium is found.
     """
     import numpy as np
-    from scipy.optimize import root
 
+    model = system.model
+    functions = _lambdified(system, values)
+    found = _search(functions, initial)
+    if not found:
+        raise NoEquilibriumFound(f"no equilibrium found numerically from {STARTS} starting points")
+    found.sort(key=lambda p: (float(np.sum(p**2)), tuple(p)))
+    modes = [_numeric_mode(functions, point) for point in found[:MAX_EQUILIBRIA]]
+    return Linearization(model.coordinates, tuple(modes))
+
+
+@dataclasses.dataclass(frozen=True)
+class _Lambdified:
+    """The numeric functions of the coordinates at rest that the search and the modes evaluate: F(q, 0), its
+    Jacobian (-K), M and the damping matrix, and which coordinates are angles."""
+
+    coordinates: list[Any]
+    static: Any
+    jacobian: Any
+    mass: Any
+    damping: Any
+    angles: list[bool]
+
+
+def _lambdified(system: MotionSystem, values: dict[str, float]) -> _Lambdified:
+    """F(q, 0), its Jacobian, M and the damping matrix at rest with the parameter ``values`` put in, as numeric
+    functions of the coordinates; :class:`StageSkipped` when a parameter has no value."""
     model = system.model
     q, qd = list(model.coordinates), list(model.velocities)
     terms = lagrange_terms(model, (), system.generalized_forces, engine="symengine")
@@ -57,67 +82,102 @@ def numeric_linearization(system: MotionSystem, values: dict[str, float], initia
     missing = (static.free_symbols | mass.free_symbols) - set(q)
     if missing:
         raise StageSkipped(f"needs values for {', '.join(sorted(s.name for s in missing))} (simulation.values)")
-    f_static = sympy.lambdify([q], list(static), "numpy")
-    f_jac = sympy.lambdify([q], stiffness * -1, "numpy")
-    f_mass = sympy.lambdify([q], mass, "numpy")
-    f_damp = sympy.lambdify([q], damping_all, "numpy")
-    angles = periodic([*static, *mass], q)
+    return _Lambdified(q, sympy.lambdify([q], list(static), "numpy"), sympy.lambdify([q], stiffness * -1, "numpy"),
+                       sympy.lambdify([q], mass, "numpy"), sympy.lambdify([q], damping_all, "numpy"),
+                       periodic([*static, *mass], q))
+
+
+def _search(functions: _Lambdified, initial: dict[str, float]) -> list[Any]:
+    """The distinct equilibria Newton's method reaches from :data:`STARTS` starting points: the ``initial`` state,
+    then points around it (each coordinate moved by up to π, the same points on every run)."""
+    import numpy as np
+    from scipy.optimize import root
+
+    q = functions.coordinates
     rng = np.random.default_rng(0)
     centre = np.array([float(initial.get(c.name, 0.0)) for c in q])
     found: list[np.ndarray] = []
     for k in range(STARTS):
         start = centre if k == 0 else centre + rng.uniform(-np.pi, np.pi, len(q))
         with np.errstate(all="ignore"):
-            sol = root(lambda x: np.asarray(f_static(x), dtype=float), start,
-                       jac=lambda x: np.asarray(f_jac(x), dtype=float), method="hybr")
+            sol = root(lambda x: np.asarray(functions.static(x), dtype=float), start,
+                       jac=lambda x: np.asarray(functions.jacobian(x), dtype=float), method="hybr")
         if not sol.success or not np.all(np.isfinite(sol.x)):
             continue
-        point = np.array([(x + np.pi) % (2 * np.pi) - np.pi if angles[i] else x for i, x in enumerate(sol.x)])
-        periodic_mask = np.array(periodic, dtype=bool)
-        point = np.where(periodic_mask & np.isclose(np.abs(point), np.pi, atol=1e-7), np.pi, point)
-        point = np.where(np.abs(point) < 1e-7, 0.0, point)  # the root finder's own noise
-        if np.max(np.abs(np.asarray(f_static(point), dtype=float))) > 1e-9:
-            continue
-        if any(np.allclose(point, p, atol=1e-7) for p in found):
-            continue
-        if np.linalg.cond(np.asarray(f_mass(point), dtype=float)) > 1e12:
-            continue  # a singular point of the coordinates (M singular), not an equilibrium of the motion
-        if _on_continuum(f_static, -np.asarray(f_jac(point), dtype=float), point) and any(
-                _on_continuum(f_static, -np.asarray(f_jac(p), dtype=float), p) for p in found):
-            continue  # the multi-start lands anywhere on a continuum: one point of it is shown
-        found.append(point)
-    if not found:
-        raise NoEquilibriumFound(f"no equilibrium found numerically from {STARTS} starting points")
-    found.sort(key=lambda p: (float(np.sum(p**2)), tuple(p)))
-    modes = []
-    for point in found[:MAX_EQUILIBRIA]:
-        m0 = np.asarray(f_mass(point), dtype=float)
-        k0 = -np.asarray(f_jac(point), dtype=float)
-        c0 = np.asarray(f_damp(point), dtype=float)
-        squares = frequencies = shapes = None
-        stable = None
-        note = "numeric, at the simulation values"
-        continuum = _on_continuum(f_static, k0, point)
-        if continuum:
-            note = "not isolated: one point of a continuum of equilibria (K is singular along it); " + note
-        if np.max(np.abs(c0)) > 1e-12:
-            note += "; gyroscopic or damping terms: normal modes are not computed"
-        else:
-            eig = np.sort(np.linalg.eigvals(np.linalg.solve(m0, k0)).real)
-            squares = tuple(sympy.Float(float(e), 8) for e in eig)
-            stable = bool(np.all(eig > 1e-12)) if np.all(np.abs(eig) > 1e-12) else None
-            if continuum and stable is None and np.any(eig < -1e-12):
-                stable = False
-            frequencies = tuple(sympy.Float(float(np.sqrt(e)), 8) if e > 1e-12 else None for e in eig)
-            found_shapes = numeric_shapes(m0, k0, [float(e) for e in eig])
-            shapes = None if found_shapes is None else tuple(tuple(sympy.Float(x, 8) for x in u)
-                                                             for u in found_shapes)
-        modes.append(Mode(tuple((c, sympy.Float(float(v), 8)) for c, v in zip(q, point, strict=True)),
-                          sympy.ImmutableMatrix(m0.tolist()).applyfunc(lambda e: sympy.Float(e, 8)),
-                          sympy.ImmutableMatrix(sympy.zeros(len(q))), sympy.ImmutableMatrix(sympy.zeros(len(q))),
-                          sympy.ImmutableMatrix(k0.tolist()).applyfunc(lambda e: sympy.Float(e, 8)),
-                          squares, frequencies, stable, note, shapes=shapes))
-    return Linearization(model.coordinates, tuple(modes))
+        point = _tidy(sol.x, functions.angles)
+        if _new_equilibrium(functions, point, found):
+            found.append(point)
+    return found
+
+
+def _tidy(x: Any, angles: list[bool]) -> Any:
+    """A root as an equilibrium is shown: angles in (-π, π], ±π as π, and the root finder's noise about 0 as 0."""
+    import numpy as np
+
+    point = np.array([(v + np.pi) % (2 * np.pi) - np.pi if angles[i] else v for i, v in enumerate(x)])
+    periodic_mask = np.array(periodic, dtype=bool)
+    point = np.where(periodic_mask & np.isclose(np.abs(point), np.pi, atol=1e-7), np.pi, point)
+    return np.where(np.abs(point) < 1e-7, 0.0, point)  # the root finder's own noise
+
+
+def _new_equilibrium(functions: _Lambdified, point: Any, found: list[Any]) -> bool:
+    """Whether a root is an equilibrium to add: F(q, 0) vanishes there, it is none of ``found``, M is regular
+    there, and it is not a second point of a continuum of equilibria."""
+    import numpy as np
+
+    f_static, f_jac = functions.static, functions.jacobian
+    if np.max(np.abs(np.asarray(f_static(point), dtype=float))) > 1e-9:
+        return False
+    if any(np.allclose(point, p, atol=1e-7) for p in found):
+        return False
+    if np.linalg.cond(np.asarray(functions.mass(point), dtype=float)) > 1e12:
+        return False  # a singular point of the coordinates (M singular), not an equilibrium of the motion
+    # the multi-start lands anywhere on a continuum: one point of it is shown
+    return not (_on_continuum(f_static, -np.asarray(f_jac(point), dtype=float), point) and any(
+        _on_continuum(f_static, -np.asarray(f_jac(p), dtype=float), p) for p in found))
+
+
+def _numeric_mode(functions: _Lambdified, point: Any) -> Mode:
+    """The equilibrium at ``point`` with M₀, K, its squared frequencies, stability and mode shapes, every entry a
+    floating-point number; no frequencies where gyroscopic or damping terms act."""
+    import numpy as np
+
+    q = functions.coordinates
+    m0 = np.asarray(functions.mass(point), dtype=float)
+    k0 = -np.asarray(functions.jacobian(point), dtype=float)
+    c0 = np.asarray(functions.damping(point), dtype=float)
+    squares = frequencies = shapes = None
+    stable = None
+    note = "numeric, at the simulation values"
+    continuum = _on_continuum(functions.static, k0, point)
+    if continuum:
+        note = "not isolated: one point of a continuum of equilibria (K is singular along it); " + note
+    if np.max(np.abs(c0)) > 1e-12:
+        note += "; gyroscopic or damping terms: normal modes are not computed"
+    else:
+        squares, frequencies, stable, shapes = _spectrum(m0, k0, continuum)
+    return Mode(tuple((c, sympy.Float(float(v), 8)) for c, v in zip(q, point, strict=True)),
+                sympy.ImmutableMatrix(m0.tolist()).applyfunc(lambda e: sympy.Float(e, 8)),
+                sympy.ImmutableMatrix(sympy.zeros(len(q))), sympy.ImmutableMatrix(sympy.zeros(len(q))),
+                sympy.ImmutableMatrix(k0.tolist()).applyfunc(lambda e: sympy.Float(e, 8)),
+                squares, frequencies, stable, note, shapes=shapes)
+
+
+def _spectrum(m0: Any, k0: Any, continuum: bool) -> tuple[Any, Any, bool | None, Any]:
+    """The squared frequencies (eigenvalues of M₀⁻¹K), the frequencies (None for a non-positive one), whether the
+    equilibrium is stable (None when a zero eigenvalue leaves it open; unstable on a continuum with a negative
+    one) and the mode shapes."""
+    import numpy as np
+
+    eig = np.sort(np.linalg.eigvals(np.linalg.solve(m0, k0)).real)
+    squares = tuple(sympy.Float(float(e), 8) for e in eig)
+    stable = bool(np.all(eig > 1e-12)) if np.all(np.abs(eig) > 1e-12) else None
+    if continuum and stable is None and np.any(eig < -1e-12):
+        stable = False
+    frequencies = tuple(sympy.Float(float(np.sqrt(e)), 8) if e > 1e-12 else None for e in eig)
+    found_shapes = numeric_shapes(m0, k0, [float(e) for e in eig])
+    shapes = None if found_shapes is None else tuple(tuple(sympy.Float(x, 8) for x in u) for u in found_shapes)
+    return squares, frequencies, stable, shapes
 
 
 def periodic(exprs: list[Any], coordinates: list[Any]) -> list[bool]:

@@ -119,56 +119,34 @@ class _Candidate:
 def steady_motions(system: MotionSystem, effective: EffectivePotential) -> tuple[SteadyMotion | None, str]:
     """The steady motions of ``system`` reduced to ``effective.coordinate``, or None and the reason."""
     cyclic = [c for c, _, _ in effective.cyclic]
-    if not cyclic:
-        return None, "no coordinate is cyclic: the equilibria of the effective potential are states of rest"
-    if len(cyclic) > MAX_CYCLIC:
-        return None, f"{len(cyclic)} cyclic coordinates (at most {MAX_CYCLIC} are tried)"
     model = system.model
     L = model.lagrangian
-    if ops(L) > SIZE_LIMIT or ops(effective.expression) > SIZE_LIMIT:
-        raise StageTooLarge(f"L or V_eff has more than {SIZE_LIMIT} operations")
+    why_not = _why_not_steady(cyclic, L, effective)
+    if why_not:
+        return None, why_not
     q = effective.coordinate
     qd = model.velocities[model.coordinates.index(q)]
     velocities = [model.velocities[model.coordinates.index(c)] for c in cyclic]
     momenta = [p for _, p, _ in effective.cyclic]
-    rest = {qd: sympy.Integer(0)}
-    candidates = [c for k in range(len(cyclic))
-                  if (c := _candidate(L.xreplace(rest), q, velocities, momenta, k)) is not None]
-    if not candidates:
-        if not sympy.diff(L.xreplace(rest), q).has(*velocities):
-            return None, (f"dL/d{q.name} at rest does not involve the cyclic velocities: the steady motions are the "
-                          "equilibria of the effective potential")
-        return None, "the steady-motion condition is not a polynomial of degree 1 or 2 in any cyclic velocity"
-    best = min(candidates, key=lambda c: (ops(c.polynomial), c.index))
+    best, why_not = _best_candidate(L, q, qd, velocities, momenta)
+    if best is None:
+        return None, why_not
     k = best.index
     omega = velocities[k]
     A, B, C = (tidy(best.polynomial.coeff(omega, n)) for n in (2, 1, 0))
     if A == 0 and B == 0:
         return None, f"the condition does not involve {omega.name}: no rate makes {q.name} steady"
-    momentum = momentum_value = best.momentum
-    curvature = sympy.diff(effective.expression, q, 2).xreplace({momenta[k]: momentum_value})
+    momentum = best.momentum
     mass = effective.mass
-    eliminated = _eliminable(C, (A, B, mass, momentum, *best.held_velocities.values()), model, q)
-    value = None
-    if eliminated is not None:
-        # the linear solve by hand: SymPy's ``solve`` writes 1/cot as tan, which no later cancellation undoes
-        value = -best.polynomial.xreplace({eliminated: 0}) / sympy.diff(best.polynomial, eliminated)
-        curvature = curvature.xreplace({eliminated: value})
-    curvature = tidy(sympy.together(curvature))
+    curvature, eliminated, value = _steady_curvature(effective, best, momenta[k], (A, B, C), model)
     square = _squares(_simplest(curvature / mass), [*(momenta[i] for i in range(len(cyclic)) if i != k),
                                                                 omega])
     verified = _verify(system, effective, best, q, qd, omega, eliminated, value, momenta[k])
     roots, squared, exists, limits = _roots(A, B, C, omega)
     if exists is sympy.false:
         return None, f"the condition {sympy.sstr(best.polynomial)} = 0 has no real root"
-    at = None
-    if squared is not None and square.has(omega):
-        at = _simplest(square.subs(omega**2, squared))
-        at = None if at.has(omega) else at
-    sign, core = sign_core(curvature)
-    stable, condition = (sign > 0, None) if sign is not None else (None, relation(core))
-    if stable is None and _nonnegative(square) and sign_core(mass)[0] == 1:
-        stable, condition = True, None
+    at = _square_at_root(square, squared, omega)
+    stable, condition = _stability(curvature, square, mass)
     held = tuple((cyclic[i], momenta[i], tidy(sympy.diff(L, velocities[i]))) for i in range(len(cyclic)) if i != k)
     return SteadyMotion(
         coordinate=q, rate=cyclic[k], velocity=omega, held=held,
@@ -180,6 +158,68 @@ def steady_motions(system: MotionSystem, effective: EffectivePotential) -> tuple
         eliminated=(eliminated, _solved_for(A, B, C, omega, eliminated)) if eliminated is not None else None,
         stable=stable,
         stability_condition=condition, verified=verified), ""
+
+
+def _why_not_steady(cyclic: list[Any], L: Any, effective: EffectivePotential) -> str:
+    """Why no steady motion is looked for (no cyclic coordinate, or more than :data:`MAX_CYCLIC`), or ``""``;
+    :class:`StageTooLarge` when L or V_eff is too large to try."""
+    if not cyclic:
+        return "no coordinate is cyclic: the equilibria of the effective potential are states of rest"
+    if len(cyclic) > MAX_CYCLIC:
+        return f"{len(cyclic)} cyclic coordinates (at most {MAX_CYCLIC} are tried)"
+    if ops(L) > SIZE_LIMIT or ops(effective.expression) > SIZE_LIMIT:
+        raise StageTooLarge(f"L or V_eff has more than {SIZE_LIMIT} operations")
+    return ""
+
+
+def _best_candidate(L: Any, q: Any, qd: Any, velocities: list[Any], momenta: list[Any]
+                    ) -> tuple[_Candidate | None, str]:
+    """The choice of the rate whose condition is shortest (ties: input order), or None and why there is none."""
+    rest = {qd: sympy.Integer(0)}
+    candidates = [c for k in range(len(velocities))
+                  if (c := _candidate(L.xreplace(rest), q, velocities, momenta, k)) is not None]
+    if not candidates:
+        if not sympy.diff(L.xreplace(rest), q).has(*velocities):
+            return None, (f"dL/d{q.name} at rest does not involve the cyclic velocities: the steady motions are the "
+                          "equilibria of the effective potential")
+        return None, "the steady-motion condition is not a polynomial of degree 1 or 2 in any cyclic velocity"
+    return min(candidates, key=lambda c: (ops(c.polynomial), c.index)), ""
+
+
+def _steady_curvature(effective: EffectivePotential, best: _Candidate, rate_momentum: Any,
+                      coefficients: tuple[Any, Any, Any], model: Any) -> tuple[Any, Any, Any]:
+    """:math:`V_{eff}''(q_0)` with the rate's momentum at its steady value and, when a parameter of the
+    potential alone can be eliminated through the condition, with it eliminated; and that parameter and its
+    value (None, None without one)."""
+    A, B, C = coefficients
+    q = effective.coordinate
+    momentum = best.momentum
+    curvature = sympy.diff(effective.expression, q, 2).xreplace({rate_momentum: momentum})
+    eliminated = _eliminable(C, (A, B, effective.mass, momentum, *best.held_velocities.values()), model, q)
+    value = None
+    if eliminated is not None:
+        # the linear solve by hand: SymPy's ``solve`` writes 1/cot as tan, which no later cancellation undoes
+        value = -best.polynomial.xreplace({eliminated: 0}) / sympy.diff(best.polynomial, eliminated)
+        curvature = curvature.xreplace({eliminated: value})
+    return tidy(sympy.together(curvature)), eliminated, value
+
+
+def _square_at_root(square: Any, squared: Any, omega: Any) -> Any:
+    """ω² with Ω² put in from the condition (``squared``, when B = 0), or None when Ω remains."""
+    if squared is None or not square.has(omega):
+        return None
+    at = _simplest(square.subs(omega**2, squared))
+    return None if at.has(omega) else at
+
+
+def _stability(curvature: Any, square: Any, mass: Any) -> tuple[bool | None, Any]:
+    """Stable when :math:`V_{eff}'' > 0` (or ω² is a sum of squares and the mass positive), unstable when it is
+    negative, else None and the condition for it."""
+    sign, core = sign_core(curvature)
+    stable, condition = (sign > 0, None) if sign is not None else (None, relation(core))
+    if stable is None and _nonnegative(square) and sign_core(mass)[0] == 1:
+        stable, condition = True, None
+    return stable, condition
 
 
 def _simplest(expr: Any) -> Any:

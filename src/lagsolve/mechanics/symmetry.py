@@ -86,32 +86,17 @@ def symmetries(problem: Problem, system: MotionSystem, conservation: Conservatio
     """``conservation`` with the momenta of the translations and rotations that are symmetries (module
     docstring): new quantities after the cyclic momenta, and a cyclic momentum that is one of them named."""
     points = _points(problem, substitution)
-    if not points:
-        raise StageSkipped("no particle or body positions to move")
-    dims = {len(p.position) for p in points}
-    if len(dims) != 1:
-        raise StageSkipped("the positions have different numbers of components")
-    if sum(ops(e) for p in points for e in p.position) > SIZE_LIMIT:
-        raise StageTooLarge(f"the positions have more than {SIZE_LIMIT} operations")
-    dim = dims.pop()
-    generators = [Generator("translation", a) for a in AXES[:dim]]
-    generators += [Generator("rotation", a) for a in (AXES if dim == 3 else ("z",) if dim == 2 else ())]
     quantities = list(conservation.quantities)
     found: list[Conserved] = []
     notes = list(conservation.notes)
     taken = {*problem.symbols, *(f.name for f in problem.functions), *(q.name for q in quantities)}
-    for generator in generators:
+    for generator in _generators(points):
         flow = _flow(system, points, generator)
         if flow is None or not _invariant(system, flow):
             continue
-        known = _known(system, conservation, quantities, flow)
-        if known is not None:
-            i, quantity = known
-            if not quantity.symmetry:
-                quantities[i] = replace(quantity, symmetry=generator.text, generator=flow)
+        if _named_known(system, conservation, quantities, flow, generator):
             continue
-        charge = sum((partial(system.model.lagrangian, v) * xi
-                      for v, xi in zip(system.model.velocities, flow, strict=True) if xi != 0), sympy.Integer(0))
+        charge = _charge(system, flow)
         if proved_zero(charge):
             continue
         name = symmetry_name(generator.kind, generator.axis, taken)
@@ -122,10 +107,51 @@ def symmetries(problem: Problem, system: MotionSystem, conservation: Conservatio
             continue
         found.append(Conserved(name, "noether", tidy(charge), None, _reason(system, generator),
                                symmetry=generator.text, generator=flow))
+    return Conservation(_before_the_energy(quantities, found), conservation.cyclic, tuple(notes),
+                        conservation.energy)
+
+
+def _generators(points: list[_Point]) -> list[Generator]:
+    """The translations along and rotations about the axes of the points' space (about z alone in the plane);
+    :class:`StageSkipped` without points or with positions of different dimensions, :class:`StageTooLarge` for
+    positions too large to try."""
+    if not points:
+        raise StageSkipped("no particle or body positions to move")
+    dims = {len(p.position) for p in points}
+    if len(dims) != 1:
+        raise StageSkipped("the positions have different numbers of components")
+    if sum(ops(e) for p in points for e in p.position) > SIZE_LIMIT:
+        raise StageTooLarge(f"the positions have more than {SIZE_LIMIT} operations")
+    dim = dims.pop()
+    generators = [Generator("translation", a) for a in AXES[:dim]]
+    generators += [Generator("rotation", a) for a in (AXES if dim == 3 else ("z",) if dim == 2 else ())]
+    return generators
+
+
+def _named_known(system: MotionSystem, conservation: Conservation, quantities: list[Conserved],
+                 flow: tuple[Any, ...], generator: Generator) -> bool:
+    """Whether the flow's charge is a quantity already found (a cyclic momentum); that quantity, in
+    ``quantities``, is then named after the generator unless it is named already."""
+    known = _known(system, conservation, quantities, flow)
+    if known is None:
+        return False
+    i, quantity = known
+    if not quantity.symmetry:
+        quantities[i] = replace(quantity, symmetry=generator.text, generator=flow)
+    return True
+
+
+def _charge(system: MotionSystem, flow: tuple[Any, ...]) -> Any:
+    """Noether's charge of the flow ξ: :math:`\\sum_i p_i\\xi_i`."""
+    return sum((partial(system.model.lagrangian, v) * xi
+                for v, xi in zip(system.model.velocities, flow, strict=True) if xi != 0), sympy.Integer(0))
+
+
+def _before_the_energy(quantities: list[Conserved], found: list[Conserved]) -> tuple[Conserved, ...]:
+    """``quantities`` with ``found`` put in before the energy (the Jacobi integral), else at the end."""
     energy = [i for i, q in enumerate(quantities) if q.kind == "jacobi"]
     at = energy[0] if energy else len(quantities)
-    return Conservation(tuple(quantities[:at] + found + quantities[at:]), conservation.cyclic, tuple(notes),
-                        conservation.energy)
+    return tuple(quantities[:at] + found + quantities[at:])
 
 
 def _reason(system: MotionSystem, generator: Generator) -> str:
