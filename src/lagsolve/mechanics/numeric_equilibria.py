@@ -115,7 +115,7 @@ def _tidy(x: Any, angles: list[bool]) -> Any:
     import numpy as np
 
     point = np.array([(v + np.pi) % (2 * np.pi) - np.pi if angles[i] else v for i, v in enumerate(x)])
-    periodic_mask = np.array(periodic, dtype=bool)
+    periodic_mask = np.array(angles, dtype=bool)  # only an angle is periodic: a length near ±π stays as it is
     point = np.where(periodic_mask & np.isclose(np.abs(point), np.pi, atol=1e-7), np.pi, point)
     return np.where(np.abs(point) < 1e-7, 0.0, point)  # the root finder's own noise
 
