@@ -47,8 +47,6 @@ LATER = {
     "mechanics/symmetry.py::symmetries",
     "mechanics/dimensions.py::_of",
     "check/diagnose.py::constant_relation",
-    "sweep/rk.py::integrate_batch",
-    "sweep/run.py::_batched",
 }
 
 
