@@ -37,7 +37,6 @@ LATER = {
     "mechanics/equilibria.py::effective_potential",
     "mechanics/steady.py::steady_motions",
     "mechanics/linearize.py::_mode",
-    "numeric/potential.py::potential_curve",
     "mechanics/mode_shapes.py::_null_space",
     "mechanics/algebra.py::count_ops",
     "mechanics/algebra.py::_monomial_factor_terms",
