@@ -42,7 +42,6 @@ LATER = {
     "mechanics/algebra.py::_monomial_factor_terms",
     "mechanics/symmetry.py::symmetries",
     "mechanics/dimensions.py::_of",
-    "check/diagnose.py::constant_relation",
 }
 
 
