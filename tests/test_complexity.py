@@ -33,7 +33,6 @@ LATER = {
     "mechanics/geometry.py::_cartesian_shape",
     "mechanics/numeric_equilibria.py::numeric_linearization",
     "mechanics/dimensions.py::dimension_issues",
-    "check/states.py::__init__",
     "mechanics/equilibria.py::effective_potential",
     "mechanics/steady.py::steady_motions",
     "mechanics/linearize.py::_mode",
