@@ -28,8 +28,6 @@ LATER = {
     "mechanics/geometry.py::geometry",
     "mechanics/geometry_bodies.py::_planar",
     "mechanics/geometry_links.py::springs",
-    "render/sketch.py::views",
-    "render/sketch.py::__init__",
     "mechanics/geometry.py::_cartesian_shape",
     "mechanics/numeric_equilibria.py::numeric_linearization",
     "mechanics/dimensions.py::dimension_issues",
