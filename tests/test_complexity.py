@@ -24,18 +24,7 @@ REDESIGNED = (
 )
 
 #: functions over a limit today, to be split by a later step of issue 30 ("module.py::function")
-LATER = {
-    "render/sketch.py::views",
-    "render/sketch.py::__init__",
-    "check/states.py::__init__",
-    "problem/readers/constraints.py::constraints",
-    "render/checks.py::describe",
-    "numeric/potential.py::potential_curve",
-    "problem/readers/simulation.py::simulation",
-    "check/diagnose.py::constant_relation",
-    "sweep/rk.py::integrate_batch",
-    "sweep/run.py::_batched",
-}
+LATER: set[str] = set()
 
 
 def _modules() -> list[tuple[str, Path]]:

@@ -54,41 +54,66 @@ def constant_relation(rows: Sequence[Row], expected: tuple[Any, ...], derived: t
     product of parameters that matches the numbers. States come in groups that share their
     parameter values: within a group the value must not change.
     """
+    by_group = _relations_by_group(rows, additive)
+    if by_group is None or not _constant_in_each_group(by_group, additive):
+        return False, None
+    symbolic = _symbolic_constant(expected, derived, derivation, additive)
+    if symbolic is not None:
+        return True, symbolic
+    return True, _fitted_constant([values[0] for values in by_group.values()], derivation)
+
+
+def _relations_by_group(rows: Sequence[Row], additive: bool) -> dict[int, list[tuple[State, Any]]] | None:
+    """E/D (E − D when ``additive``) of every component at every state, by parameter group, leaving out the
+    components where both vanish; None where no constant can relate them (E undefined, or D zero where E
+    is not)."""
     by_group: dict[int, list[tuple[State, Any]]] = {}
     for state, es, ds in rows:
         for e, d in zip(es, ds, strict=True):
             if e is None or not isinstance(e, mpmath.mpf):
-                return False, None
+                return None
             if additive:
                 value = e - d
             elif abs(d) > TOLERANCE:
                 value = e / d
             elif abs(e) > TOLERANCE:
-                return False, None  # D vanishes where E does not: no factor relates them
+                return None  # D vanishes where E does not: no factor relates them
             else:
                 continue
             by_group.setdefault(state.group, []).append((state, value))
+    return by_group
+
+
+def _constant_in_each_group(by_group: dict[int, list[tuple[State, Any]]], additive: bool) -> bool:
+    """The relation has values and is the same within each group of states sharing the parameters; a
+    difference that is zero everywhere (E = D) is no relation to report."""
     if not by_group or any(not all_close([v for _, v in values]) for values in by_group.values()):
-        return False, None
-    if additive and all(close(v, 0) for values in by_group.values() for _, v in values):
-        return False, None
-    symbolic = _symbolic_constant(expected, derived, derivation, additive)
-    if symbolic is not None:
-        return True, symbolic
-    samples = [values[0] for values in by_group.values()]
+        return False
+    return not (additive and all(close(v, 0) for values in by_group.values() for _, v in values))
+
+
+def _fitted_constant(samples: list[tuple[State, Any]], derivation: Derivation) -> Any:
+    """A small rational times one of the :func:`_candidates` that gives the relation's value at every sample
+    (one state per parameter group); None where none does."""
     for candidate in _candidates(derivation):
-        ratios = []
-        for state, value in samples:
-            c = _evaluate_constant(candidate, state)
-            if c is None or c == 0:
-                break
-            ratios.append(value / c)
-        else:
-            if all_close(ratios):
-                number = _rational(ratios[0])
-                if number is not None and number != 0:
-                    return True, number * candidate
-    return True, None
+        ratios = _ratios(samples, candidate)
+        if ratios is not None and all_close(ratios):
+            number = _rational(ratios[0])
+            if number is not None and number != 0:
+                return number * candidate
+    return None
+
+
+def _ratios(samples: list[tuple[State, Any]], candidate: Any) -> list[Any] | None:
+    """The relation's value over ``candidate`` at each sample; None where the candidate is undefined or zero
+    at one of them."""
+    ratios = []
+    for state, value in samples:
+        c = _evaluate_constant(candidate, state)
+        if c is None or c == 0:
+            return None
+        ratios.append(value / c)
+    return ratios
 
 
 def _symbolic_constant(expected: tuple[Any, ...], derived: tuple[Any, ...], derivation: Derivation,

@@ -118,7 +118,18 @@ class StateSpace:
         self.velocities = tuple(v for v in model.velocities if v not in elimination.velocities)
         self.positive = {q for q in model.coordinates if q.is_positive}
         self._functions = self._function_family(derivation)
-        # holonomic constraints that the elimination does not solve: Newton, one coordinate each
+        residuals, dependents = self._implicit_constraints(derivation)
+        self.dependents = tuple(dependents)
+        self._residuals = [Compiled(r, self) for r in residuals]
+        self._jacobian = [[Compiled(sympy.diff(r, q), self) for q in dependents] for r in residuals]
+        self._velocity_rows, self._velocity_offsets = self._velocity_forms(derivation)
+        self._eliminated = {q: Compiled(elimination.apply(q), self)
+                            for q in (*self.eliminated, *self.eliminated_velocities)}
+
+    def _implicit_constraints(self, derivation: Derivation) -> tuple[list[Any], list[Any]]:
+        """The holonomic constraints that the elimination does not solve (their residuals ψ after it), and for
+        each the coordinate Newton's method solves it for: the last one it holds that no earlier one took."""
+        elimination = derivation.elimination
         explicit = {name for q, name in elimination.sources.items() if q in elimination.positions}
         residuals, dependents = [], []
         for c in derivation.constraints:
@@ -129,10 +140,12 @@ class StateSpace:
             if free:
                 residuals.append(psi)
                 dependents.append(free[0])
-        self.dependents = tuple(dependents)
-        self._residuals = [Compiled(r, self) for r in residuals]
-        self._jacobian = [[Compiled(sympy.diff(r, q), self) for q in dependents] for r in residuals]
-        # velocity forms of every constraint, linear in the remaining velocities
+        return residuals, dependents
+
+    def _velocity_forms(self, derivation: Derivation) -> tuple[list[list[Compiled]], list[Compiled]]:
+        """The velocity form of every constraint that holds a remaining velocity, linear in them: the
+        coefficient of each velocity (one row per constraint) and the rest."""
+        elimination, model = derivation.elimination, derivation.model
         rows, offsets = [], []
         for c in derivation.constraints:
             form = sympy.expand(elimination.apply(velocity_form(c, model)))
@@ -141,9 +154,7 @@ class StateSpace:
                 continue
             rows.append([Compiled(a, self) for a in row])
             offsets.append(Compiled(form.xreplace({v: 0 for v in self.velocities}), self))
-        self._velocity_rows, self._velocity_offsets = rows, offsets
-        self._eliminated = {q: Compiled(elimination.apply(q), self)
-                            for q in (*self.eliminated, *self.eliminated_velocities)}
+        return rows, offsets
 
     # -- random functions -----------------------------------------------------------------------
 

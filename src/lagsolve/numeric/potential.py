@@ -17,6 +17,7 @@ import sympy
 if TYPE_CHECKING:
 
     from lagsolve.mechanics.derivation import Derivation
+    from lagsolve.mechanics.equilibria import EffectivePotential, Equilibrium
 
 
 @dataclass(frozen=True)
@@ -48,6 +49,25 @@ def potential_curve(derivation: Derivation, values: Mapping[str, float], momenta
     effective = analysis.effective_potential if analysis is not None else None
     if effective is None:
         raise ValueError("this derivation has no effective potential")
+    numbers = _numbers(derivation, effective, values, momenta, initial)
+    q = effective.coordinate
+    expression = effective.expression.xreplace(numbers)
+    missing = expression.free_symbols - {q}
+    if missing:
+        raise ValueError(f"no value for {', '.join(sorted(map(str, missing)))}")
+    function = sympy.lambdify(q, expression, "math", dummify=True)
+    points = _symbolic_equilibria(effective.equilibria, numbers, function)
+    low, high = _range(q, expression, points, span)
+    grid, curve = _samples(function, low, high, samples)
+    if any(e.value is None for e in effective.equilibria):
+        points += _numeric_equilibria(q, expression, grid)
+    return PotentialCurve(sympy.latex(q), tuple(grid), tuple(curve), tuple(sorted(points, key=lambda p: p[0])))
+
+
+def _numbers(derivation: Derivation, effective: EffectivePotential, values: Mapping[str, float],
+             momenta: Mapping[str, float] | None, initial: Mapping[str, float] | None) -> dict[Any, float]:
+    """The value of each parameter symbol and of each conserved momentum ``p_<q>`` of the ``effective``
+    potential: given, or evaluated from ``initial``."""
     numbers: dict[Any, float] = {p.symbol: float(values[p.name]) for p in derivation.problem.parameters
                                  if p.name in values}
     momenta = dict(momenta or {})
@@ -55,18 +75,19 @@ def potential_curve(derivation: Derivation, values: Mapping[str, float], momenta
         if p.name not in momenta:
             if initial is None:
                 raise ValueError(f"no value for {p.name}: give it, or the initial state")
-            quantity = next(c for c in analysis.conservation.quantities if c.name == p.name)
+            quantity = next(c for c in derivation.analysis.conservation.quantities if c.name == p.name)
             state = {s: float(initial[s.name]) for s in quantity.expression.free_symbols if s.name in initial}
             momenta[p.name] = float(quantity.expression.xreplace({**numbers, **state}))
         numbers[p] = float(momenta[p.name])
-    q = effective.coordinate
-    expression = effective.expression.xreplace(numbers)
-    missing = expression.free_symbols - {q}
-    if missing:
-        raise ValueError(f"no value for {', '.join(sorted(map(str, missing)))}")
-    function = sympy.lambdify(q, expression, "math", dummify=True)
+    return numbers
+
+
+def _symbolic_equilibria(equilibria: tuple[Equilibrium, ...], numbers: dict[Any, float],
+                         function: Any) -> list[tuple[float, float, bool | None]]:
+    """(q0, V_eff(q0), stable) of each equilibrium known in closed form that is real at ``numbers``; stable
+    is None where its stability is not known."""
     points = []
-    for e in effective.equilibria:
+    for e in equilibria:
         if e.value is None:
             continue
         try:
@@ -77,13 +98,23 @@ def potential_curve(derivation: Derivation, values: Mapping[str, float], momenta
             points.append((q0, float(function(q0)), stable))
         except (TypeError, ValueError, ZeroDivisionError, OverflowError):
             continue  # not real for these values
-    angle = any(f.args[0] == q for f in expression.atoms(sympy.sin, sympy.cos, sympy.tan))
+    return points
+
+
+def _range(q: Any, expression: Any, points: list[tuple[float, float, bool | None]],
+           span: tuple[float, float] | None) -> tuple[float, float]:
+    """The coordinate's range: ``span`` if given, a full turn for an angle (a coordinate inside sin, cos or
+    tan), else around the equilibria."""
     if span is not None:
-        low, high = span
-    elif angle:
-        low, high = -math.pi, math.pi
-    else:
-        low, high = _span([p[0] for p in points], bool(q.is_positive))
+        return span
+    if any(f.args[0] == q for f in expression.atoms(sympy.sin, sympy.cos, sympy.tan)):
+        return -math.pi, math.pi
+    return _span([p[0] for p in points], bool(q.is_positive))
+
+
+def _samples(function: Any, low: float, high: float, samples: int) -> tuple[list[float], list[float]]:
+    """``samples`` evenly spaced points from ``low`` to ``high`` and V_eff there, leaving out those where it
+    is undefined or not finite."""
     grid, curve = [], []
     for k in range(samples):
         x = low + (high - low) * k / (samples - 1)
@@ -94,9 +125,7 @@ def potential_curve(derivation: Derivation, values: Mapping[str, float], momenta
         if math.isfinite(y):
             grid.append(x)
             curve.append(y)
-    if any(e.value is None for e in effective.equilibria):
-        points += _numeric_equilibria(q, expression, grid)
-    return PotentialCurve(sympy.latex(q), tuple(grid), tuple(curve), tuple(sorted(points, key=lambda p: p[0])))
+    return grid, curve
 
 
 def _numeric_equilibria(q: Any, expression: Any, grid: list[float]) -> list[tuple[float, float, bool | None]]:

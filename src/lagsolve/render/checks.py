@@ -87,6 +87,17 @@ def label(verdict: Verdict, note: Notation, coordinates: tuple[str, ...] = ()) -
 
 def describe(verdict: Verdict, note: Notation) -> str:
     """The verdict in words."""
+    for words in (_agreement, _relation, _conservation, _disagreement):
+        text = words(verdict, note)
+        if text is not None:
+            return text
+    prefix = "mismatch: " if verdict.status == Status.MISMATCH else ""
+    return prefix + verdict.note
+
+
+def _agreement(verdict: Verdict, note: Notation) -> str | None:
+    """How the expression was found equal: symbolically, at random states, identically, at the simulation
+    values (None: another reason)."""
     from lagsolve.check import compare as c
 
     reason = verdict.reason
@@ -94,6 +105,19 @@ def describe(verdict: Verdict, note: Notation) -> str:
         return "ok (symbolic)" if verdict.status == "ok" else "differs"
     if reason == c.NUMERIC:
         return f"ok (numeric, {verdict.states} states on the constraint surface)"
+    if reason == c.SAME:
+        return "ok"
+    if reason == "at the simulation values":  # check.modes.AT_VALUES
+        return "ok (numeric, at the simulation values)" if verdict.status == Status.OK else "mismatch"
+    return None
+
+
+def _relation(verdict: Verdict, note: Notation) -> str | None:
+    """How expected and derived are related when they differ by a sign convention, a sign, a factor or a
+    constant (None: another reason)."""
+    from lagsolve.check import compare as c
+
+    reason = verdict.reason
     if reason == c.CONVENTION:
         if verdict.factor == -1:
             return "mismatch: λ with the opposite sign convention (expected = −derived; otherwise it agrees)"
@@ -110,10 +134,15 @@ def describe(verdict: Verdict, note: Notation) -> str:
         if verdict.status == "ok":
             return f"ok up to an additive constant (expected = derived + {shown}; the zero level is free)"
         return f"mismatch: differs by a constant (expected = derived + {shown})"
-    if reason == c.SAME:
-        return "ok"
-    if reason == "at the simulation values":  # check.modes.AT_VALUES
-        return "ok (numeric, at the simulation values)" if verdict.status == Status.OK else "mismatch"
+    return None
+
+
+def _conservation(verdict: Verdict, note: Notation) -> str | None:
+    """Whether a claimed constant of the motion is one: by its Poisson bracket with H or its rate along the
+    equations of motion (None: another reason)."""
+    from lagsolve.check import compare as c
+
+    reason = verdict.reason
     if reason == c.BRACKET:
         where = "symbolically" if not verdict.states else f"numerically, at {verdict.states} random points"
         return f"ok (conserved: {{C, H}} + ∂C/∂t = 0, {where})"
@@ -126,6 +155,15 @@ def describe(verdict: Verdict, note: Notation) -> str:
     if reason == c.NOT_CONSERVED:
         return (f"mismatch: not conserved, dC/dt ≠ 0 along the equations of motion at "
                 f"{verdict.states - verdict.agreeing} of {verdict.states} states")
+    return None
+
+
+def _disagreement(verdict: Verdict, note: Notation) -> str | None:
+    """Where expected and derived disagree: at some states only, where one is undefined, or anywhere (None:
+    another reason)."""
+    from lagsolve.check import compare as c
+
+    reason = verdict.reason
     if reason == c.SIGN_DEPENDENT:
         where = note.text(verdict.condition) if verdict.condition is not None else "some states"
         return (f"warning: holds only where {where} (agrees at {verdict.agreeing} of {verdict.states} states, "
@@ -136,8 +174,7 @@ def describe(verdict: Verdict, note: Notation) -> str:
         if verdict.states:
             return f"mismatch: differs at {verdict.states - verdict.agreeing} of {verdict.states} states"
         return "mismatch: differs"
-    prefix = "mismatch: " if verdict.status == Status.MISMATCH else ""
-    return prefix + verdict.note
+    return None
 
 
 def _factor_words(factor: Any, note: Notation) -> str:

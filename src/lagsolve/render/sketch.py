@@ -70,26 +70,30 @@ def _cut(values: np.ndarray, i: int, j: int) -> np.ndarray:
 def views(trajectory: Trajectory, scene: Scene | None) -> list[tuple[int, int]]:
     """The planes to draw: x–y in the plane; in space the top view and the side view that shows more of the
     motion (x–z or y–z), or the top view alone where nothing moves along z and no body or surface stands in it."""
-    dims = max([d for _, d in trajectory.particles] + [v.shape[1] for _, v in (scene.markers if scene else ())],
-               default=2)
-    if dims < 3:
+    markers = scene.markers if scene else ()
+    if max([d for _, d in trajectory.particles] + [v.shape[1] for _, v in markers], default=2) < 3:
         return [(0, 1)]
-    points = [p for p in _plane(trajectory) if p.shape[1] == 3] + [v for _, v in (scene.markers if scene else ())
-                                                                   if v.shape[1] == 3]
-    stacked = np.vstack(points) if points else np.zeros((1, 3))
-    spread = np.ptp(stacked, axis=0)
+    points = [p for p in _plane(trajectory) if p.shape[1] == 3] + [v for _, v in markers if v.shape[1] == 3]
+    spread = np.ptp(np.vstack(points) if points else np.zeros((1, 3)), axis=0)
     bodies = [s.at(0) for s in (scene.shapes if scene else ()) if s.kind == "body" and s.points.shape[-1] == 3]
     standing = bool(bodies) or (scene is not None and any(s.kind == "profile" for s in scene.shapes))
     if spread[2] <= 1e-9 * max(float(spread.max()), 1e-300) and not standing:
         return [(0, 1)]
-    if bodies:  # the side that shows the bodies broadest (a coin face-on)
+    return [(0, 1), _side_view(points, spread, bodies, standing)]
+
+
+def _side_view(points: list[np.ndarray], spread: np.ndarray, bodies: list[np.ndarray],
+               standing: bool) -> tuple[int, int]:
+    """x–z or y–z: the side that shows the bodies broadest (a coin face-on), else the members' motion (their
+    ``spread`` along each axis) broadest; round a surface of revolution (``standing``, without bodies) that
+    spreads about as far one way as the other, the side whose plane holds the first member at the start, so it
+    is drawn on the surface's profile, not inside it."""
+    if bodies:
         spread = np.ptp(np.vstack(bodies), axis=0)
     elif standing and points and max(spread[0], spread[1]) < 1.5 * min(spread[0], spread[1]):
-        # round a surface of revolution about as far one way as the other: the side whose plane holds the
-        # particle at the start, so it is drawn on the surface's profile, not inside it
         start = np.abs(points[0][0])
-        return [(0, 1), (0, 2) if start[1] <= start[0] else (1, 2)]
-    return [(0, 1), (0, 2) if spread[0] >= spread[1] else (1, 2)]
+        return (0, 2) if start[1] <= start[0] else (1, 2)
+    return (0, 2) if spread[0] >= spread[1] else (1, 2)
 
 
 def force_scale(scene: Scene | None, span: float) -> float:
@@ -108,8 +112,6 @@ class Drawing:
     def __init__(self, ax: Any, trajectory: Trajectory, scene: Scene | None, i: int = 0, j: int = 1,
                  units: Units = None, trails: bool = False, per_force: float | None = None,
                  legend: bool = True, sample: int | None = None) -> None:
-        from matplotlib.patches import Polygon
-
         self.ax, self.trajectory, self.scene = ax, trajectory, scene or Scene()
         self.i, self.j = i, j
         self.units = units or {}
@@ -121,39 +123,83 @@ class Drawing:
         self.per_force = 0.0
         self.sample = sample
         self._limits(sample)
+        self._axes()
+        self._wires()
+        self.artists = self._shape_artists()
+        self.surfaces = self._surface_lines()
+        self._linkage()
+        self._members(trails)
+        self.per_force = force_scale(scene, self.span) if per_force is None else per_force
+        self._limits(sample)  # again, with room for the arrows' heads
+        self.arrows = self._arrows()
+        self._gravity()
+        if legend and ax.get_legend_handles_labels()[0]:
+            self.legend = ax.legend(**self.legend_options())
+        # the time stamp above the view's top left corner, clear of what is drawn
+        self.stamp = ax.text(0.0, 1.015, "", transform=ax.transAxes, ha="left", va="bottom", fontsize="medium",
+                             zorder=6)
+
+    # --- the parts, drawn once (placed by :meth:`show`) ---------------------------------------------------
+
+    def _axes(self) -> None:
+        """Equal scales on both axes, a light grid, and the axes named by their components (with the unit)."""
+        ax = self.ax
         ax.set_aspect("equal", adjustable="box")
         ax.grid(alpha=0.2)
         length = self.units.get("length")
-        ax.set_xlabel(with_unit("xyz"[i], length))
-        ax.set_ylabel(with_unit("xyz"[j], length))
-        for label, points in scene.curves:
+        ax.set_xlabel(with_unit("xyz"[self.i], length))
+        ax.set_ylabel(with_unit("xyz"[self.j], length))
+
+    def _wires(self) -> None:
+        """The scene's fixed curves (wires) that lie in this view, drawn once: they do not move."""
+        for label, points in self.scene.curves:
             if self._in_view(points):
-                pts = _cut(points, i, j)
-                ax.plot(pts[:, 0], pts[:, 1], **STYLES["wire"], label=label or "wire")
-        self.artists: list[tuple[Shape, Any]] = []
+                pts = _cut(points, self.i, self.j)
+                self.ax.plot(pts[:, 0], pts[:, 1], **STYLES["wire"], label=label or "wire")
+
+    def _shape_artists(self) -> list[tuple[Shape, Any]]:
+        """An artist for each shape of this view, styled by its kind; the legend names each kind and label once."""
+        artists: list[tuple[Shape, Any]] = []
         labelled: set[tuple[str, str]] = set()
         for shape in self.shapes:
-            style = dict(STYLES.get(shape.kind, {"color": "0.3"}))
             name = None if (shape.kind, shape.label) in labelled else self._legend_label(shape)
             labelled.add((shape.kind, shape.label))
-            if shape.kind in ("centre", "hole"):
-                marker = "*" if shape.kind == "centre" else "o"
-                artist, = ax.plot([], [], marker, markersize=14 if shape.kind == "centre" else 7,
-                                  color="#d4ac0d" if shape.kind == "centre" else "white",
-                                  markeredgecolor="0.1", zorder=4, label=name)
-            elif shape.kind in FILLED:
-                artist = Polygon(np.zeros((3, 2)), closed=True, label=name, **style)
-                ax.add_patch(artist)
-            else:
-                artist, = ax.plot([], [], label=name, **style)
-            self.artists.append((shape, artist))
-        self.surfaces = []
-        for k, (label, point, normal) in enumerate(scene.surfaces):
+            artists.append((shape, self._shape_artist(shape, name)))
+        return artists
+
+    def _shape_artist(self, shape: Shape, name: str | None) -> Any:
+        """The (empty) artist of one shape: a marker for a centre (a star) or a hole (a ring), a polygon for a
+        filled kind, else a line; ``name`` is its legend entry (None: none)."""
+        from matplotlib.patches import Polygon
+
+        if shape.kind in ("centre", "hole"):
+            marker = "*" if shape.kind == "centre" else "o"
+            artist, = self.ax.plot([], [], marker, markersize=14 if shape.kind == "centre" else 7,
+                                   color="#d4ac0d" if shape.kind == "centre" else "white",
+                                   markeredgecolor="0.1", zorder=4, label=name)
+            return artist
+        style = dict(STYLES.get(shape.kind, {"color": "0.3"}))
+        if shape.kind in FILLED:
+            artist = Polygon(np.zeros((3, 2)), closed=True, label=name, **style)
+            self.ax.add_patch(artist)
+            return artist
+        artist, = self.ax.plot([], [], label=name, **style)
+        return artist
+
+    def _surface_lines(self) -> list[tuple[np.ndarray, np.ndarray, Any]]:
+        """(point, normal, line) of each surface seen edge-on in this view, each in its own colour."""
+        surfaces = []
+        for k, (label, point, normal) in enumerate(self.scene.surfaces):
             if not self._edge_on(normal):
                 continue
-            line, = ax.plot([], [], "-", color=SURFACE_COLOURS[k % len(SURFACE_COLOURS)], linewidth=2.2,
-                            zorder=1.2, label=label)
-            self.surfaces.append((point, normal, line))
+            line, = self.ax.plot([], [], "-", color=SURFACE_COLOURS[k % len(SURFACE_COLOURS)], linewidth=2.2,
+                                 zorder=1.2, label=label)
+            surfaces.append((point, normal, line))
+        return surfaces
+
+    def _linkage(self) -> None:
+        """The rods (their ends in this view and a line each), the pivots (triangles) and the joints (rings)."""
+        ax, i, j, scene = self.ax, self.i, self.j, self.scene
         self.rod_ends = [(_cut(a, i, j), _cut(b, i, j)) for _, a, b in scene.rods]
         self.rods = [ax.plot([], [], "-", color="0.15", linewidth=2.0, solid_capstyle="round", zorder=2)[0]
                      for _ in self.rod_ends]
@@ -162,10 +208,15 @@ class Drawing:
         self.joint_points = [_cut(p, i, j) for p in scene.joints]
         self.joints = [ax.plot([], [], "o", markerfacecolor="white", markeredgecolor="0.15", markersize=6,
                                zorder=3.6)[0] for _ in self.joint_points]
+
+    def _members(self, trails: bool) -> None:
+        """Each particle and marker as a labelled dot (a body's centre a small one inside its outline), and,
+        with ``trails``, the path it has traced, in the dot's colour."""
+        ax = self.ax
         members = self.plane + [v for _, v in self.markers]
         self.trails = [ax.plot([], [], "-", linewidth=0.9, alpha=0.55, zorder=2)[0] for _ in members] if trails else []
         self.dots, self.labels = [], []
-        names = [n for n, _ in trajectory.particles] + [n for n, _ in self.markers]
+        names = [n for n, _ in self.trajectory.particles] + [n for n, _ in self.markers]
         bodies = {s.label for s in self.shapes if s.kind == "body"}
         for k, name in enumerate(names):
             small = name in bodies  # a body's centre: a small dot inside its outline
@@ -176,15 +227,6 @@ class Drawing:
                                            fontsize="small", zorder=5, annotation_clip=False))
         for dot, trail in zip(self.dots, self.trails, strict=False):
             trail.set_color(dot.get_color())
-        self.per_force = force_scale(scene, self.span) if per_force is None else per_force
-        self._limits(sample)  # again, with room for the arrows' heads
-        self.arrows = self._arrows()
-        self._gravity()
-        if legend and ax.get_legend_handles_labels()[0]:
-            self.legend = ax.legend(**self.legend_options())
-        # the time stamp above the view's top left corner, clear of what is drawn
-        self.stamp = ax.text(0.0, 1.015, "", transform=ax.transAxes, ha="left", va="bottom", fontsize="medium",
-                             zorder=6)
 
     # --- layout ------------------------------------------------------------------------------------------
 

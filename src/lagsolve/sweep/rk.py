@@ -136,6 +136,27 @@ class Step:
         return polynomial
 
 
+@dataclass
+class _Runs:
+    """Every run of a batch between iterations: its time, state, derivative, next step size and step count,
+    whether it still runs (or why it stopped), and where its step control stands."""
+
+    t: np.ndarray
+    y: np.ndarray
+    f: np.ndarray
+    h_abs: np.ndarray
+    steps: np.ndarray
+    failure: list[str]
+    live: np.ndarray
+    fresh: np.ndarray  # at the start of a step (not retrying after a rejection)
+    rejected: np.ndarray
+
+    def stop(self, row: int, reason: str) -> None:
+        """End the run ``row`` for ``reason``."""
+        self.failure[row] = reason
+        self.live[row] = False
+
+
 def integrate_batch(rhs: Rhs, y0: np.ndarray, t_end: float, tableau: Tableau, rtol: float, atol: float,
                     accepted: Callable[[Step], np.ndarray | None] | None = None,
                     max_steps: int = 1_000_000) -> tuple[np.ndarray, np.ndarray, np.ndarray, list[str]]:
@@ -149,90 +170,126 @@ def integrate_batch(rhs: Rhs, y0: np.ndarray, t_end: float, tableau: Tableau, rt
     (a step below the smallest step SciPy allows, a state that is not finite, too many steps, or
     what ``accepted`` found wrong with a step through :meth:`Step.fail`).
     """
-    runs, d = y0.shape
+    runs = _start(rhs, y0, t_end, tableau, rtol, atol)
+    exponent = -1.0 / (tableau.order + 1)
+    while runs.live.any():
+        rows, h = _step_sizes(runs)
+        if not len(rows):
+            continue
+        tr, yr, fr = runs.t[rows], runs.y[rows], runs.f[rows]
+        t_new = np.minimum(tr + h, t_end)
+        h = t_new - tr
+        y_new, f_new, k = _stages(rhs, tableau, tr, yr, fr, t_new, h, rows)
+        error = _error(tableau, k, h, yr, y_new, rtol, atol)
+        ok = _control(runs, rows, h, error, exponent)
+        if ok.any():
+            take = np.flatnonzero(ok)
+            step = Step(rows[take], tr[take], t_new[take], yr[take], y_new[take], fr[take], f_new[take], k[take],
+                        tableau, rhs)
+            _advance(runs, step, accepted, t_end, max_steps)
+    return runs.t, runs.y, runs.steps, runs.failure
+
+
+def _start(rhs: Rhs, y0: np.ndarray, t_end: float, tableau: Tableau, rtol: float, atol: float) -> _Runs:
+    """Every run at t = 0 with its derivative and initial step size; a run whose initial state or derivative
+    is not finite fails there."""
+    runs = len(y0)
     t = np.zeros(runs)
     y = y0.astype(float).copy()
-    steps = np.zeros(runs, dtype=int)
-    failure = [""] * runs
     everyone = np.arange(runs)
     f = rhs(t, y, everyone)
     h_abs = _initial_step(rhs, t, y, f, t_end, tableau.order, rtol, atol, everyone)
     bad = ~np.all(np.isfinite(f), axis=1) | ~np.all(np.isfinite(y), axis=1)
+    failure = [""] * runs
     for r in np.flatnonzero(bad):
         failure[r] = "the initial state or its accelerations are not finite"
-    live = ~bad
-    fresh = np.ones(runs, dtype=bool)  # at the start of a step (not retrying after a rejection)
-    rejected = np.zeros(runs, dtype=bool)
-    exponent = -1.0 / (tableau.order + 1)
-    while live.any():
-        rows = np.flatnonzero(live)
-        tr, yr, fr = t[rows], y[rows], f[rows]
-        min_step = 10 * np.abs(np.nextafter(tr, np.inf) - tr)
-        h = h_abs[rows]
-        h = np.where(fresh[rows], np.maximum(h, min_step), h)
-        small = h < min_step
-        for r in rows[small]:
-            failure[r] = f"the step size fell below the smallest allowed at t = {t[r]:.6g}"
-            live[r] = False
-        if small.any():
-            keep = ~small
-            rows, tr, yr, fr, h, min_step = rows[keep], tr[keep], yr[keep], fr[keep], h[keep], min_step[keep]
-            if not len(rows):
-                continue
-        t_new = np.minimum(tr + h, t_end)
-        h = t_new - tr
-        k = np.empty((len(rows), tableau.stages + 1, d))
-        k[:, 0] = fr
-        for s in range(1, tableau.stages):
-            dy = _combine(k[:, :s], tableau.a[s, :s]) * h[:, None]
-            k[:, s] = rhs(tr + tableau.c[s] * h, yr + dy, rows)
-        y_new = yr + h[:, None] * _combine(k[:, :-1], tableau.b)
-        f_new = rhs(t_new, y_new, rows)
-        k[:, -1] = f_new
-        scale = atol + np.maximum(np.abs(yr), np.abs(y_new)) * rtol
-        with np.errstate(all="ignore"):
-            if tableau.e3 is None:
-                error = _norm(_combine(k, tableau.e) * h[:, None] / scale)
-            else:
-                e5 = np.sum((_combine(k, tableau.e) / scale) ** 2, axis=1)
-                e3 = np.sum((_combine(k, tableau.e3) / scale) ** 2, axis=1)
-                error = np.where((e5 == 0) & (e3 == 0), 0.0, h * e5 / np.sqrt((e5 + 0.01 * e3) * d))
-            growth = SAFETY * error ** exponent
-        finite = np.isfinite(error)
-        ok = finite & (error < 1)
-        factor = np.where(error == 0, MAX_FACTOR, np.minimum(MAX_FACTOR, growth))
-        factor = np.where(rejected[rows], np.minimum(1.0, factor), factor)
-        h_abs[rows] = np.where(ok, h * factor, h * np.maximum(MIN_FACTOR, np.where(finite, growth, MIN_FACTOR)))
-        rejected[rows] = ~ok
-        fresh[rows] = ok
-        if ok.any():
-            take = np.flatnonzero(ok)
-            done = rows[take]
-            step = Step(done, tr[take], t_new[take], yr[take], y_new[take], fr[take], f_new[take], k[take],
-                        tableau, rhs)
-            replaced = accepted(step) if accepted is not None else None
-            y_done, f_done = y_new[take], f_new[take]
-            if replaced is not None:
-                y_done = replaced
-                f_done = rhs(t_new[take], y_done, done)
-            t[done], y[done], f[done] = t_new[take], y_done, f_done
-            steps[done] += 1
-            broken = ~np.all(np.isfinite(y_done), axis=1) | ~np.all(np.isfinite(f_done), axis=1)
-            for r in done[broken]:
-                failure[r] = f"the state is no longer finite at t = {t[r]:.6g} (the motion diverged or left " \
-                             "the domain of an expression)"
-                live[r] = False
-            for stopped, reason in step.failures.items():
-                if live[stopped]:
-                    failure[stopped] = reason
-                    live[stopped] = False
-            finished = t[done] >= t_end
-            live[done[finished]] = False
-            for r in done[steps[done] >= max_steps]:
-                if live[r]:
-                    failure[r] = f"more than {max_steps} steps before t_end"
-                    live[r] = False
-    return t, y, steps, failure
+    return _Runs(t, y, f, h_abs, np.zeros(runs, dtype=int), failure, live=~bad, fresh=np.ones(runs, dtype=bool),
+                 rejected=np.zeros(runs, dtype=bool))
+
+
+def _step_sizes(runs: _Runs) -> tuple[np.ndarray, np.ndarray]:
+    """The runs still running and the step each tries now; a run whose step fell below the smallest one SciPy
+    allows (10 units in the last place of its time) fails and is left out."""
+    rows = np.flatnonzero(runs.live)
+    tr = runs.t[rows]
+    min_step = 10 * np.abs(np.nextafter(tr, np.inf) - tr)
+    h = runs.h_abs[rows]
+    h = np.where(runs.fresh[rows], np.maximum(h, min_step), h)
+    small = h < min_step
+    for r in rows[small]:
+        runs.stop(r, f"the step size fell below the smallest allowed at t = {runs.t[r]:.6g}")
+    if small.any():
+        keep = ~small
+        rows, h = rows[keep], h[keep]
+    return rows, h
+
+
+def _stages(rhs: Rhs, tableau: Tableau, tr: np.ndarray, yr: np.ndarray, fr: np.ndarray, t_new: np.ndarray,
+            h: np.ndarray, rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """One step of the method from (``tr``, ``yr``) to ``t_new`` for every row: the new state, its derivative
+    and the stages (the last one that derivative, for the error estimate and the dense output)."""
+    k = np.empty((len(rows), tableau.stages + 1, yr.shape[1]))
+    k[:, 0] = fr
+    for s in range(1, tableau.stages):
+        dy = _combine(k[:, :s], tableau.a[s, :s]) * h[:, None]
+        k[:, s] = rhs(tr + tableau.c[s] * h, yr + dy, rows)
+    y_new = yr + h[:, None] * _combine(k[:, :-1], tableau.b)
+    f_new = rhs(t_new, y_new, rows)
+    k[:, -1] = f_new
+    return y_new, f_new, k
+
+
+def _error(tableau: Tableau, k: np.ndarray, h: np.ndarray, yr: np.ndarray, y_new: np.ndarray, rtol: float,
+           atol: float) -> np.ndarray:
+    """SciPy's error norm of each row's step (DOP853's combines its fifth- and third-order estimates)."""
+    scale = atol + np.maximum(np.abs(yr), np.abs(y_new)) * rtol
+    with np.errstate(all="ignore"):
+        if tableau.e3 is None:
+            return _norm(_combine(k, tableau.e) * h[:, None] / scale)
+        e5 = np.sum((_combine(k, tableau.e) / scale) ** 2, axis=1)
+        e3 = np.sum((_combine(k, tableau.e3) / scale) ** 2, axis=1)
+        return np.where((e5 == 0) & (e3 == 0), 0.0, h * e5 / np.sqrt((e5 + 0.01 * e3) * yr.shape[1]))
+
+
+def _control(runs: _Runs, rows: np.ndarray, h: np.ndarray, error: np.ndarray, exponent: float) -> np.ndarray:
+    """Which steps are accepted (error norm below 1), and each row's next step size: grown by at most
+    MAX_FACTOR (not at all right after a rejection) or shrunk by at most MIN_FACTOR."""
+    with np.errstate(all="ignore"):
+        growth = SAFETY * error ** exponent
+    finite = np.isfinite(error)
+    ok = finite & (error < 1)
+    factor = np.where(error == 0, MAX_FACTOR, np.minimum(MAX_FACTOR, growth))
+    factor = np.where(runs.rejected[rows], np.minimum(1.0, factor), factor)
+    runs.h_abs[rows] = np.where(ok, h * factor, h * np.maximum(MIN_FACTOR, np.where(finite, growth, MIN_FACTOR)))
+    runs.rejected[rows] = ~ok
+    runs.fresh[rows] = ok
+    return ok
+
+
+def _advance(runs: _Runs, step: Step, accepted: Callable[[Step], np.ndarray | None] | None, t_end: float,
+             max_steps: int) -> None:
+    """Move the runs of the accepted ``step`` to its end (or to the states ``accepted`` returns instead), and
+    stop those that reached ``t_end``, are no longer finite, failed in ``accepted`` or took too many steps."""
+    done = step.rows
+    replaced = accepted(step) if accepted is not None else None
+    y_done, f_done = step.y_new, step.f_new
+    if replaced is not None:
+        y_done = replaced
+        f_done = step.rhs(step.t_new, y_done, done)
+    runs.t[done], runs.y[done], runs.f[done] = step.t_new, y_done, f_done
+    runs.steps[done] += 1
+    broken = ~np.all(np.isfinite(y_done), axis=1) | ~np.all(np.isfinite(f_done), axis=1)
+    for r in done[broken]:
+        runs.stop(r, f"the state is no longer finite at t = {runs.t[r]:.6g} (the motion diverged or left the "
+                     "domain of an expression)")
+    for stopped, reason in step.failures.items():
+        if runs.live[stopped]:
+            runs.stop(stopped, reason)
+    finished = runs.t[done] >= t_end
+    runs.live[done[finished]] = False
+    for r in done[runs.steps[done] >= max_steps]:
+        if runs.live[r]:
+            runs.stop(r, f"more than {max_steps} steps before t_end")
 
 
 def _initial_step(rhs: Rhs, t0: np.ndarray, y0: np.ndarray, f0: np.ndarray, t_end: float, order: int,

@@ -19,13 +19,16 @@ import dataclasses
 import hashlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from lagsolve.errors import LagsolveError
 from lagsolve.problem.methods import DEFAULT, EXPLICIT
 from lagsolve.sweep.spec import Section
+
+if TYPE_CHECKING:
+    from lagsolve.sweep.rk import Step
 
 #: samples a per-run integration keeps (the drift of the conserved quantities is measured on them)
 FALLBACK_SAMPLES = 201
@@ -204,93 +207,119 @@ def _drift(first: np.ndarray, worst: np.ndarray) -> np.ndarray:
 
 def _batched(problem: Compiled, settings: Settings, parameters: np.ndarray, starts: np.ndarray,
              failures: list[str]) -> list[dict[str, Any]]:
-    from lagsolve.sweep.rk import Step, Tableau, integrate_batch
+    """The rows of the runs integrated together (:func:`lagsolve.sweep.rk.integrate_batch`); a run without an
+    initial state keeps its empty row and the reason."""
+    from lagsolve.sweep.rk import Tableau, integrate_batch
 
-    batch, system = problem.batch, problem.system
-    n = system.n
-    count = len(starts)
     ok = np.array([not f for f in failures], dtype=bool)
-    rows = [_empty_row(problem, settings, "batched") for _ in range(count)]
+    rows = [_empty_row(problem, settings, "batched") for _ in range(len(starts))]
     for r in np.flatnonzero(~ok):
         rows[r]["reason"] = failures[r]
     index = np.flatnonzero(ok)
     if not len(index):
         return rows
-    p = parameters[index]
-    y0 = starts[index]
-    live = len(index)
-    t0 = np.zeros(live)
-    energy0 = batch.energy(t0, y0[:, :n], y0[:, n:], p)[:, 0]
-    conserved0 = batch.conserved(t0, y0[:, :n], y0[:, n:], p)
-    worst_energy = np.zeros(live)
-    worst_conserved = np.zeros_like(conserved0)
-    residual = batch.residual(t0, y0[:, :n], y0[:, n:], p)
-    angular = np.array(problem.angular, dtype=bool)
-    flipped = np.any(np.abs(y0[:, :n][:, angular]) > np.pi, axis=1)
-    flip_time = np.where(flipped, 0.0, np.nan)
-    section = settings.section
-    crossings: list[list[np.ndarray]] = [[] for _ in range(live)]
-    project = batch.m > 0
-
-    def rhs(t: np.ndarray, y: np.ndarray, which: np.ndarray) -> np.ndarray:
-        qdd = batch.accelerations(t, y[:, :n], y[:, n:], p[which])
-        return np.concatenate([y[:, n:], qdd], axis=1)
-
-    def accepted(step: Step) -> np.ndarray | None:
-        which, t, y = step.rows, step.t_new, step.y_new
-        q, qd, pw = y[:, :n], y[:, n:], p[which]
-        now = batch.residual(t, q, qd, pw)
-        residual[which] = np.maximum(residual[which], now)
-        if section is not None:
-            _crossings(step, section, crossings)
-        if project:
-            q, qd = batch.project(t, q, qd, pw)
-        with np.errstate(all="ignore"):
-            energy = batch.energy(t, q, qd, pw)[:, 0]
-            worst_energy[which] = np.maximum(worst_energy[which], np.abs(energy - energy0[which]))
-            conserved = batch.conserved(t, q, qd, pw)
-            if conserved0.shape[1]:
-                worst_conserved[which] = np.maximum(worst_conserved[which], np.abs(conserved - conserved0[which]))
-        _fail_where_not_finite(step, [("the constraint residual", now), ("the energy", energy),
-                                      *((f"the conserved quantity {name}", conserved[:, c])
-                                        for c, name in enumerate(problem.conserved))])
-        if angular.any():
-            over = np.any(np.abs(step.y_new[:, :n][:, angular]) > np.pi, axis=1) & ~flipped[which]
-            if over.any():
-                subset = np.flatnonzero(over)
-                flip_time[which[subset]] = _first_root(step, subset, lambda y: np.max(
-                    np.abs(y[:, :n][:, angular]), axis=1) - np.pi)
-                flipped[which[subset]] = True
-        return np.concatenate([q, qd], axis=1) if project else None
-
+    watch = _Watch(problem, settings.section, parameters[index], starts[index])
     with np.errstate(all="ignore"):
-        t, y, steps, failed = integrate_batch(rhs, y0, settings.t_end, Tableau.of(settings.method),
-                                              settings.rtol, settings.atol, accepted)
-    energy_drift = _drift(energy0, worst_energy)
-    conserved_drift = _drift(conserved0, worst_conserved)
-    names = _state_names(system)
-    for i, r in enumerate(index):
-        row = rows[r]
+        t, y, steps, failed = integrate_batch(watch.rhs, starts[index], settings.t_end, Tableau.of(settings.method),
+                                              settings.rtol, settings.atol, watch.accepted)
+    names = _state_names(problem.system)
+    ran = [rows[r] for r in index]
+    for i, row in enumerate(ran):
         row["status"] = "failed" if failed[i] else "ok"
         row["reason"] = failed[i]
         row["t_final"] = float(t[i])
         for j, name in enumerate(names):
             row[f"final_{name}"] = float(y[i, j])
-        row["max_residual"] = float(residual[i])
-        row["energy_drift"] = float(energy_drift[i])
-        for c, name in enumerate(problem.conserved):
-            row[f"drift_{name}"] = float(conserved_drift[i, c])
-        row["flipped"] = bool(flipped[i])
-        row["flip_time"] = float(flip_time[i])
         row["steps"] = int(steps[i])
-        if section is not None:
-            found = crossings[i]
-            row["poincare_count"] = len(found)
-            row["poincare_t"] = [float(c[0]) for c in found]
-            for j, name in enumerate(names):
-                row[f"poincare_{name}"] = [float(c[1 + j]) for c in found]
-        _settle(row, False, bool(angular.any()))
+    watch.report(ran, names)
+    for row in ran:
+        _settle(row, False, bool(watch.angular.any()))
     return rows
+
+
+class _Watch:
+    """What the batched path measures along its runs (one row each), updated after every accepted step: the
+    largest constraint residual, the largest deviations of the energy and the conserved quantities from their
+    initial values, the first time an angle passes ±π, and the crossings of the Poincaré section. It also
+    gives the right-hand side and projects onto the constraints."""
+
+    def __init__(self, problem: Compiled, section: Section | None, p: np.ndarray, y0: np.ndarray) -> None:
+        """The measures at the initial states ``y0`` (one run per row, with the parameters ``p``)."""
+        self.problem, self.section, self.p = problem, section, p
+        batch, n = problem.batch, problem.system.n
+        self.batch, self.n = batch, n
+        self.project = batch.m > 0
+        self.angular = np.array(problem.angular, dtype=bool)
+        live = len(y0)
+        t0 = np.zeros(live)
+        self.energy0 = batch.energy(t0, y0[:, :n], y0[:, n:], p)[:, 0]
+        self.conserved0 = batch.conserved(t0, y0[:, :n], y0[:, n:], p)
+        self.worst_energy = np.zeros(live)
+        self.worst_conserved = np.zeros_like(self.conserved0)
+        self.residual = batch.residual(t0, y0[:, :n], y0[:, n:], p)
+        self.flipped = np.any(np.abs(y0[:, :n][:, self.angular]) > np.pi, axis=1)
+        self.flip_time = np.where(self.flipped, 0.0, np.nan)
+        self.crossings: list[list[np.ndarray]] = [[] for _ in range(live)]
+
+    def rhs(self, t: np.ndarray, y: np.ndarray, which: np.ndarray) -> np.ndarray:
+        """The derivative of the states ``y`` of the runs ``which``: velocities, then accelerations."""
+        n = self.n
+        qdd = self.batch.accelerations(t, y[:, :n], y[:, n:], self.p[which])
+        return np.concatenate([y[:, n:], qdd], axis=1)
+
+    def accepted(self, step: Step) -> np.ndarray | None:
+        """Measure the accepted ``step``, stopping a run where a measure is
+        not finite; the states projected onto the constraints, if there are any."""
+        batch, n = self.batch, self.n
+        which, t, y = step.rows, step.t_new, step.y_new
+        q, qd, pw = y[:, :n], y[:, n:], self.p[which]
+        now = batch.residual(t, q, qd, pw)
+        self.residual[which] = np.maximum(self.residual[which], now)
+        if self.section is not None:
+            _crossings(step, self.section, self.crossings)
+        if self.project:
+            q, qd = batch.project(t, q, qd, pw)
+        with np.errstate(all="ignore"):
+            energy = batch.energy(t, q, qd, pw)[:, 0]
+            self.worst_energy[which] = np.maximum(self.worst_energy[which], np.abs(energy - self.energy0[which]))
+            conserved = batch.conserved(t, q, qd, pw)
+            if self.conserved0.shape[1]:
+                self.worst_conserved[which] = np.maximum(self.worst_conserved[which],
+                                                         np.abs(conserved - self.conserved0[which]))
+        _fail_where_not_finite(step, [("the constraint residual", now), ("the energy", energy),
+                                      *((f"the conserved quantity {name}", conserved[:, c])
+                                        for c, name in enumerate(self.problem.conserved))])
+        if self.angular.any():
+            self._flips(step)
+        return np.concatenate([q, qd], axis=1) if self.project else None
+
+    def _flips(self, step: Step) -> None:
+        """The time where an angle of a run that has not flipped yet first passes ±π within ``step``."""
+        n, angular, which = self.n, self.angular, step.rows
+        over = np.any(np.abs(step.y_new[:, :n][:, angular]) > np.pi, axis=1) & ~self.flipped[which]
+        if over.any():
+            subset = np.flatnonzero(over)
+            self.flip_time[which[subset]] = _first_root(step, subset, lambda y: np.max(
+                np.abs(y[:, :n][:, angular]), axis=1) - np.pi)
+            self.flipped[which[subset]] = True
+
+    def report(self, rows: list[dict[str, Any]], names: list[str]) -> None:
+        """Put the measures into the ``rows`` (one per run; ``names``: the state's components)."""
+        energy_drift = _drift(self.energy0, self.worst_energy)
+        conserved_drift = _drift(self.conserved0, self.worst_conserved)
+        for i, row in enumerate(rows):
+            row["max_residual"] = float(self.residual[i])
+            row["energy_drift"] = float(energy_drift[i])
+            for c, name in enumerate(self.problem.conserved):
+                row[f"drift_{name}"] = float(conserved_drift[i, c])
+            row["flipped"] = bool(self.flipped[i])
+            row["flip_time"] = float(self.flip_time[i])
+            if self.section is not None:
+                found = self.crossings[i]
+                row["poincare_count"] = len(found)
+                row["poincare_t"] = [float(c[0]) for c in found]
+                for j, name in enumerate(names):
+                    row[f"poincare_{name}"] = [float(c[1 + j]) for c in found]
 
 
 def _fail_where_not_finite(step: Any, monitored: list[tuple[str, np.ndarray]]) -> None:

@@ -25,65 +25,88 @@ class ConstraintsReader(Reader):
         value = self.mapping(("constraints",), value, "a mapping name: constraint")
         if value is None:
             return out
-        velocities = set(self.velocity_symbols())
-        positions = {self.symbols[n] for n, k in self.kinds.items() if k == "a coordinate"}
         for cname, spec in value.items():
-            path = ("constraints", cname)
-            problem = gateway.name_problem(cname)
-            if problem is not None:
-                self.issue(path, problem)
-                continue
-            spec = self.mapping(path, spec)
-            if spec is None or not self.keys(path, spec, ("holonomic", "nonholonomic", "on", "unilateral", "at")):
-                continue
-            unilateral = False
-            if "unilateral" in spec:
-                unilateral = bool(self.flag((*path, "unilateral"), spec["unilateral"]))
-            kinds = [k for k in ConstraintKind if k in spec]
-            if len(kinds) != 1:
-                self.issue(path, "give exactly one of 'holonomic: psi(q, t)' or 'nonholonomic: a.q_dot + b'")
-                continue
-            kind = kinds[0]
-            raw_on = spec.get("on")
-            first = raw_on[0] if isinstance(raw_on, list) and raw_on else raw_on
-            member = self.member(first, bodies)
-            at = None
-            if isinstance(member, Body) or "at" in spec:
-                at = self.contact_point(path, spec, member, points)
-                if at is None:
-                    continue
-                on: tuple[str, ...] | None = self.contact_pair(path, raw_on, member, particles, bodies)
-            else:
-                on = self.constraint_on(path, spec, particles)
-            if on is None:
-                continue
-            psi = self.expression((*path, kind), spec[kind], names)
-            if psi is None:
-                continue
-            used = psi.free_symbols & velocities
-            if kind == ConstraintKind.HOLONOMIC and used:
-                self.issue((*path, kind), "a holonomic constraint cannot contain velocities (found "
-                           + ", ".join(sorted(str(s) for s in used)) + ")",
-                           "write it under 'nonholonomic:' instead")
-                continue
-            if kind == ConstraintKind.HOLONOMIC and not psi.free_symbols & positions:
-                self.issue((*path, kind), "this constraint contains no coordinate, so it cannot "
-                           "restrict the motion", "write psi(q, t) in terms of the coordinates")
-                continue
-            if kind == ConstraintKind.NONHOLONOMIC:
-                if not used:
-                    self.issue((*path, kind), "this velocity constraint contains no velocity",
-                               "write a position constraint under 'holonomic:'")
-                    continue
-                bad = [str(v) for v in sorted(used, key=str)
-                       if sympy.diff(psi, v).free_symbols & velocities]
-                if bad:
-                    self.issue((*path, kind), "velocity constraint is not linear in the velocities ("
-                               + ", ".join(bad) + ")",
-                               "write it as a_1*q1_dot + a_2*q2_dot + ... + b with a and b free of velocities")
-                    continue
-            out.append(Constraint(cname, kind, psi, on, self.line((*path, kind)), unilateral, at))
+            constraint = self.constraint(cname, spec, names, particles, bodies, points)
+            if constraint is not None:
+                out.append(constraint)
         return out
+
+    def constraint(self, cname: Any, spec: Any, names: gateway.Namespace, particles: list[str], bodies: list[Body],
+                   points: gateway.Namespace) -> Constraint | None:
+        """The constraint ``cname: spec``, or None where it is reported."""
+        path = ("constraints", cname)
+        problem = gateway.name_problem(cname)
+        if problem is not None:
+            self.issue(path, problem)
+            return None
+        spec = self.mapping(path, spec)
+        if spec is None or not self.keys(path, spec, ("holonomic", "nonholonomic", "on", "unilateral", "at")):
+            return None
+        unilateral = False
+        if "unilateral" in spec:
+            unilateral = bool(self.flag((*path, "unilateral"), spec["unilateral"]))
+        kinds = [k for k in ConstraintKind if k in spec]
+        if len(kinds) != 1:
+            self.issue(path, "give exactly one of 'holonomic: psi(q, t)' or 'nonholonomic: a.q_dot + b'")
+            return None
+        kind = kinds[0]
+        where = self.acts_on(path, spec, particles, bodies, points)
+        if where is None:
+            return None
+        on, at = where
+        psi = self.expression((*path, kind), spec[kind], names)
+        if psi is None or not self.fits_its_kind((*path, kind), kind, psi):
+            return None
+        return Constraint(cname, kind, psi, on, self.line((*path, kind)), unilateral, at)
+
+    def acts_on(self, path: tuple, spec: dict, particles: list[str], bodies: list[Body],
+                points: gateway.Namespace) -> tuple[tuple[str, ...], tuple[Any, ...] | None] | None:
+        """What a constraint acts on (``on:``) and, on a body or with ``at:``, the point where it acts; None
+        where that is reported."""
+        raw_on = spec.get("on")
+        first = raw_on[0] if isinstance(raw_on, list) and raw_on else raw_on
+        member = self.member(first, bodies)
+        at = None
+        if isinstance(member, Body) or "at" in spec:
+            at = self.contact_point(path, spec, member, points)
+            if at is None:
+                return None
+            on = self.contact_pair(path, raw_on, member, particles, bodies)
+        else:
+            on = self.constraint_on(path, spec, particles)
+        return None if on is None else (on, at)
+
+    def fits_its_kind(self, path: tuple, kind: ConstraintKind, psi: Any) -> bool:
+        """A holonomic constraint holds coordinates and no velocity; a nonholonomic one is linear in the
+        velocities it holds (reported where not)."""
+        velocities = set(self.velocity_symbols())
+        used = psi.free_symbols & velocities
+        if kind == ConstraintKind.HOLONOMIC:
+            return self.is_holonomic(path, psi, used)
+        if not used:
+            self.issue(path, "this velocity constraint contains no velocity",
+                       "write a position constraint under 'holonomic:'")
+            return False
+        bad = [str(v) for v in sorted(used, key=str) if sympy.diff(psi, v).free_symbols & velocities]
+        if bad:
+            self.issue(path, "velocity constraint is not linear in the velocities (" + ", ".join(bad) + ")",
+                       "write it as a_1*q1_dot + a_2*q2_dot + ... + b with a and b free of velocities")
+            return False
+        return True
+
+    def is_holonomic(self, path: tuple, psi: Any, used: set[Any]) -> bool:
+        """A holonomic constraint contains no velocity (``used``) and some coordinate (reported where not)."""
+        if used:
+            self.issue(path, "a holonomic constraint cannot contain velocities (found "
+                       + ", ".join(sorted(str(s) for s in used)) + ")",
+                       "write it under 'nonholonomic:' instead")
+            return False
+        positions = {self.symbols[n] for n, k in self.kinds.items() if k == "a coordinate"}
+        if not psi.free_symbols & positions:
+            self.issue(path, "this constraint contains no coordinate, so it cannot "
+                       "restrict the motion", "write psi(q, t) in terms of the coordinates")
+            return False
+        return True
 
     def member(self, name: Any, bodies: list[Body]) -> Body | Particle | None:
         """The body or particle called ``name`` (None: neither, or not a name)."""

@@ -28,6 +28,18 @@ class SimulationReader(Reader):
         if spec is None:
             return None
         self.keys(path, spec, _SIMULATION_KEYS)
+        values = self.parameter_values(path, spec, parameters)
+        initial = self.initial_state(path, spec, coordinates)
+        functions = self.concrete_functions((*path, "functions"), spec.get("functions", {}), parameters)
+        t_end = self.positive_setting(path, spec, "t_end")
+        samples = self.samples(path, spec)
+        method = self.method(path, spec)
+        rtol = self.positive_setting(path, spec, "rtol")
+        atol = self.positive_setting(path, spec, "atol")
+        return Simulation(values, functions, initial, t_end, samples, method, rtol, atol)
+
+    def parameter_values(self, path: tuple, spec: dict, parameters: list[Parameter]) -> dict[str, float]:
+        """``values:``, a number for each parameter named (one its assumptions allow)."""
         parameter_names = [p.name for p in parameters]
         positive = {p.name: p.positive for p in parameters}
         values: dict[str, float] = {}
@@ -38,6 +50,10 @@ class SimulationReader(Reader):
             number = self.number((*path, "values", k), v)
             if number is not None and self.assumption_holds((*path, "values", k), k, number, positive[k]):
                 values[k] = number
+        return values
+
+    def initial_state(self, path: tuple, spec: dict, coordinates: list[Coordinate]) -> dict[str, float]:
+        """``initial:``, a number for each coordinate or velocity named (a positive coordinate's above zero)."""
         state_names = [c.name for c in coordinates] + [f"{c.name}_dot" for c in coordinates]
         positive_coordinates = {c.name for c in coordinates if c.symbol.is_positive}
         initial: dict[str, float] = {}
@@ -50,22 +66,29 @@ class SimulationReader(Reader):
             if number is not None and self.assumption_holds((*path, "initial", k), k, number,
                                                             k in positive_coordinates, "coordinate"):
                 initial[k] = number
-        functions = self.concrete_functions((*path, "functions"), spec.get("functions", {}), parameters)
-        t_end = self.number((*path, "t_end"), spec["t_end"], positive=True) if "t_end" in spec else None
-        samples = None
-        if "samples" in spec:
-            raw = spec["samples"]
-            if isinstance(raw, bool) or not isinstance(raw, int) or not 2 <= raw <= 1_000_000:
-                self.issue((*path, "samples"), "expected a whole number from 2 to 1000000")
-            else:
-                samples = raw
+        return initial
+
+    def positive_setting(self, path: tuple, spec: dict, key: str) -> float | None:
+        """A positive number under ``key`` (``t_end``, ``rtol``, ``atol``), or None where it is absent or wrong."""
+        return self.number((*path, key), spec[key], positive=True) if key in spec else None
+
+    def samples(self, path: tuple, spec: dict) -> int | None:
+        """``samples:``, a whole number from 2 to 1000000."""
+        if "samples" not in spec:
+            return None
+        raw = spec["samples"]
+        if isinstance(raw, bool) or not isinstance(raw, int) or not 2 <= raw <= 1_000_000:
+            self.issue((*path, "samples"), "expected a whole number from 2 to 1000000")
+            return None
+        return raw
+
+    def method(self, path: tuple, spec: dict) -> str | None:
+        """``method:``, one of the integrators of the registry (:mod:`lagsolve.problem.methods`)."""
         method = spec.get("method")
         if method is not None and method not in METHODS:
             self.issue((*path, "method"), f"unknown method {method!r}", "use one of: " + ", ".join(METHODS))
-            method = None
-        rtol = self.number((*path, "rtol"), spec["rtol"], positive=True) if "rtol" in spec else None
-        atol = self.number((*path, "atol"), spec["atol"], positive=True) if "atol" in spec else None
-        return Simulation(values, functions, initial, t_end, samples, method, rtol, atol)
+            return None
+        return method
 
     def concrete_functions(self, path: tuple, value: Any, parameters: list[Parameter]) -> dict[str, ConcreteFunction]:
         out: dict[str, ConcreteFunction] = {}
