@@ -9,17 +9,18 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar, Literal
 
 import pytest
 import sympy
 
 from lagsolve.render.model import Expr, JsonPrinter, NotationPrinter, Rows, json_schema, present, records, shown
 from lagsolve.render.notation import Notation
+from lagsolve.render.sections.core import CoreSections
 from lagsolve.render.sections.units import UnitsSection
 
 #: the section records migrated to the presentation model (each one's whole tree of records is checked)
-MIGRATED = [UnitsSection]
+MIGRATED = [UnitsSection, CoreSections]
 
 jsonschema = pytest.importorskip("jsonschema")
 
@@ -101,3 +102,55 @@ def test_a_field_without_metadata_is_an_error() -> None:
 
     with pytest.raises(TypeError, match=r"Bare\.value has no presentation metadata"):
         present(Bare(), JsonPrinter())
+
+
+@dataclass(frozen=True)
+class _Result:
+    name: str = shown(json=None, terminal=True)
+    value: Expr = shown(inline=True, terminal=True)
+
+
+@dataclass(frozen=True)
+class _Contract:
+    JSON_LAST: ClassVar[tuple[str, ...]] = ("late", "version")
+
+    version: Literal[1] = shown()
+    late: str = shown()
+    results: tuple[_Result, ...] | None = shown(keyed="name")
+    names: tuple[_Result, ...] = shown()
+    extra: _Inner | None = shown(optional=True)
+
+
+def test_a_record_written_as_its_inline_plain_field() -> None:
+    """A record whose one JSON field is inline and plain is that value in the JSON (keyed: ``name: value``; None
+    stays null); the templates still get its fields; ``JSON_LAST`` keys come last, in their order."""
+    x = sympy.Symbol("x")
+    record = _Contract(1, "l", (_Result("a", x), _Result("b", 2 * x)), (_Result("c", x),), None)
+    data = present(record, JsonPrinter())
+    assert data == {"results": {"a": "x", "b": "2*x"}, "names": ["x"], "late": "l", "version": 1}
+    assert list(data) == ["results", "names", "late", "version"]
+    assert present(dataclasses.replace(record, results=None), JsonPrinter())["results"] is None
+    assert present(record, NotationPrinter("latex", Notation(["x"])))["results"] == [
+        {"name": "a", "value": "x"}, {"name": "b", "value": "2 x"}]
+    schema = json_schema(_Contract)
+    assert list(schema["properties"]) == ["results", "names", "extra", "late", "version"]
+    assert schema["properties"]["version"] == {"const": 1}
+    assert schema["properties"]["results"] == {"anyOf": [
+        {"type": "object", "additionalProperties": {"type": "string"}}, {"type": "null"}]}
+    assert schema["properties"]["extra"]["type"] == "object"  # optional: a None is left out, never null
+    validator = jsonschema.Draft202012Validator(schema)
+    assert list(validator.iter_errors(data)) == []
+
+
+def test_an_inline_plain_field_must_be_alone() -> None:
+    """An inline plain field beside other JSON fields has no JSON shape: an error, not a silent loss."""
+
+    @dataclass(frozen=True)
+    class Two:
+        name: str = shown(inline=True)
+        other: str = shown()
+
+    with pytest.raises(TypeError, match="one JSON field"):
+        present(Two("a", "b"), JsonPrinter())
+    with pytest.raises(TypeError, match="one JSON field"):
+        json_schema(Two)

@@ -13,6 +13,11 @@ Types: :data:`Expr` is an expression (printed by the printer; a string in the JS
 expression in the templates, a list of rows in the JSON). A value with a ``present(printer)`` method prints
 itself (a Pfaffian form, a mode shape written as a row), which is how a format-specific layout stays out of
 the templates and the walker.
+
+Two shapes of the JSON come from the declarations too: a record whose one JSON field is ``inline`` and holds a
+plain value is written as that value (a coordinate as its name; with ``keyed``, a list of results as an object
+name → value), and a record class may set ``JSON_LAST`` (a tuple of JSON keys) for a contract whose key order
+predates the fields' display order: those keys are written last, in that order.
 """
 
 from __future__ import annotations
@@ -164,8 +169,9 @@ def present(value: Any, printer: Printer, *, kind: str = "expression") -> Any:
     return printer.expr(value)
 
 
-def _record(record: Any, printer: Printer) -> dict[str, Any]:
+def _record(record: Any, printer: Printer) -> Any:
     out: dict[str, Any] = {}
+    whole: list[Any] = []  # the value of an inline plain field: the record's whole JSON
     hints = _hints(type(record))
     for field in dataclasses.fields(record):
         meta = metadata(field, type(record))
@@ -175,18 +181,33 @@ def _record(record: Any, printer: Printer) -> dict[str, Any]:
         value = getattr(record, field.name)
         if printer.kind == "json" and meta.optional and _empty(value):
             continue
-        kind = _kind(hints.get(field.name))
+        hint = hints.get(field.name)
+        kind = _kind(hint)
         if meta.blank_zero and printer.kind != "json" and _zero(value):
             shown_value: Any = ""
-        elif meta.keyed is not None and printer.kind == "json":
+        elif meta.keyed is not None and printer.kind == "json" and value is not None:
             shown_value = {str(getattr(item, meta.keyed)): present(item, printer, kind=kind) for item in value}
         else:
             shown_value = present(value, printer, kind=kind)
-        if meta.inline and printer.kind == "json":
+        if meta.inline and printer.kind == "json" and not _is_record(hint):
+            whole.append(shown_value)
+        elif meta.inline and printer.kind == "json":
             out.update(shown_value or {})
         else:
             out[key] = shown_value
-    return out
+    if whole:
+        if out or len(whole) > 1:
+            raise TypeError(f"{type(record).__qualname__}: an inline plain field must be its record's one JSON field")
+        return whole[0]
+    return _last(out, type(record)) if printer.kind == "json" else out
+
+
+def _last(out: dict[str, Any], cls: type) -> dict[str, Any]:
+    """``out`` with the keys of ``cls.JSON_LAST`` moved to the end, in that order."""
+    last = [key for key in getattr(cls, "JSON_LAST", ()) if key in out]
+    if not last:
+        return out
+    return {**{k: v for k, v in out.items() if k not in last}, **{k: out[k] for k in last}}
 
 
 def _key(name: str, meta: Shown, printer: Printer) -> str | None:
@@ -219,9 +240,11 @@ def _kind(hint: Any) -> str:
     return next((k for k in map(_kind, typing.get_args(hint)) if k == "rows"), "expression")
 
 
-def json_schema(cls: type, *, root: bool = False) -> dict[str, Any]:
+def json_schema(cls: type) -> dict[str, Any]:
     """The JSON Schema (draft 2020-12) of what :func:`present` writes for a record of class ``cls`` with the JSON
-    printer: an object with the fields' JSON keys, closed; a key is required unless its field is ``optional``."""
+    printer: an object with the fields' JSON keys, closed; a key is required unless its field is ``optional``
+    (then its value is never null: a None is left out). A record written as its one inline plain field has that
+    field's schema."""
     properties: dict[str, Any] = {}
     required: list[str] = []
     hints = _hints(cls)
@@ -229,27 +252,49 @@ def json_schema(cls: type, *, root: bool = False) -> dict[str, Any]:
         meta = metadata(field, cls)
         if meta.json is None:
             continue
-        hint = hints[field.name]
+        hint = _without_none(hints[field.name]) if meta.optional else hints[field.name]
+        if meta.inline and not _is_record(hint):
+            if sum(metadata(f, cls).json is not None for f in dataclasses.fields(cls)) > 1:
+                raise TypeError(f"{cls.__qualname__}: an inline plain field must be its record's one JSON field")
+            return _described(_schema_of(hint, meta), meta)
         if meta.inline:
             inner = json_schema(_record_class(hint))
             properties.update(inner["properties"])
             required += inner.get("required", [])
             continue
         key = meta.json or field.name
-        properties[key] = _schema_of(hint, meta)
-        if meta.doc or meta.unit:
-            properties[key] = {**properties[key], "description": _description(meta)}
+        properties[key] = _described(_schema_of(hint, meta), meta)
         if not meta.optional:
             required.append(key)
+    last = [key for key in getattr(cls, "JSON_LAST", ()) if key in properties]
+    properties = {**{k: v for k, v in properties.items() if k not in last}, **{k: properties[k] for k in last}}
     out: dict[str, Any] = {"type": "object", "properties": properties, "additionalProperties": False}
     if required:
         out["required"] = required
     return out
 
 
+def _without_none(hint: Any) -> Any:
+    """``hint`` without None in its union (an optional field's None is never written)."""
+    if typing.get_origin(hint) not in (types.UnionType, typing.Union):
+        return hint
+    args = [a for a in typing.get_args(hint) if a is not type(None)]
+    return args[0] if len(args) == 1 else typing.Union[tuple(args)]  # noqa: UP007 - built from a tuple
+
+
+def _described(schema: dict[str, Any], meta: Shown) -> dict[str, Any]:
+    return {**schema, "description": _description(meta)} if meta.doc or meta.unit else schema
+
+
 def _description(meta: Shown) -> str:
     unit = f" (in the unit of {meta.unit})" if meta.unit else ""
     return (meta.doc + unit).strip()
+
+
+def _is_record(hint: Any) -> bool:
+    """Whether ``hint`` is a record class (or a union with one)."""
+    return any(isinstance(c, type) and dataclasses.is_dataclass(c) and not issubclass(c, SelfPresenting)
+               for c in (hint, *typing.get_args(hint)))
 
 
 def _record_class(hint: Any) -> type:
@@ -273,7 +318,7 @@ def _schema_of(hint: Any, meta: Shown | None = None) -> dict[str, Any]:
         options = [_schema_of(a, meta) for a in args]
         return options[0] if len(options) == 1 else {"anyOf": options}
     if origin is Literal:
-        return {"enum": list(args)}
+        return {"const": args[0]} if len(args) == 1 else {"enum": list(args)}
     if origin in (tuple, list):
         if meta is not None and meta.keyed is not None:
             item = _record_class(args[0])

@@ -22,7 +22,7 @@ from jinja2.sandbox import ImmutableSandboxedEnvironment
 
 from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation
-from lagsolve.render.analysis_report import analysis_context, analysis_json, analysis_summary, contract_json
+from lagsolve.render.analysis_report import analysis_context, analysis_json, analysis_summary
 from lagsolve.render.formats import FORMATS
 from lagsolve.render.hamiltonian_report import hamiltonian_context, hamiltonian_json, hamiltonian_summary
 from lagsolve.render.mathml import typeset
@@ -31,7 +31,6 @@ from lagsolve.render.notation import FILTERS, Notation, symbol_table, to_json
 from lagsolve.render.sections import Sections, build
 from lagsolve.render.sections.core import ConstraintForce
 
-FORMAT_VERSION = 1
 #: above this many coordinates the matrix form is written one equation per row instead of as matrices
 LARGE = 3
 
@@ -55,15 +54,14 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
         return {"tex": tex(expr), "text": text(expr), "json": to_json(expr)}
 
     def by_coordinate(values: Any) -> list[dict[str, Any]]:
-        return [{"coordinate": tex(q.symbol), "value": tex(v)} for q, v in values if v != 0]
+        return [{"coordinate": tex(v.coordinate), "value": tex(v.value)} for v in values if v.value != 0]
 
     coords = [{"name": c.name, "tex": tex(c.symbol), "velocity": tex(c.velocity),
                "acceleration": tex(c.acceleration), "description": c.description} for c in core.coordinates]
     constraints = [{
         "name": c.name, "kind": c.kind, "multiplier": tex(c.multiplier), "expression": tex(c.expression),
         "velocity_form": tex(c.velocity_form),
-        "coefficients": [{"coordinate": tex(q.symbol), "value": tex(a)} for q, a in zip(core.coordinates,
-                                                                                        c.coefficients, strict=True)],
+        "coefficients": [{"coordinate": tex(a.coordinate), "value": tex(a.value)} for a in c.coefficients],
         "offset": tex(c.offset), "acceleration_rhs": tex(c.acceleration_rhs), "on": list(c.on),
         "unilateral": c.unilateral,
     } for c in core.constraints]
@@ -84,8 +82,8 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
         "particles": [{"name": p.name, "vector": [tex(v) for v in p.vector], "magnitude": both(p.magnitude)}
                       for p in f.particles],
         "note": f.note,
-        "generalized": [{"coordinate": tex(q.symbol), "coordinate_text": q.name, "value": both(v)}
-                        for q, v in f.generalized if v != 0],
+        "generalized": [{"coordinate": tex(g.coordinate), "coordinate_text": g.name, "value": both(g.value)}
+                        for g in f.generalized_shown],
     } for f in core.forces]
     friction = [
         {"name": f.name, "particle": f.particle, "against": f.against or "",
@@ -99,8 +97,8 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
          "case": f.case, "condition": tex(f.condition) if f.condition is not None else "", "static": tex(f.static),
          "members": [{"name": m.name, "normal": [tex(v) for v in m.normal], "friction": [tex(v) for v in m.friction],
                       "total": [tex(v) for v in m.total], "magnitude": both(m.magnitude)} for m in f.members],
-         "held": None if f.held is None else {"force": tex(f.held[0]), "normal": tex(f.held[1]),
-                                               "ratio": tex(f.held[2]) if f.held[2] is not None else ""}}
+         "held": None if f.held is None else {"force": tex(f.held.force), "normal": tex(f.held.normal),
+                                               "ratio": tex(f.held.ratio) if f.held.ratio is not None else ""}}
         for f in core.friction
     ]
     matrix = core.matrix
@@ -122,8 +120,7 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
         "kinetic": tex(core.kinetic),
         "potential": tex(core.potential),
         "lagrangian": tex(core.lagrangian),
-        "loads": [{"label": t.label, "values": by_coordinate(zip(core.coordinates, t.generalized, strict=True))}
-                  for t in core.loads],
+        "loads": [{"label": t.label, "values": by_coordinate(t.generalized)} for t in core.loads],
         "constraints": constraints,
         "equations": equations,
         "substitutions": substitutions,
@@ -145,7 +142,7 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
         "friction": friction,
         "analysis": analysis_context(sections.analysis, note, math),
         "hamiltonian": hamiltonian_context(sections.hamiltonian, note, math),
-        "notes": [n.sentence() for n in core.notes],
+        "notes": [n.sentence for n in core.notes],
         "symbols": symbol_table(dict(core.symbols), note),
         "math": math,
         "stage_notes": {n.stage: n.reason for n in core.notes},
@@ -269,79 +266,21 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
 
 def sections_json(sections: Sections) -> dict[str, Any]:
     """:func:`result_dict` of sections already built (the JSON projection)."""
-    core = sections.core
+    return _unmigrated_json(present(sections, JsonPrinter()), sections)
 
-    def by_name(values: Any) -> dict[str, str]:
-        return {q.name: to_json(v) for q, v in values}
 
-    forces: dict[str, Any] | None = None if core.forces is None else {}
-    for f in core.forces or ():
-        entry: dict[str, Any] = {}
-        if f.vector is not None:
-            entry["vector"] = [to_json(v) for v in f.vector]
-        entry["magnitude"] = to_json(f.magnitude) if f.magnitude is not None else None
-        if f.particles:
-            entry["particles"] = {p.name: {"vector": [to_json(v) for v in p.vector], "magnitude": to_json(p.magnitude)}
-                                  for p in f.particles}
-        if f.generalized:
-            entry["generalized"] = by_name(f.generalized)
-        if f.note:
-            entry["note"] = f.note
-        forces[f.name] = entry  # type: ignore[index]
-    return {
-        "format_version": FORMAT_VERSION,
-        "name": core.name,
-        "coordinates": [c.name for c in core.coordinates],
-        "parameters": [p.name for p in core.parameters],
-        "kinetic": to_json(core.kinetic),
-        "potential": to_json(core.potential),
-        "lagrangian": to_json(core.lagrangian),
-        "constraints": {
-            c.name: {
-                "kind": c.kind,
-                "expression": to_json(c.expression),
-                "coefficients": by_name(zip(core.coordinates, c.coefficients, strict=True)),
-                "offset": to_json(c.offset),
-                **({"unilateral": True} if c.unilateral else {}),
-            }
-            for c in core.constraints
-        },
-        "equations": [to_json(e) for e in core.equation_forms],
-        "mass_matrix": [[to_json(e) for e in row] for row in core.matrix.mass.tolist()],
-        "forcing": [to_json(e) for e in core.matrix.forcing],
-        "accelerations": None if core.accelerations is None else {a.name: to_json(a.value) for a in core.accelerations},
-        "multipliers": None if core.multipliers is None else {m.name: to_json(m.value) for m in core.multipliers},
-        "constraint_forces": forces,
-        "friction": {
-            f.name: {
-                "normal_force": to_json(f.normal_force),
-                "force": [to_json(v) for v in f.force],
-                "generalized": by_name(f.generalized),
-                "valid_while": to_json(f.valid_while),
-                "case": f.case,
-                "normal_force_valid_while": to_json(f.condition) if f.condition is not None else None,
-                "normal_force_equation": to_json(f.system) if f.system is not None else None,
-                "on": f.particle,
-                "against": f.against,
-                "point": [to_json(c) for c in f.point] if f.point is not None else None,
-                "sliding_rate": to_json(f.rate) if f.rate is not None else None,
-                "tangent": [to_json(c) for c in f.tangent] if f.tangent is not None else None,
-                "sticking": None if f.held is None else {
-                    "force": to_json(f.held[0]), "normal_force": to_json(f.held[1]),
-                    "least_static_coefficient": to_json(f.held[2]) if f.held[2] is not None else None},
-                "members": {m.name: {"normal": [to_json(v) for v in m.normal],
-                                     "friction": [to_json(v) for v in m.friction],
-                                     "total": [to_json(v) for v in m.total],
-                                     "magnitude": to_json(m.magnitude)} for m in f.members},
-            }
-            for f in core.friction
-        },
-        **contract_json(core.contract),
-        "analysis": analysis_json(sections.analysis),
-        "hamiltonian": hamiltonian_json(sections.hamiltonian),
-        "notes": [{"stage": n.stage, "kind": n.kind, "reason": n.reason} for n in core.notes],
-        **({"units": present(sections.units, JsonPrinter())} if sections.units is not None else {}),
-    }
+# -- not yet migrated (issue 30) -----------------------------------------------------------------
+# The analysis and Hamiltonian sections are not yet records with `shown` fields: their own projections print
+# them, here only. Their JSON keys go where Sections.JSON_LAST puts them.
+
+
+def _unmigrated_json(data: dict[str, Any], sections: Sections) -> dict[str, Any]:
+    data = {**data, "analysis": analysis_json(sections.analysis), "hamiltonian": hamiltonian_json(sections.hamiltonian)}
+    last = [key for key in Sections.JSON_LAST if key in data]
+    return {**{k: v for k, v in data.items() if k not in last}, **{k: data[k] for k in last}}
+
+
+# ------------------------------------------------------------------------------------------------
 
 
 def result_json(derivation: Derivation) -> str:
@@ -385,21 +324,21 @@ def sections_summary(sections: Sections) -> str:
     for f in core.friction:
         lines.append(f"  friction {f.name}: normal force {text(f.normal)} = {text(f.normal_shown)}")
         lines += [f"    |F| on {m.name} (normal force and friction) = {text(m.magnitude)}" for m in f.members]
-        if f.held is not None and f.held[2] is not None:
-            lines.append(f"    sticks while mu_s >= {text(f.held[2])} (holding force {text(f.held[0])})")
+        if f.held is not None and f.held.ratio is not None:
+            lines.append(f"    sticks while mu_s >= {text(f.held.ratio)} (holding force {text(f.held.force)})")
     lines += analysis_summary(sections.analysis, note)
     lines += hamiltonian_summary(sections.hamiltonian, note)
     if core.notes:
         lines.append("  not completed:")
-        lines += [f"    {n.sentence()}" for n in core.notes]
+        lines += [f"    {n.sentence}" for n in core.notes]
     return "\n".join(lines) + "\n"
 
 
 def _force_lines(f: ConstraintForce, text: Callable[[Any], str]) -> list[str]:
     """A force of constraint in the terminal: its magnitude, each particle's, or its generalized forces."""
-    generalized = [(q, v) for q, v in f.generalized if v != 0]
+    generalized = f.generalized_shown
     if generalized:
-        parts = ", ".join(f"Q_{q.name} = {text(v)}" for q, v in generalized)
+        parts = ", ".join(f"Q_{g.name} = {text(g.value)}" for g in generalized)
         return [f"    {f.name}: generalized forces of constraint (no point named): {parts}"]
     if f.magnitude is None and f.particles:
         return [f"    |F_{f.name}| on {p.name} = {text(p.magnitude)}" for p in f.particles]
