@@ -11,6 +11,7 @@ Nothing here simplifies: every expression arrives in display form.
 from __future__ import annotations
 
 import base64
+import dataclasses
 import json
 from collections.abc import Callable
 from importlib import resources
@@ -26,14 +27,9 @@ from lagsolve.render.analysis_report import analysis_context, analysis_json, ana
 from lagsolve.render.formats import FORMATS
 from lagsolve.render.hamiltonian_report import hamiltonian_context, hamiltonian_json, hamiltonian_summary
 from lagsolve.render.mathml import typeset
-from lagsolve.render.model import JsonPrinter, NotationPrinter, present
-from lagsolve.render.notation import FILTERS, Notation, symbol_table, to_json
+from lagsolve.render.model import JsonPrinter, NotationPrinter, metadata, present
+from lagsolve.render.notation import FILTERS, Notation, symbol_table
 from lagsolve.render.sections import Sections, build
-from lagsolve.render.sections.core import ConstraintForce
-
-#: above this many coordinates the matrix form is written one equation per row instead of as matrices
-LARGE = 3
-
 
 # -- context ------------------------------------------------------------------------------------
 
@@ -45,109 +41,28 @@ def context(derivation: Derivation, math: str = "latex") -> dict[str, Any]:
 
 
 def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
-    """:func:`context` of sections already built (the templates' projection)."""
-    core = sections.core
-    note = Notation([c.name for c in core.coordinates])
-    tex, text = (note.mathml if math == "mathml" else note.latex), note.text
+    """:func:`context` of sections already built: the sections :func:`present`-ed with the format's printer
+    (``core``, ``units``: each record's fields by name), and what only the page needs: the problem's
+    ``symbols`` (for the prose of notes and descriptions) and ``math``."""
+    note = Notation([c.name for c in sections.core.coordinates])
+    return {**present(sections, NotationPrinter(math, note)), **_unmigrated_context(sections, note, math),
+            "symbols": symbol_table(dict(sections.core.symbols), note), "math": math}
 
-    def both(expr: Any) -> dict[str, str]:
-        return {"tex": tex(expr), "text": text(expr), "json": to_json(expr)}
 
-    def by_coordinate(values: Any) -> list[dict[str, Any]]:
-        return [{"coordinate": tex(v.coordinate), "value": tex(v.value)} for v in values if v.value != 0]
+#: the figures a page shows, which are not sections (they come with the call): each one's partial and the
+#: section partial it follows (None: the end of the page)
+FIGURES: tuple[tuple[str, str | None], ...] = (("_potential", "_analysis"), ("_simulation", None))
 
-    coords = [{"name": c.name, "tex": tex(c.symbol), "velocity": tex(c.velocity),
-               "acceleration": tex(c.acceleration), "description": c.description} for c in core.coordinates]
-    constraints = [{
-        "name": c.name, "kind": c.kind, "multiplier": tex(c.multiplier), "expression": tex(c.expression),
-        "velocity_form": tex(c.velocity_form),
-        "coefficients": [{"coordinate": tex(a.coordinate), "value": tex(a.value)} for a in c.coefficients],
-        "offset": tex(c.offset), "acceleration_rhs": tex(c.acceleration_rhs), "on": list(c.on),
-        "unilateral": c.unilateral,
-    } for c in core.constraints]
-    equations = [{
-        "coordinate": tex(e.coordinate.symbol), "velocity": tex(e.coordinate.velocity), "momentum": tex(e.momentum),
-        "rate": tex(e.rate), "gradient": tex(e.gradient), "force": tex(e.force) if e.force != 0 else "",
-        "lhs": tex(e.lhs), "rhs": tex(e.rhs),
-    } for e in core.equations]
-    substitutions = [{"symbol": tex(s.symbol), "value": tex(s.value), "source": s.source} for s in core.substitutions]
-    solved = {key: None if rows is None else [
-        {"name" if key == "multipliers" else "coordinate": r.name, "symbol": tex(r.symbol),
-         "symbol_text": text(r.symbol), **both(r.value)} for r in rows]
-        for key, rows in (("accelerations", core.accelerations), ("multipliers", core.multipliers))}
-    forces = None if core.forces is None else [{
-        "name": f.name,
-        "vector": [tex(v) for v in f.vector] if f.vector is not None else None,
-        "magnitude": both(f.magnitude) if f.magnitude is not None else None,
-        "particles": [{"name": p.name, "vector": [tex(v) for v in p.vector], "magnitude": both(p.magnitude)}
-                      for p in f.particles],
-        "note": f.note,
-        "generalized": [{"coordinate": tex(g.coordinate), "coordinate_text": g.name, "value": both(g.value)}
-                        for g in f.generalized_shown],
-    } for f in core.forces]
-    friction = [
-        {"name": f.name, "particle": f.particle, "against": f.against or "",
-         "point": [tex(c) for c in f.point] if f.point is not None else None,
-         "rate": tex(f.rate) if f.rate is not None else "",
-         "tangent": [tex(c) for c in f.tangent] if f.tangent is not None else None,
-         "coefficient": tex(f.coefficient),
-         "normal": tex(f.normal), "normal_text": text(f.normal), "constraints": list(f.constraints),
-         "force": [tex(v) for v in f.term_force], "generalized": by_coordinate(f.term_generalized),
-         "valid_while": tex(f.valid_while), "normal_force": both(f.normal_shown),
-         "case": f.case, "condition": tex(f.condition) if f.condition is not None else "", "static": tex(f.static),
-         "members": [{"name": m.name, "normal": [tex(v) for v in m.normal], "friction": [tex(v) for v in m.friction],
-                      "total": [tex(v) for v in m.total], "magnitude": both(m.magnitude)} for m in f.members],
-         "held": None if f.held is None else {"force": tex(f.held.force), "normal": tex(f.held.normal),
-                                               "ratio": tex(f.held.ratio) if f.held.ratio is not None else ""}}
-        for f in core.friction
-    ]
-    matrix = core.matrix
-    return {
-        "name": core.name,
-        "description": core.description,
-        "slug": core.slug,
-        "time": tex(core.time),
-        "coordinates": coords,
-        "parameters": [{"name": p.name, "tex": tex(p.symbol), "description": p.description,
-                        "assumption": p.assumption} for p in core.parameters],
-        "functions": [{"name": f.name, "tex": tex(f.symbol), "description": f.description} for f in core.functions],
-        "particles": [{"name": p.name, "mass": tex(p.mass), "position": [tex(r) for r in p.position]}
-                      for p in core.particles],
-        "bodies": [{"name": b.name, "mass": tex(b.mass), "position": [tex(r) for r in b.position],
-                    "inertia": [tex(i) for i in b.inertia], "angular_velocity": [tex(w) for w in b.angular_velocity],
-                    "planar": b.planar} for b in core.bodies],
-        "gravity": [tex(g) for g in core.gravity] if core.gravity is not None else None,
-        "kinetic": tex(core.kinetic),
-        "potential": tex(core.potential),
-        "lagrangian": tex(core.lagrangian),
-        "loads": [{"label": t.label, "values": by_coordinate(t.generalized)} for t in core.loads],
-        "constraints": constraints,
-        "equations": equations,
-        "substitutions": substitutions,
-        "constrained": [{"coordinate": tex(s.coordinate.symbol), "lhs": tex(s.lhs), "rhs": tex(s.rhs)}
-                        for s in core.constrained] if substitutions else [],
-        "matrices": {
-            "mass": tex(matrix.mass_shown),
-            "forcing": tex(matrix.forcing_shown),
-            "jacobian": tex(matrix.jacobian) if matrix.jacobian is not None else "",
-            "rhs": tex(matrix.rhs_shown) if matrix.rhs_shown is not None else "",
-            "unknowns": tex(matrix.unknowns),
-        },
-        "matrix_equations": [{"coordinate": tex(r.coordinate.symbol), "lhs": tex(r.lhs),
-                              "rhs": tex(r.forcing + r.constraint_part)}
-                             for r in matrix.rows] if len(coords) > LARGE else [],
-        **solved,
-        "unilateral": [{"name": c.name, "multiplier": tex(c.multiplier)} for c in core.constraints if c.unilateral],
-        "forces": forces,
-        "friction": friction,
-        "analysis": analysis_context(sections.analysis, note, math),
-        "hamiltonian": hamiltonian_context(sections.hamiltonian, note, math),
-        "notes": [n.sentence for n in core.notes],
-        "symbols": symbol_table(dict(core.symbols), note),
-        "math": math,
-        "stage_notes": {n.stage: n.reason for n in core.notes},
-        "units": present(sections.units, NotationPrinter(math, note)),
-    }
+
+def page_parts(sections: Sections, extension: str) -> list[str]:
+    """The partials a Markdown or LaTeX page includes, in reading order: one per section (the order of the fields
+    of :class:`~lagsolve.render.sections.Sections`; a section that is None has none), each figure's after its
+    section's (:data:`FIGURES`); ``extension`` is the format's (``.md``: ``_core.md.j2`` ...)."""
+    names = [meta.partial for field in dataclasses.fields(sections)
+             if (meta := metadata(field, Sections)).partial is not None and getattr(sections, field.name) is not None]
+    for figure, after in FIGURES:
+        names.insert(names.index(after) + 1 if after in names else len(names), figure)
+    return [f"{name}{extension}.j2" for name in names]
 
 
 # -- templates ----------------------------------------------------------------------------------
@@ -222,8 +137,8 @@ def render_sections(sections: Sections, fmt: str, templates: Path | None = None,
     if spec.figures == "inline":
         simulation, potential = _inlined(simulation, files or {}), _inlined(potential, files or {})
     try:
-        page = template.render(**sections_context(sections, spec.math), simulation=simulation,
-                               potential_plot=potential)
+        page = template.render(**sections_context(sections, spec.math), parts=page_parts(sections, spec.extension),
+                               simulation=simulation, potential_plot=potential)
     except jinja2.TemplateError as exc:
         raise RenderError(f"template {kind}/{name} failed: {exc}") from None
     return typeset(page) if spec.math == "mathml" else page
@@ -274,6 +189,15 @@ def sections_json(sections: Sections) -> dict[str, Any]:
 # them, here only. Their JSON keys go where Sections.JSON_LAST puts them.
 
 
+def _unmigrated_context(sections: Sections, note: Notation, math: str) -> dict[str, Any]:
+    return {"analysis": analysis_context(sections.analysis, note, math),
+            "hamiltonian": hamiltonian_context(sections.hamiltonian, note, math)}
+
+
+def _unmigrated_summary(sections: Sections, note: Notation) -> list[str]:
+    return [*analysis_summary(sections.analysis, note), *hamiltonian_summary(sections.hamiltonian, note)]
+
+
 def _unmigrated_json(data: dict[str, Any], sections: Sections) -> dict[str, Any]:
     data = {**data, "analysis": analysis_json(sections.analysis), "hamiltonian": hamiltonian_json(sections.hamiltonian)}
     last = [key for key in Sections.JSON_LAST if key in data]
@@ -302,45 +226,9 @@ def summary(derivation: Derivation) -> str:
 
 
 def sections_summary(sections: Sections) -> str:
-    """:func:`summary` of sections already built (the terminal projection)."""
-    core = sections.core
-    note = Notation([c.name for c in core.coordinates])
-    text = note.text
-    lines = [f"{core.name}"]
-    if core.accelerations is not None:
-        lines.append("  accelerations:")
-        lines += [f"    {text(a.symbol)} = {text(a.value)}" for a in core.accelerations]
-    else:
-        lines.append("  equations of motion in matrix form M q̈ = F + Aᵀλ (the explicit accelerations are not given; "
-                     "see the report):")
-        extra = " + Σ λ a" if core.constraints else ""
-        lines += [f"    ({i + 1}) {text(r.lhs)} = {text(r.forcing)}{extra}" for i, r in enumerate(core.matrix.rows)]
-    if core.multipliers:
-        lines.append("  multipliers:")
-        lines += [f"    {text(m.symbol)} = {text(m.value)}" for m in core.multipliers]
-    if core.forces:
-        lines.append("  forces of constraint (magnitude):")
-        lines += [line for f in core.forces for line in _force_lines(f, text)]
-    for f in core.friction:
-        lines.append(f"  friction {f.name}: normal force {text(f.normal)} = {text(f.normal_shown)}")
-        lines += [f"    |F| on {m.name} (normal force and friction) = {text(m.magnitude)}" for m in f.members]
-        if f.held is not None and f.held.ratio is not None:
-            lines.append(f"    sticks while mu_s >= {text(f.held.ratio)} (holding force {text(f.held.force)})")
-    lines += analysis_summary(sections.analysis, note)
-    lines += hamiltonian_summary(sections.hamiltonian, note)
-    if core.notes:
-        lines.append("  not completed:")
-        lines += [f"    {n.sentence}" for n in core.notes]
+    """:func:`summary` of sections already built: the terminal partials (``templates/text/``) over the sections
+    :func:`present`-ed with the text printer (the fields marked ``terminal``)."""
+    note = Notation([c.name for c in sections.core.coordinates])
+    data = present(sections, NotationPrinter("text", note))
+    lines = text_lines("_core.txt.j2", data) + _unmigrated_summary(sections, note) + text_lines("_notes.txt.j2", data)
     return "\n".join(lines) + "\n"
-
-
-def _force_lines(f: ConstraintForce, text: Callable[[Any], str]) -> list[str]:
-    """A force of constraint in the terminal: its magnitude, each particle's, or its generalized forces."""
-    generalized = f.generalized_shown
-    if generalized:
-        parts = ", ".join(f"Q_{g.name} = {text(g.value)}" for g in generalized)
-        return [f"    {f.name}: generalized forces of constraint (no point named): {parts}"]
-    if f.magnitude is None and f.particles:
-        return [f"    |F_{f.name}| on {p.name} = {text(p.magnitude)}" for p in f.particles]
-    value = text(f.magnitude) if f.magnitude is not None else "— " + f.note
-    return [f"    |F_{f.name}| = {value}"]
