@@ -182,13 +182,7 @@ def _record(record: Any, printer: Printer) -> Any:
         if printer.kind == "json" and meta.optional and _empty(value):
             continue
         hint = hints.get(field.name)
-        kind = _kind(hint)
-        if meta.blank_zero and printer.kind != "json" and _zero(value):
-            shown_value: Any = ""
-        elif meta.keyed is not None and printer.kind == "json" and value is not None:
-            shown_value = {str(getattr(item, meta.keyed)): present(item, printer, kind=kind) for item in value}
-        else:
-            shown_value = present(value, printer, kind=kind)
+        shown_value = _field_value(value, meta, _kind(hint), printer)
         if meta.inline and printer.kind == "json" and not _is_record(hint):
             whole.append(shown_value)
         elif meta.inline and printer.kind == "json":
@@ -200,6 +194,15 @@ def _record(record: Any, printer: Printer) -> Any:
             raise TypeError(f"{type(record).__qualname__}: an inline plain field must be its record's one JSON field")
         return whole[0]
     return _last(out, type(record)) if printer.kind == "json" else out
+
+
+def _field_value(value: Any, meta: Shown, kind: str, printer: Printer) -> Any:
+    """One field's value as ``printer`` shows it (blank for a zero ``blank_zero``, keyed for the JSON)."""
+    if meta.blank_zero and printer.kind != "json" and _zero(value):
+        return ""
+    if meta.keyed is not None and printer.kind == "json" and value is not None:
+        return {str(getattr(item, meta.keyed)): present(item, printer, kind=kind) for item in value}
+    return present(value, printer, kind=kind)
 
 
 def _last(out: dict[str, Any], cls: type) -> dict[str, Any]:

@@ -1,13 +1,15 @@
-"""Reports from a :class:`~lagsolve.mechanics.derivation.Derivation`: projections of its sections.
+"""Reports from a :class:`~lagsolve.mechanics.derivation.Derivation`: the sections, presented.
 
-:func:`lagsolve.render.sections.build` walks the derivation once; each output here prints those records:
-:func:`sections_context` (:func:`context`) gives the templates plain strings (LaTeX or MathML, text,
-JSON syntax), which the Jinja2 templates of each format in :mod:`lagsolve.render.formats` lay out as a
-worked solution; :func:`sections_json` (:func:`result_dict`, :func:`result_json`) is the contract of the
-format's section 2; :func:`sections_summary` (:func:`summary`) is the short text shown in a terminal.
-Nothing here simplifies: every expression arrives in display form.
+:func:`lagsolve.render.sections.build` walks the derivation once; each output here is
+:func:`~lagsolve.render.model.present` of those records with one printer: :func:`sections_context`
+(:func:`context`) gives the templates plain strings (LaTeX or MathML), which the Jinja2 templates of each
+format in :mod:`lagsolve.render.formats` lay out as a worked solution (the Markdown and LaTeX pages include
+one partial per section, :func:`page_parts`); :func:`sections_json` (:func:`result_dict`,
+:func:`result_json`) is the contract of the format's section 2; :func:`sections_summary` (:func:`summary`)
+is the short text shown in a terminal, from the partials of ``templates/text/``. The analysis and
+Hamiltonian sections still have their own projections, called in one marked place. Nothing here
+simplifies: every expression arrives in display form.
 """
-
 from __future__ import annotations
 
 import base64
