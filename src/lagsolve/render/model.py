@@ -243,7 +243,7 @@ def _kind(hint: Any) -> str:
     return next((k for k in map(_kind, typing.get_args(hint)) if k == "rows"), "expression")
 
 
-def json_schema(cls: type) -> dict[str, Any]:
+def json_schema(cls: type, *, root: bool = False) -> dict[str, Any]:
     """The JSON Schema (draft 2020-12) of what :func:`present` writes for a record of class ``cls`` with the JSON
     printer: an object with the fields' JSON keys, closed; a key is required unless its field is ``optional``
     (then its value is never null: a None is left out). A record written as its one inline plain field has that
