@@ -1,10 +1,7 @@
 """Complexity is removed by splitting work into named steps, not hidden by packing it (issue 30).
 
 No function has a cyclomatic complexity over 25 by radon's count (ruff's count, capped at 25 too, misses
-conditions packed into one statement), and none is over 80 lines. The functions named in ``LATER`` are not
-split yet: a later step of issue 30 cleans them, and each leaves the list when it is split. The modules in
-``REDESIGNED`` are being rebuilt as the one presentation model (issue 30 items 1-2: the sections, their
-projections and templates).
+conditions packed into one statement), and none is over 80 lines. There are no exemptions.
 """
 
 from __future__ import annotations
@@ -18,21 +15,12 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "lagsolve"
 MAX_COMPLEXITY = 25
 MAX_LINES = 80
 
-#: modules left to the redesign of the presentation (issue 30 items 1-2)
-REDESIGNED = (
-    "render/sections/", "render/report.py",
-)
-
-#: functions over a limit today, to be split by a later step of issue 30 ("module.py::function")
-LATER: set[str] = set()
 
 
 def _modules() -> list[tuple[str, Path]]:
     out = []
     for path in sorted(SRC.rglob("*.py")):
-        name = path.relative_to(SRC).as_posix()
-        if not name.startswith(REDESIGNED):
-            out.append((name, path))
+        out.append((path.relative_to(SRC).as_posix(), path))
     return out
 
 
@@ -77,15 +65,9 @@ def _over_the_limits() -> dict[str, str]:
 
 def test_no_function_over_the_limits():
     pytest.importorskip("radon", reason="radon counts the complexity (pip install -e '.[dev]')")
-    over = {key: why for key, why in _over_the_limits().items() if key not in LATER}
+    over = _over_the_limits()
     assert over == {}, (f"functions over {MAX_COMPLEXITY} (radon) or {MAX_LINES} lines: split them into named "
                         f"steps: {over}")
-
-
-def test_the_list_of_functions_to_split_later_is_current():
-    """A function split below the limits leaves ``LATER`` (and a name there still exists)."""
-    pytest.importorskip("radon", reason="radon counts the complexity (pip install -e '.[dev]')")
-    assert sorted(LATER - set(_over_the_limits())) == []
 
 
 def test_the_counts_see_a_packed_condition():

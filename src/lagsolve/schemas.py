@@ -175,114 +175,20 @@ def _running() -> dict[str, Any]:
 
 
 def output_schema() -> dict[str, Any]:
-    """The schema of a JSON result (``lagsolve derive --format json``)."""
-    text = {"type": "string"}
-    texts = {"type": "array", "items": text}
-    by_name = _by_name(text)
-    nullable_by_name = {"anyOf": [{"type": "null"}, by_name]}
-    force = {
-        "type": "object",
-        "properties": {
-            "vector": texts,
-            "magnitude": {"type": ["string", "null"]},
-            "particles": _by_name(_closed({"vector": texts, "magnitude": text}, ("vector", "magnitude"))),
-            "generalized": {**by_name, "description": "the generalized forces of constraint λ·a, when no "
-                                                      "physical force is known"},
-            "note": text,
-        },
-        "required": ["magnitude"],
-        "additionalProperties": False,
-    }
-    equilibrium = {"type": "object", "properties": {"value": text, "stable": {"type": ["boolean", "null"]},
-                                                    "frequency": {"type": ["string", "null"]}},
-                   "required": ["value"]}
-    properties = {
-        "format_version": {"const": 1},
-        "name": text,
-        "coordinates": texts,
-        "parameters": texts,
-        "kinetic": text,
-        "potential": text,
-        "lagrangian": text,
-        "constraints": _by_name(_closed({
-            "kind": {"enum": ["holonomic", "nonholonomic"]}, "expression": text, "coefficients": by_name,
-            "offset": text, "unilateral": {"type": "boolean"}}, ("kind", "expression", "coefficients", "offset"))),
-        "equations": texts,
-        "mass_matrix": {"type": "array", "items": texts},
-        "forcing": texts,
-        "accelerations": nullable_by_name,
-        "multipliers": nullable_by_name,
-        "constraint_forces": {"anyOf": [{"type": "null"}, _by_name(force)]},
-        "friction": _by_name({"type": "object", "properties": {
-            "normal_force": text, "force": texts, "generalized": by_name, "valid_while": text, "case": text,
-            "normal_force_valid_while": {"type": ["string", "null"]},
-            "normal_force_equation": {"type": ["string", "null"]},
-            "on": text, "against": {"type": ["string", "null"]},
-            "point": {"anyOf": [{"type": "null"}, texts]},
-            "sliding_rate": {"type": ["string", "null"]},
-            "sticking": {"anyOf": [{"type": "null"}, {"type": "object", "properties": {
-                "force": text, "normal_force": text, "least_static_coefficient": {"type": ["string", "null"]}},
-                "required": ["force", "normal_force"]}]},
-            "tangent": {"anyOf": [{"type": "null"}, texts]},
-            "members": {"type": "object", "additionalProperties": {"type": "object", "properties": {
-                "normal": texts, "friction": texts, "total": texts, "magnitude": text},
-                "required": ["normal", "friction", "total", "magnitude"]}}}, "required": ["normal_force"]}),
-        "reduced": {"anyOf": [{"type": "null"}, {"type": "object", "properties": {
-            "independent": texts, "accelerations": by_name}, "required": ["independent", "accelerations"]}]},
-        "conserved": {"anyOf": [{"type": "null"}, by_name]},
-        "effective_potential": {"anyOf": [{"type": "null"}, {"type": "object", "properties": {
-            "coordinate": text, "expression": text, "equilibria": {"type": "array", "items": equilibrium}},
-            "required": ["coordinate", "expression"]}]},
-        "analysis": _analysis_schema(),
-        "hamiltonian": _hamiltonian_schema(),
-        "notes": {"type": "array", "items": _closed({"stage": text, "kind": text, "reason": text},
-                                                    ("stage", "kind", "reason"))},
-        "units": _units_schema(),
-    }
+    """The schema of a JSON result (``lagsolve derive --format json``), generated from the records the JSON is
+    written from (:class:`lagsolve.render.sections.Sections`: the core's keys, ``analysis``, ``hamiltonian``,
+    ``notes`` and ``units``), so that it cannot drift from the output."""
+    from lagsolve.render.model import json_schema
+    from lagsolve.render.sections import Sections
+
+    generated = json_schema(Sections)
     return {
         "$schema": DRAFT,
         "$id": "https://lagsolve.invalid/schema/result-v1.json",
         "title": "lagsolve result (format v1)",
-        "type": "object",
-        "required": ["format_version", "name", "coordinates", "kinetic", "potential", "lagrangian", "equations",
-                     "accelerations", "multipliers", "constraint_forces", "reduced", "conserved",
-                     "effective_potential"],
-        "properties": properties,
-        "additionalProperties": False,
+        **generated,
         "$defs": {"name": _NAME},
     }
-
-
-def _analysis_schema() -> dict[str, Any]:
-    """``analysis``: null when the derivation carries no analysis; generated from the record the JSON is written
-    from (:class:`lagsolve.render.sections.analysis.AnalysisSection`)."""
-    from lagsolve.render.model import json_schema
-    from lagsolve.render.sections.analysis import AnalysisSection
-
-    return {"anyOf": [{"type": "null"}, json_schema(AnalysisSection)],
-            "description": "classification, reduction, reasons, equilibria (docs/format.md, Output)"}
-
-
-def _units_schema() -> dict[str, Any]:
-    """``units``: present only when the problem declares units (null: a unit that cannot be known); generated from
-    the record the JSON is written from (:class:`lagsolve.render.sections.units.UnitsSection`)."""
-    from lagsolve.render.model import json_schema
-    from lagsolve.render.sections.units import UnitsSection
-
-    return {**json_schema(UnitsSection),
-            "description": "the unit of each result (docs/format.md, Units); a multiplier's unit is the generalized "
-                           "force's over its constraint's coefficient, so it depends on how the constraint is written "
-                           "('constraint' is the unit of its expression)"}
-
-
-def _hamiltonian_schema() -> dict[str, Any]:
-    """``hamiltonian``: the formulation, ``{not_applicable: reason}``, or null (stage not finished, or no analysis);
-    generated from the records the JSON is written from
-    (:data:`lagsolve.render.sections.hamiltonian.HamiltonianPart`)."""
-    from lagsolve.render.model import json_schema
-    from lagsolve.render.sections.hamiltonian import HamiltonianPart
-
-    return {**json_schema(HamiltonianPart), "description": "Hamiltonian mechanics (docs/format.md, Output)"}
 
 
 def grades_schema() -> dict[str, Any]:

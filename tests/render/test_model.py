@@ -9,19 +9,19 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar, Literal
 
 import pytest
 import sympy
 
 from lagsolve.render.model import Expr, JsonPrinter, NotationPrinter, Rows, json_schema, present, records, shown
 from lagsolve.render.notation import Notation
-from lagsolve.render.sections.analysis import AnalysisSection
-from lagsolve.render.sections.hamiltonian import HamiltonianSection, NotApplicable, NotDerived
-from lagsolve.render.sections.units import UnitsSection
+from lagsolve.render.sections import Sections
+from lagsolve.render.sections.hamiltonian import NotApplicable, NotDerived
 
-#: the section records migrated to the presentation model (each one's whole tree of records is checked)
-MIGRATED = [UnitsSection, HamiltonianSection, NotApplicable, NotDerived, AnalysisSection]
+#: the section records (each one's whole tree of records is checked): every section, through Sections, and the
+#: records of a Hamiltonian section that is not a formulation (a union's members are not in the tree of types)
+MIGRATED = [Sections, NotApplicable, NotDerived]
 
 jsonschema = pytest.importorskip("jsonschema")
 
@@ -164,3 +164,55 @@ def test_keyed_values_absent_parts_and_optional_inline_records() -> None:
     for value in (_Parts(part, ""), _Parts(changed, ""), _Parts(None, "why")):
         assert list(validator.iter_errors(present(value, JsonPrinter()))) == []
     assert list(validator.iter_errors({"part": {"note": 1}}))
+
+
+@dataclass(frozen=True)
+class _Result:
+    name: str = shown(json=None, terminal=True)
+    value: Expr = shown(inline=True, terminal=True)
+
+
+@dataclass(frozen=True)
+class _Contract:
+    JSON_LAST: ClassVar[tuple[str, ...]] = ("late", "version")
+
+    version: Literal[1] = shown()
+    late: str = shown()
+    results: tuple[_Result, ...] | None = shown(keyed="name")
+    names: tuple[_Result, ...] = shown()
+    extra: _Inner | None = shown(optional=True)
+
+
+def test_a_record_written_as_its_inline_plain_field() -> None:
+    """A record whose one JSON field is inline and plain is that value in the JSON (keyed: ``name: value``; None
+    stays null); the templates still get its fields; ``JSON_LAST`` keys come last, in their order."""
+    x = sympy.Symbol("x")
+    record = _Contract(1, "l", (_Result("a", x), _Result("b", 2 * x)), (_Result("c", x),), None)
+    data = present(record, JsonPrinter())
+    assert data == {"results": {"a": "x", "b": "2*x"}, "names": ["x"], "late": "l", "version": 1}
+    assert list(data) == ["results", "names", "late", "version"]
+    assert present(dataclasses.replace(record, results=None), JsonPrinter())["results"] is None
+    assert present(record, NotationPrinter("latex", Notation(["x"])))["results"] == [
+        {"name": "a", "value": "x"}, {"name": "b", "value": "2 x"}]
+    schema = json_schema(_Contract)
+    assert list(schema["properties"]) == ["results", "names", "extra", "late", "version"]
+    assert schema["properties"]["version"] == {"const": 1}
+    assert schema["properties"]["results"] == {"anyOf": [
+        {"type": "object", "additionalProperties": {"type": "string"}}, {"type": "null"}]}
+    assert schema["properties"]["extra"]["type"] == "object"  # optional: a None is left out, never null
+    validator = jsonschema.Draft202012Validator(schema)
+    assert list(validator.iter_errors(data)) == []
+
+
+def test_an_inline_plain_field_must_be_alone() -> None:
+    """An inline plain field beside other JSON fields has no JSON shape: an error, not a silent loss."""
+
+    @dataclass(frozen=True)
+    class Two:
+        name: str = shown(inline=True)
+        other: str = shown()
+
+    with pytest.raises(TypeError, match="one JSON field"):
+        present(Two("a", "b"), JsonPrinter())
+    with pytest.raises(TypeError, match="one JSON field"):
+        json_schema(Two)

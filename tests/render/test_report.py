@@ -108,7 +108,7 @@ def test_context_is_plain_data(bead: Derivation) -> None:
 def test_custom_templates_override(bead: Derivation, tmp_path: Path) -> None:
     """A --templates folder is searched before the packaged templates."""
     (tmp_path / "markdown").mkdir()
-    (tmp_path / "markdown" / "report.md.j2").write_text("custom {{ name }}\n")
+    (tmp_path / "markdown" / "report.md.j2").write_text("custom {{ core.name }}\n")
     assert render(bead, "md", tmp_path) == "custom Bead on a wire\n"
 
 
@@ -126,7 +126,7 @@ def test_missing_template_lists_searched_paths(bead: Derivation, tmp_path: Path,
     "{{ cycler.__init__.__globals__.os.system('touch MARK') }}",
     "{{ ''.__class__.__mro__[1].__subclasses__() }}",
     "{{ self._TemplateReference__context.cycler.__init__.__globals__.os.popen('touch MARK').read() }}",
-    "{% set x = coordinates.append(1) %}{{ x }}",
+    "{% set x = core.coordinates.append(1) %}{{ x }}",
 ], ids=["globals", "subclasses", "context", "mutation"])
 def test_user_templates_cannot_reach_python(bead: Derivation, tmp_path: Path, payload: str) -> None:
     """A --templates folder (a pull request's, in CI) is rendered in Jinja2's sandbox: a template that reaches

@@ -10,13 +10,16 @@ import pytest
 import sympy
 
 from lagsolve.mechanics.derivation import Derivation, core
+from lagsolve.render.model import JsonPrinter, metadata, present
 from lagsolve.render.notation import Notation, to_json
 from lagsolve.render.report import (
+    page_parts,
     render_sections,
     result_dict,
     sections_context,
     sections_json,
     sections_summary,
+    template_dirs,
 )
 from lagsolve.render.sections import Sections, build
 from lagsolve.render.sections.analysis import Agreement
@@ -59,14 +62,15 @@ def test_core_sections_hold_exactly_the_derivations_expressions(wedge: Derivatio
     assert (s.kinetic, s.potential, s.lagrangian) == (wedge.kinetic, wedge.potential, wedge.lagrangian)
     assert [c.name for c in s.constraints] == [c.name for c in wedge.constraints]
     assert [c.expression for c in s.constraints] == [c.expression for c in wedge.constraints]
-    assert [list(c.coefficients) for c in s.constraints] == [list(c.coefficients) for c in wedge.constraints]
+    assert [[a.value for a in c.coefficients] for c in s.constraints] == [
+        list(c.coefficients) for c in wedge.constraints]
     assert [(e.lhs, e.rhs) for e in s.equations] == list(wedge.equation_sides)
     assert wedge.accelerations is not None and s.accelerations is not None
     assert [(a.name, a.value) for a in s.accelerations] == list(wedge.accelerations.items())
     assert wedge.multipliers is not None and s.multipliers is not None
     assert [(m.name, m.value) for m in s.multipliers] == list(wedge.multipliers.items())
     assert [m.symbol for m in s.multipliers] == list(wedge.multiplier_symbols)
-    assert s.matrix.mass == wedge.mass_matrix and s.matrix.forcing == wedge.forcing
+    assert s.matrix.mass == wedge.mass_matrix and list(s.matrix.forcing) == list(wedge.forcing)
     assert len(s.matrix.rows) == len(wedge.problem.coordinates)
 
 
@@ -86,14 +90,42 @@ def test_every_projection_lists_the_results_in_the_same_order(wedge: Derivation)
     context, data = sections_context(sections), sections_json(sections)
     lines = sections_summary(sections).splitlines()
     text = _text(wedge)
-    for key, rows, name in (("accelerations", s.accelerations, "coordinate"), ("multipliers", s.multipliers, "name")):
-        assert [r[name] for r in context[key]] == [r.name for r in rows]
+    for key, rows in (("accelerations", s.accelerations), ("multipliers", s.multipliers)):
+        assert [r["name"] for r in context["core"][key]] == [r.name for r in rows]
         assert list(data[key]) == [r.name for r in rows]
         assert list(data[key].values()) == [to_json(r.value) for r in rows]
         assert _in_order(lines, [f"    {text(r.symbol)} = {text(r.value)}" for r in rows])
-    assert list(data["constraints"]) == [c.name for c in s.constraints] == [c["name"] for c in context["constraints"]]
+    assert list(data["constraints"]) == [c.name for c in s.constraints] == [
+        c["name"] for c in context["core"]["constraints"]]
     assert s.forces is not None
-    assert list(data["constraint_forces"]) == [f.name for f in s.forces] == [f["name"] for f in context["forces"]]
+    assert list(data["constraint_forces"]) == [f.name for f in s.forces] == [
+        f["name"] for f in context["core"]["forces"]]
+
+
+def test_the_core_writes_the_contracts_keys_in_order(bead: Derivation) -> None:
+    """The core's record gives the JSON's top-level keys of format section 2 in the contract's order, and the
+    sections put analysis, hamiltonian, notes and units after them."""
+    core_keys = ["format_version", "name", "coordinates", "parameters", "kinetic", "potential", "lagrangian",
+                 "constraints", "equations", "mass_matrix", "forcing", "accelerations", "multipliers",
+                 "constraint_forces", "friction", "reduced", "conserved", "effective_potential", "notes"]
+    sections = build(bead)
+    assert list(present(sections.core, JsonPrinter())) == core_keys
+    assert list(sections_json(sections)) == [*core_keys[:-1], "analysis", "hamiltonian", "notes", "units"]
+
+
+def test_pages_include_one_partial_per_section_in_field_order(bead: Derivation, wedge: Derivation) -> None:
+    """Markdown and LaTeX pages include the sections' partials in the order of the fields of Sections (no units
+    partial without units), each figure after its section; every partial exists in each template folder."""
+    assert page_parts(build(bead), ".md") == ["_core.md.j2", "_units.md.j2", "_analysis.md.j2", "_potential.md.j2",
+                                              "_hamiltonian.md.j2", "_simulation.md.j2"]
+    no_units = build(wedge)
+    assert no_units.units is None
+    assert page_parts(no_units, ".tex") == ["_core.tex.j2", "_analysis.tex.j2", "_potential.tex.j2",
+                                            "_hamiltonian.tex.j2", "_simulation.tex.j2"]
+    partials = [meta.partial for f in dataclasses.fields(Sections) if (meta := metadata(f, Sections)).partial]
+    for kind, extension in (("markdown", ".md"), ("latex", ".tex"), ("html", ".html")):
+        for partial in partials:
+            assert any((d / f"{partial}{extension}.j2").is_file() for d in template_dirs(kind)), (kind, partial)
 
 
 def test_the_json_of_the_sections_is_the_result_contract(bead: Derivation) -> None:
@@ -108,7 +140,7 @@ def test_core_only_derivation_projects_the_matrix_form(wedge: Derivation) -> Non
     stopped = build(core(wedge.form, "stopped for the test"))
     assert stopped.core.accelerations is None and stopped.analysis is None
     assert sections_json(stopped)["accelerations"] is None
-    assert sections_context(stopped)["accelerations"] is None
+    assert sections_context(stopped)["core"]["accelerations"] is None
     text = _text(wedge)
     rows = [f"    ({i + 1}) {text(r.lhs)} = {text(r.forcing)} + Σ λ a" for i, r in enumerate(stopped.core.matrix.rows)]
     assert len(rows) == len(wedge.problem.coordinates)

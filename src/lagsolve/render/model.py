@@ -14,6 +14,11 @@ Types: :data:`Expr` is an expression (printed by the printer; a string in the JS
 expression in the templates, a list of rows in the JSON). A value with a ``present(printer)`` method prints
 itself (a Pfaffian form, a mode shape written as a row), which is how a format-specific layout stays out of
 the templates and the walker.
+
+Two shapes of the JSON come from the declarations too: a record whose one JSON field is ``inline`` and holds a
+plain value is written as that value (a coordinate as its name; with ``keyed``, a list of results as an object
+name → value), and a record class may set ``JSON_LAST`` (a tuple of JSON keys) for a contract whose key order
+predates the fields' display order: those keys are written last, in that order.
 """
 
 from __future__ import annotations
@@ -171,10 +176,11 @@ def present(value: Any, printer: Printer, *, kind: str = "expression") -> Any:
     return printer.expr(value)
 
 
-def _record(record: Any, printer: Printer) -> dict[str, Any] | None:
+def _record(record: Any, printer: Printer) -> Any:
     if printer.kind == "json" and not _in_json(type(record)):
         return None
     out: dict[str, Any] = {}
+    whole: list[Any] = []  # the value of an inline plain field: the record's whole JSON
     hints = _hints(type(record))
     for field in dataclasses.fields(record):
         meta = metadata(field, type(record))
@@ -184,20 +190,39 @@ def _record(record: Any, printer: Printer) -> dict[str, Any] | None:
         value = getattr(record, field.name)
         if printer.kind == "json" and meta.optional and _empty(value):
             continue
-        kind = _kind(hints.get(field.name))
-        if meta.blank_zero and printer.kind != "json" and _zero(value):
-            shown_value: Any = ""
-        elif printer.kind == "json" and value is None and meta.absent is not None:
-            shown_value = {"note": present(getattr(record, meta.absent), printer)}
-        elif meta.keyed is not None and printer.kind == "json" and value is not None:
-            shown_value = _keyed(value, meta, printer, kind)
+        hint = hints.get(field.name)
+        if printer.kind == "json" and value is None and meta.absent is not None:
+            shown_value: Any = {"note": present(getattr(record, meta.absent), printer)}
         else:
-            shown_value = present(value, printer, kind=kind)
-        if meta.inline and printer.kind == "json":
+            shown_value = _field_value(value, meta, _kind(hint), printer)
+        if meta.inline and printer.kind == "json" and not _is_record(hint):
+            whole.append(shown_value)
+        elif meta.inline and printer.kind == "json":
             out.update(shown_value or {})
         else:
             out[key] = shown_value
-    return out
+    if whole:
+        if out or len(whole) > 1:
+            raise TypeError(f"{type(record).__qualname__}: an inline plain field must be its record's one JSON field")
+        return whole[0]
+    return _last(out, type(record)) if printer.kind == "json" else out
+
+
+def _field_value(value: Any, meta: Shown, kind: str, printer: Printer) -> Any:
+    """One field's value as ``printer`` shows it (blank for a zero ``blank_zero``, keyed for the JSON)."""
+    if meta.blank_zero and printer.kind != "json" and _zero(value):
+        return ""
+    if meta.keyed is not None and printer.kind == "json" and value is not None:
+        return _keyed(value, meta, printer, kind)
+    return present(value, printer, kind=kind)
+
+
+def _last(out: dict[str, Any], cls: type) -> dict[str, Any]:
+    """``out`` with the keys of ``cls.JSON_LAST`` moved to the end, in that order."""
+    last = [key for key in getattr(cls, "JSON_LAST", ()) if key in out]
+    if not last:
+        return out
+    return {**{k: v for k, v in out.items() if k not in last}, **{k: out[k] for k in last}}
 
 
 def _in_json(cls: type) -> bool:
@@ -251,8 +276,9 @@ def _kind(hint: Any) -> str:
 def json_schema(cls: Any, *, root: bool = False) -> dict[str, Any]:
     """The JSON Schema (draft 2020-12) of what :func:`present` writes for a record of class ``cls`` with the JSON
     printer: an object with the fields' JSON keys, closed; a key is required unless its field is ``optional``
-    (null for a record none of whose fields is in the JSON). ``cls`` may also be a type such as a union of
-    records (``A | B | None``: any of their schemas)."""
+    (then its value is never null: a None is left out); null for a record none of whose fields is in the JSON. A
+    record written as its one inline plain field has that field's schema. ``cls`` may also be a type such as a
+    union of records (``A | B | None``: any of their schemas)."""
     if not (isinstance(cls, type) and dataclasses.is_dataclass(cls)):
         return _schema_of(cls)
     if not _in_json(cls):
@@ -264,24 +290,40 @@ def json_schema(cls: Any, *, root: bool = False) -> dict[str, Any]:
         meta = metadata(field, cls)
         if meta.json is None:
             continue
-        hint = hints[field.name]
+        hint = _without_none(hints[field.name]) if meta.optional else hints[field.name]
+        if meta.inline and not _is_record(hint):
+            if sum(metadata(f, cls).json is not None for f in dataclasses.fields(cls)) > 1:
+                raise TypeError(f"{cls.__qualname__}: an inline plain field must be its record's one JSON field")
+            return _described(_schema_of(hint, meta), meta)
         if meta.inline:
             inner = json_schema(_record_class(hint))
             properties.update(inner.get("properties", {}))
             required += [] if _nullable(hint) else inner.get("required", [])
             continue
         key = meta.json or field.name
-        properties[key] = _schema_of(hint, meta) if meta.absent is None else {"anyOf": [
+        properties[key] = _described(_schema_of(hint, meta) if meta.absent is None else {"anyOf": [
             _schema_of(_not_none(hint), meta), {"type": "object", "properties": {"note": {"type": "string"}},
-                                                "required": ["note"], "additionalProperties": False}]}
-        if meta.doc or meta.unit:
-            properties[key] = {**properties[key], "description": _description(meta)}
+                                                "required": ["note"], "additionalProperties": False}]}, meta)
         if not meta.optional:
             required.append(key)
+    last = [key for key in getattr(cls, "JSON_LAST", ()) if key in properties]
+    properties = {**{k: v for k, v in properties.items() if k not in last}, **{k: properties[k] for k in last}}
     out: dict[str, Any] = {"type": "object", "properties": properties, "additionalProperties": False}
     if required:
         out["required"] = required
     return out
+
+
+def _without_none(hint: Any) -> Any:
+    """``hint`` without None in its union (an optional field's None is never written)."""
+    if typing.get_origin(hint) not in (types.UnionType, typing.Union):
+        return hint
+    args = [a for a in typing.get_args(hint) if a is not type(None)]
+    return args[0] if len(args) == 1 else typing.Union[tuple(args)]  # noqa: UP007 - built from a tuple
+
+
+def _described(schema: dict[str, Any], meta: Shown) -> dict[str, Any]:
+    return {**schema, "description": _description(meta)} if meta.doc or meta.unit else schema
 
 
 def _description(meta: Shown) -> str:
@@ -298,6 +340,12 @@ def _not_none(hint: Any) -> Any:
     """``X`` of a hint ``X | None`` (the hint itself otherwise)."""
     args = [a for a in typing.get_args(hint) if a is not type(None)]
     return args[0] if _nullable(hint) and len(args) == 1 else hint
+
+
+def _is_record(hint: Any) -> bool:
+    """Whether ``hint`` is a record class (or a union with one)."""
+    return any(isinstance(c, type) and dataclasses.is_dataclass(c) and not issubclass(c, SelfPresenting)
+               for c in (hint, *typing.get_args(hint)))
 
 
 def _record_class(hint: Any) -> type:
@@ -323,7 +371,7 @@ def _schema_of(hint: Any, meta: Shown | None = None) -> dict[str, Any]:
             options += [] if option in options else [option]
         return options[0] if len(options) == 1 else {"anyOf": options}
     if origin is Literal:
-        return {"enum": list(args)}
+        return {"const": args[0]} if len(args) == 1 else {"enum": list(args)}
     if meta is not None and meta.keyed is not None and (origin in (tuple, list) or dataclasses.is_dataclass(hint)):
         return _keyed_schema(_record_class(args[0] if args else hint), meta)
     if origin in (tuple, list):

@@ -1,17 +1,21 @@
-"""Reports from a :class:`~lagsolve.mechanics.derivation.Derivation`: projections of its sections.
+"""Reports from a :class:`~lagsolve.mechanics.derivation.Derivation`: the sections, presented.
 
-:func:`lagsolve.render.sections.build` walks the derivation once; each output here prints those records:
-:func:`sections_context` (:func:`context`) gives the templates plain strings (LaTeX or MathML, text,
-JSON syntax), which the Jinja2 templates of each format in :mod:`lagsolve.render.formats` lay out as a
-worked solution; :func:`sections_json` (:func:`result_dict`, :func:`result_json`) is the contract of the
-format's section 2; :func:`sections_summary` (:func:`summary`) is the short text shown in a terminal.
-Nothing here simplifies: every expression arrives in display form.
+:func:`lagsolve.render.sections.build` walks the derivation once; each output here is
+:func:`~lagsolve.render.model.present` of those records with one printer: :func:`sections_context`
+(:func:`context`) gives the templates plain strings (LaTeX or MathML), which the Jinja2 templates of each
+format in :mod:`lagsolve.render.formats` lay out as a worked solution (the Markdown and LaTeX pages include
+one partial per section, :func:`page_parts`); :func:`sections_json` (:func:`result_dict`,
+:func:`result_json`) is the contract of the format's section 2; :func:`sections_summary` (:func:`summary`)
+is the short text shown in a terminal, from the partials of ``templates/text/``. The analysis and
+Hamiltonian sections still have their own projections, called in one marked place. Nothing here
+simplifies: every expression arrives in display form.
 """
-
 from __future__ import annotations
 
 import base64
+import dataclasses
 import json
+import typing
 from collections.abc import Callable
 from importlib import resources
 from pathlib import Path
@@ -22,18 +26,11 @@ from jinja2.sandbox import ImmutableSandboxedEnvironment
 
 from lagsolve.errors import RenderError
 from lagsolve.mechanics.derivation import Derivation
-from lagsolve.render.analysis_report import contract_json
 from lagsolve.render.formats import FORMATS
 from lagsolve.render.mathml import typeset
-from lagsolve.render.model import JsonPrinter, NotationPrinter, present
-from lagsolve.render.notation import FILTERS, Notation, symbol_table, to_json
+from lagsolve.render.model import JsonPrinter, NotationPrinter, metadata, present
+from lagsolve.render.notation import FILTERS, Notation, symbol_table
 from lagsolve.render.sections import Sections, build
-from lagsolve.render.sections.core import ConstraintForce
-
-FORMAT_VERSION = 1
-#: above this many coordinates the matrix form is written one equation per row instead of as matrices
-LARGE = 3
-
 
 # -- context ------------------------------------------------------------------------------------
 
@@ -45,111 +42,28 @@ def context(derivation: Derivation, math: str = "latex") -> dict[str, Any]:
 
 
 def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
-    """:func:`context` of sections already built (the templates' projection)."""
-    core = sections.core
-    note = Notation([c.name for c in core.coordinates])
-    tex, text = (note.mathml if math == "mathml" else note.latex), note.text
+    """:func:`context` of sections already built: the sections :func:`present`-ed with the format's printer
+    (``core``, ``units``: each record's fields by name), and what only the page needs: the problem's
+    ``symbols`` (for the prose of notes and descriptions) and ``math``."""
+    note = Notation([c.name for c in sections.core.coordinates])
+    return {**present(sections, NotationPrinter(math, note)),
+            "symbols": symbol_table(dict(sections.core.symbols), note), "math": math}
 
-    def both(expr: Any) -> dict[str, str]:
-        return {"tex": tex(expr), "text": text(expr), "json": to_json(expr)}
 
-    def by_coordinate(values: Any) -> list[dict[str, Any]]:
-        return [{"coordinate": tex(q.symbol), "value": tex(v)} for q, v in values if v != 0]
+#: the figures a page shows, which are not sections (they come with the call): each one's partial and the
+#: section partial it follows (None: the end of the page)
+FIGURES: tuple[tuple[str, str | None], ...] = (("_potential", "_analysis"), ("_simulation", None))
 
-    coords = [{"name": c.name, "tex": tex(c.symbol), "velocity": tex(c.velocity),
-               "acceleration": tex(c.acceleration), "description": c.description} for c in core.coordinates]
-    constraints = [{
-        "name": c.name, "kind": c.kind, "multiplier": tex(c.multiplier), "expression": tex(c.expression),
-        "velocity_form": tex(c.velocity_form),
-        "coefficients": [{"coordinate": tex(q.symbol), "value": tex(a)} for q, a in zip(core.coordinates,
-                                                                                        c.coefficients, strict=True)],
-        "offset": tex(c.offset), "acceleration_rhs": tex(c.acceleration_rhs), "on": list(c.on),
-        "unilateral": c.unilateral,
-    } for c in core.constraints]
-    equations = [{
-        "coordinate": tex(e.coordinate.symbol), "velocity": tex(e.coordinate.velocity), "momentum": tex(e.momentum),
-        "rate": tex(e.rate), "gradient": tex(e.gradient), "force": tex(e.force) if e.force != 0 else "",
-        "lhs": tex(e.lhs), "rhs": tex(e.rhs),
-    } for e in core.equations]
-    substitutions = [{"symbol": tex(s.symbol), "value": tex(s.value), "source": s.source} for s in core.substitutions]
-    solved = {key: None if rows is None else [
-        {"name" if key == "multipliers" else "coordinate": r.name, "symbol": tex(r.symbol),
-         "symbol_text": text(r.symbol), **both(r.value)} for r in rows]
-        for key, rows in (("accelerations", core.accelerations), ("multipliers", core.multipliers))}
-    forces = None if core.forces is None else [{
-        "name": f.name,
-        "vector": [tex(v) for v in f.vector] if f.vector is not None else None,
-        "magnitude": both(f.magnitude) if f.magnitude is not None else None,
-        "particles": [{"name": p.name, "vector": [tex(v) for v in p.vector], "magnitude": both(p.magnitude)}
-                      for p in f.particles],
-        "note": f.note,
-        "generalized": [{"coordinate": tex(q.symbol), "coordinate_text": q.name, "value": both(v)}
-                        for q, v in f.generalized if v != 0],
-    } for f in core.forces]
-    friction = [
-        {"name": f.name, "particle": f.particle, "against": f.against or "",
-         "point": [tex(c) for c in f.point] if f.point is not None else None,
-         "rate": tex(f.rate) if f.rate is not None else "",
-         "tangent": [tex(c) for c in f.tangent] if f.tangent is not None else None,
-         "coefficient": tex(f.coefficient),
-         "normal": tex(f.normal), "normal_text": text(f.normal), "constraints": list(f.constraints),
-         "force": [tex(v) for v in f.term_force], "generalized": by_coordinate(f.term_generalized),
-         "valid_while": tex(f.valid_while), "normal_force": both(f.normal_shown),
-         "case": f.case, "condition": tex(f.condition) if f.condition is not None else "", "static": tex(f.static),
-         "members": [{"name": m.name, "normal": [tex(v) for v in m.normal], "friction": [tex(v) for v in m.friction],
-                      "total": [tex(v) for v in m.total], "magnitude": both(m.magnitude)} for m in f.members],
-         "held": None if f.held is None else {"force": tex(f.held[0]), "normal": tex(f.held[1]),
-                                               "ratio": tex(f.held[2]) if f.held[2] is not None else ""}}
-        for f in core.friction
-    ]
-    matrix = core.matrix
-    return {
-        "name": core.name,
-        "description": core.description,
-        "slug": core.slug,
-        "time": tex(core.time),
-        "coordinates": coords,
-        "parameters": [{"name": p.name, "tex": tex(p.symbol), "description": p.description,
-                        "assumption": p.assumption} for p in core.parameters],
-        "functions": [{"name": f.name, "tex": tex(f.symbol), "description": f.description} for f in core.functions],
-        "particles": [{"name": p.name, "mass": tex(p.mass), "position": [tex(r) for r in p.position]}
-                      for p in core.particles],
-        "bodies": [{"name": b.name, "mass": tex(b.mass), "position": [tex(r) for r in b.position],
-                    "inertia": [tex(i) for i in b.inertia], "angular_velocity": [tex(w) for w in b.angular_velocity],
-                    "planar": b.planar} for b in core.bodies],
-        "gravity": [tex(g) for g in core.gravity] if core.gravity is not None else None,
-        "kinetic": tex(core.kinetic),
-        "potential": tex(core.potential),
-        "lagrangian": tex(core.lagrangian),
-        "loads": [{"label": t.label, "values": by_coordinate(zip(core.coordinates, t.generalized, strict=True))}
-                  for t in core.loads],
-        "constraints": constraints,
-        "equations": equations,
-        "substitutions": substitutions,
-        "constrained": [{"coordinate": tex(s.coordinate.symbol), "lhs": tex(s.lhs), "rhs": tex(s.rhs)}
-                        for s in core.constrained] if substitutions else [],
-        "matrices": {
-            "mass": tex(matrix.mass_shown),
-            "forcing": tex(matrix.forcing_shown),
-            "jacobian": tex(matrix.jacobian) if matrix.jacobian is not None else "",
-            "rhs": tex(matrix.rhs_shown) if matrix.rhs_shown is not None else "",
-            "unknowns": tex(matrix.unknowns),
-        },
-        "matrix_equations": [{"coordinate": tex(r.coordinate.symbol), "lhs": tex(r.lhs),
-                              "rhs": tex(r.forcing + r.constraint_part)}
-                             for r in matrix.rows] if len(coords) > LARGE else [],
-        **solved,
-        "unilateral": [{"name": c.name, "multiplier": tex(c.multiplier)} for c in core.constraints if c.unilateral],
-        "forces": forces,
-        "friction": friction,
-        "analysis": present(sections.analysis, NotationPrinter(math, note)),
-        "hamiltonian": present(sections.hamiltonian, NotationPrinter(math, note)),
-        "notes": [n.sentence() for n in core.notes],
-        "symbols": symbol_table(dict(core.symbols), note),
-        "math": math,
-        "stage_notes": {n.stage: n.reason for n in core.notes},
-        "units": present(sections.units, NotationPrinter(math, note)),
-    }
+
+def page_parts(sections: Sections, extension: str) -> list[str]:
+    """The partials a Markdown or LaTeX page includes, in reading order: one per section (the order of the fields
+    of :class:`~lagsolve.render.sections.Sections`; a section that is None has none), each figure's after its
+    section's (:data:`FIGURES`); ``extension`` is the format's (``.md``: ``_core.md.j2`` ...)."""
+    names = [meta.partial for field in dataclasses.fields(sections)
+             if (meta := metadata(field, Sections)).partial is not None and getattr(sections, field.name) is not None]
+    for figure, after in FIGURES:
+        names.insert(names.index(after) + 1 if after in names else len(names), figure)
+    return [f"{name}{extension}.j2" for name in names]
 
 
 # -- templates ----------------------------------------------------------------------------------
@@ -224,8 +138,8 @@ def render_sections(sections: Sections, fmt: str, templates: Path | None = None,
     if spec.figures == "inline":
         simulation, potential = _inlined(simulation, files or {}), _inlined(potential, files or {})
     try:
-        page = template.render(**sections_context(sections, spec.math), simulation=simulation,
-                               potential_plot=potential)
+        page = template.render(**sections_context(sections, spec.math), parts=page_parts(sections, spec.extension),
+                               simulation=simulation, potential_plot=potential)
     except jinja2.TemplateError as exc:
         raise RenderError(f"template {kind}/{name} failed: {exc}") from None
     return typeset(page) if spec.math == "mathml" else page
@@ -268,79 +182,7 @@ def result_dict(derivation: Derivation) -> dict[str, Any]:
 
 def sections_json(sections: Sections) -> dict[str, Any]:
     """:func:`result_dict` of sections already built (the JSON projection)."""
-    core = sections.core
-
-    def by_name(values: Any) -> dict[str, str]:
-        return {q.name: to_json(v) for q, v in values}
-
-    forces: dict[str, Any] | None = None if core.forces is None else {}
-    for f in core.forces or ():
-        entry: dict[str, Any] = {}
-        if f.vector is not None:
-            entry["vector"] = [to_json(v) for v in f.vector]
-        entry["magnitude"] = to_json(f.magnitude) if f.magnitude is not None else None
-        if f.particles:
-            entry["particles"] = {p.name: {"vector": [to_json(v) for v in p.vector], "magnitude": to_json(p.magnitude)}
-                                  for p in f.particles}
-        if f.generalized:
-            entry["generalized"] = by_name(f.generalized)
-        if f.note:
-            entry["note"] = f.note
-        forces[f.name] = entry  # type: ignore[index]
-    return {
-        "format_version": FORMAT_VERSION,
-        "name": core.name,
-        "coordinates": [c.name for c in core.coordinates],
-        "parameters": [p.name for p in core.parameters],
-        "kinetic": to_json(core.kinetic),
-        "potential": to_json(core.potential),
-        "lagrangian": to_json(core.lagrangian),
-        "constraints": {
-            c.name: {
-                "kind": c.kind,
-                "expression": to_json(c.expression),
-                "coefficients": by_name(zip(core.coordinates, c.coefficients, strict=True)),
-                "offset": to_json(c.offset),
-                **({"unilateral": True} if c.unilateral else {}),
-            }
-            for c in core.constraints
-        },
-        "equations": [to_json(e) for e in core.equation_forms],
-        "mass_matrix": [[to_json(e) for e in row] for row in core.matrix.mass.tolist()],
-        "forcing": [to_json(e) for e in core.matrix.forcing],
-        "accelerations": None if core.accelerations is None else {a.name: to_json(a.value) for a in core.accelerations},
-        "multipliers": None if core.multipliers is None else {m.name: to_json(m.value) for m in core.multipliers},
-        "constraint_forces": forces,
-        "friction": {
-            f.name: {
-                "normal_force": to_json(f.normal_force),
-                "force": [to_json(v) for v in f.force],
-                "generalized": by_name(f.generalized),
-                "valid_while": to_json(f.valid_while),
-                "case": f.case,
-                "normal_force_valid_while": to_json(f.condition) if f.condition is not None else None,
-                "normal_force_equation": to_json(f.system) if f.system is not None else None,
-                "on": f.particle,
-                "against": f.against,
-                "point": [to_json(c) for c in f.point] if f.point is not None else None,
-                "sliding_rate": to_json(f.rate) if f.rate is not None else None,
-                "tangent": [to_json(c) for c in f.tangent] if f.tangent is not None else None,
-                "sticking": None if f.held is None else {
-                    "force": to_json(f.held[0]), "normal_force": to_json(f.held[1]),
-                    "least_static_coefficient": to_json(f.held[2]) if f.held[2] is not None else None},
-                "members": {m.name: {"normal": [to_json(v) for v in m.normal],
-                                     "friction": [to_json(v) for v in m.friction],
-                                     "total": [to_json(v) for v in m.total],
-                                     "magnitude": to_json(m.magnitude)} for m in f.members},
-            }
-            for f in core.friction
-        },
-        **contract_json(core.contract),
-        "analysis": present(sections.analysis, JsonPrinter()),
-        "hamiltonian": present(sections.hamiltonian, JsonPrinter()),
-        "notes": [{"stage": n.stage, "kind": n.kind, "reason": n.reason} for n in core.notes],
-        **({"units": present(sections.units, JsonPrinter())} if sections.units is not None else {}),
-    }
+    return typing.cast(dict[str, Any], present(sections, JsonPrinter()))
 
 
 def result_json(derivation: Derivation) -> str:
@@ -362,46 +204,8 @@ def summary(derivation: Derivation) -> str:
 
 
 def sections_summary(sections: Sections) -> str:
-    """:func:`summary` of sections already built (the terminal projection)."""
-    core = sections.core
-    note = Notation([c.name for c in core.coordinates])
-    text = note.text
-    lines = [f"{core.name}"]
-    if core.accelerations is not None:
-        lines.append("  accelerations:")
-        lines += [f"    {text(a.symbol)} = {text(a.value)}" for a in core.accelerations]
-    else:
-        lines.append("  equations of motion in matrix form M q̈ = F + Aᵀλ (the explicit accelerations are not given; "
-                     "see the report):")
-        extra = " + Σ λ a" if core.constraints else ""
-        lines += [f"    ({i + 1}) {text(r.lhs)} = {text(r.forcing)}{extra}" for i, r in enumerate(core.matrix.rows)]
-    if core.multipliers:
-        lines.append("  multipliers:")
-        lines += [f"    {text(m.symbol)} = {text(m.value)}" for m in core.multipliers]
-    if core.forces:
-        lines.append("  forces of constraint (magnitude):")
-        lines += [line for f in core.forces for line in _force_lines(f, text)]
-    for f in core.friction:
-        lines.append(f"  friction {f.name}: normal force {text(f.normal)} = {text(f.normal_shown)}")
-        lines += [f"    |F| on {m.name} (normal force and friction) = {text(m.magnitude)}" for m in f.members]
-        if f.held is not None and f.held[2] is not None:
-            lines.append(f"    sticks while mu_s >= {text(f.held[2])} (holding force {text(f.held[0])})")
-    lines += text_lines("_analysis.txt.j2", {"analysis": present(sections.analysis, NotationPrinter("text", note))})
-    lines += text_lines("_hamiltonian.txt.j2",
-                        {"hamiltonian": present(sections.hamiltonian, NotationPrinter("text", note))})
-    if core.notes:
-        lines.append("  not completed:")
-        lines += [f"    {n.sentence()}" for n in core.notes]
-    return "\n".join(lines) + "\n"
-
-
-def _force_lines(f: ConstraintForce, text: Callable[[Any], str]) -> list[str]:
-    """A force of constraint in the terminal: its magnitude, each particle's, or its generalized forces."""
-    generalized = [(q, v) for q, v in f.generalized if v != 0]
-    if generalized:
-        parts = ", ".join(f"Q_{q.name} = {text(v)}" for q, v in generalized)
-        return [f"    {f.name}: generalized forces of constraint (no point named): {parts}"]
-    if f.magnitude is None and f.particles:
-        return [f"    |F_{f.name}| on {p.name} = {text(p.magnitude)}" for p in f.particles]
-    value = text(f.magnitude) if f.magnitude is not None else "— " + f.note
-    return [f"    |F_{f.name}| = {value}"]
+    """:func:`summary` of sections already built: the terminal partials (``templates/text/``) over the sections
+    :func:`present`-ed with the text printer (the fields marked ``terminal``)."""
+    note = Notation([c.name for c in sections.core.coordinates])
+    data = present(sections, NotationPrinter("text", note))
+    return "\n".join(text_lines("summary.txt.j2", data)) + "\n"
