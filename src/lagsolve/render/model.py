@@ -302,7 +302,7 @@ def json_schema(cls: Any, *, root: bool = False) -> dict[str, Any]:
             continue
         key = meta.json or field.name
         properties[key] = _described(_schema_of(hint, meta) if meta.absent is None else {"anyOf": [
-            _schema_of(_not_none(hint), meta), {"type": "object", "properties": {"note": {"type": "string"}},
+            _schema_of(_without_none(hint), meta), {"type": "object", "properties": {"note": {"type": "string"}},
                                                 "required": ["note"], "additionalProperties": False}]}, meta)
         if not meta.optional:
             required.append(key)
@@ -334,12 +334,6 @@ def _description(meta: Shown) -> str:
 def _nullable(hint: Any) -> bool:
     """Whether ``hint`` admits None (``X | None``)."""
     return type(None) in typing.get_args(hint)
-
-
-def _not_none(hint: Any) -> Any:
-    """``X`` of a hint ``X | None`` (the hint itself otherwise)."""
-    args = [a for a in typing.get_args(hint) if a is not type(None)]
-    return args[0] if _nullable(hint) and len(args) == 1 else hint
 
 
 def _is_record(hint: Any) -> bool:
