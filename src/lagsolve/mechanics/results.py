@@ -2,7 +2,7 @@
 :class:`FrictionResult`) and :class:`Analysis`.
 
 They are data only, built by :func:`lagsolve.mechanics.derivation.derive` and
-:func:`lagsolve.mechanics.analysis.analyse`; keeping them apart from the code that builds them lets
+:func:`lagsolve.mechanics.analysis.analyse.analyse`; keeping them apart from the code that builds them lets
 every stage name the results without importing the stages that run it (no import cycle).
 """
 
@@ -17,22 +17,22 @@ from lagsolve.notebook import shown
 T = TypeVar("T")
 
 if TYPE_CHECKING:
-    from lagsolve.mechanics.conserved import Conservation, MotionSystem
-    from lagsolve.mechanics.constraints import ConstraintTerms
-    from lagsolve.mechanics.contact import ContactCheck
-    from lagsolve.mechanics.elimination import Elimination
-    from lagsolve.mechanics.equilibria import EffectivePotential
-    from lagsolve.mechanics.forces import ForceTerm
-    from lagsolve.mechanics.friction import FrictionTerm
-    from lagsolve.mechanics.integrability import Classification
-    from lagsolve.mechanics.lagrange import LagrangeTerms  # noqa: F401 - named in _Part["..."] below
-    from lagsolve.mechanics.linearize import Linearization
-    from lagsolve.mechanics.matrix_form import MatrixForm
-    from lagsolve.mechanics.minimal import ReducedSystem
-    from lagsolve.mechanics.model import Model  # noqa: F401 - named in _Part["..."] below
+    from lagsolve.mechanics.analysis.conserved import Conservation, MotionSystem
+    from lagsolve.mechanics.analysis.contact import ContactCheck
+    from lagsolve.mechanics.analysis.equilibria import EffectivePotential
+    from lagsolve.mechanics.analysis.integrability import Classification
+    from lagsolve.mechanics.analysis.linearize import Linearization
+    from lagsolve.mechanics.analysis.minimal import ReducedSystem
+    from lagsolve.mechanics.analysis.steady import SteadyMotion
+    from lagsolve.mechanics.equations.constraints import ConstraintTerms
+    from lagsolve.mechanics.equations.elimination import Elimination
+    from lagsolve.mechanics.equations.forces import ForceTerm
+    from lagsolve.mechanics.equations.friction import FrictionTerm
+    from lagsolve.mechanics.equations.lagrange import LagrangeTerms  # noqa: F401 - named in _Part["..."] below
+    from lagsolve.mechanics.equations.matrix_form import MatrixForm
+    from lagsolve.mechanics.equations.model import Model  # noqa: F401 - named in _Part["..."] below
+    from lagsolve.mechanics.solution.sticking import Sticking
     from lagsolve.mechanics.stages import StageNote
-    from lagsolve.mechanics.steady import SteadyMotion
-    from lagsolve.mechanics.sticking import Sticking
     from lagsolve.problem.schema import Problem  # noqa: F401 - named in _Part["..."] below
 
 
@@ -122,7 +122,7 @@ class Solution:
 @dataclass(frozen=True)
 class Contract:
     """The format's section 2 forms of the analysis: ``reduced``, ``conserved``, ``effective_potential``
-    (:func:`lagsolve.mechanics.analysis.contract_forms`; all None without an analysis)."""
+    (:func:`lagsolve.mechanics.analysis.analyse.contract_forms`; all None without an analysis)."""
 
     reduced: dict[str, Any] | None = None
     conserved: dict[str, Any] | None = None
@@ -164,7 +164,7 @@ class Derivation:
     """Everything derived for one problem (immutable; nothing to "compute first"), composed of parts, each built
     before the one constructor call in :func:`lagsolve.mechanics.derivation.derive`:
 
-    - ``form``: the matrix form (:class:`~lagsolve.mechanics.matrix_form.MatrixForm`: the problem, its model,
+    - ``form``: the matrix form (:class:`~lagsolve.mechanics.equations.matrix_form.MatrixForm`: the problem, its model,
       Lagrange's terms, the raw constraints, loads and friction terms), always there;
     - ``elimination``: the dependent variables the constraints give, put into every display form;
     - ``display``: the display forms of the steps (:class:`Display`);
@@ -263,6 +263,6 @@ class Analysis:
     #: per equilibrium of ``effective_potential`` / ``linearization``: the unilateral constraints' forces there
     effective_contact: tuple[tuple[ContactCheck, ...], ...] = ()
     modes_contact: tuple[tuple[ContactCheck, ...], ...] = ()
-    #: the steady motions about the effective potential's coordinate (:mod:`lagsolve.mechanics.steady`)
+    #: the steady motions about the effective potential's coordinate (:mod:`lagsolve.mechanics.analysis.steady`)
     steady: SteadyMotion | None = None
     steady_note: str = ""
