@@ -62,7 +62,7 @@ from lagsolve.mechanics.symbolic.simplify import measure, smallest, tidy, tidy_s
 from lagsolve.problem.names import momentum_symbol
 
 if TYPE_CHECKING:
-    from lagsolve.mechanics.results import Analysis
+    from lagsolve.mechanics.analysis.results import Analysis
     from lagsolve.problem.schema import Problem
 
 #: the statements of :attr:`Hamiltonian.form`

@@ -1,9 +1,9 @@
 """The frozen results of the mechanics stage: :class:`Derivation` (with :class:`ConstraintForce` and
-:class:`FrictionResult`) and :class:`Analysis`.
+:class:`FrictionResult`) and its parts; the analysis part is
+:class:`~lagsolve.mechanics.analysis.results.Analysis`.
 
-They are data only, built by :func:`lagsolve.mechanics.derivation.derive` and
-:func:`lagsolve.mechanics.analysis.analyse.analyse`; keeping them apart from the code that builds them lets
-every stage name the results without importing the stages that run it (no import cycle).
+They are data only, built by :func:`lagsolve.mechanics.derivation.derive`; keeping them apart from the code
+that builds them lets every stage name the results without importing the stages that run it (no import cycle).
 """
 
 from __future__ import annotations
@@ -17,13 +17,6 @@ from lagsolve.notebook import shown
 T = TypeVar("T")
 
 if TYPE_CHECKING:
-    from lagsolve.mechanics.analysis.conserved import Conservation, MotionSystem
-    from lagsolve.mechanics.analysis.contact import ContactCheck
-    from lagsolve.mechanics.analysis.equilibria import EffectivePotential
-    from lagsolve.mechanics.analysis.integrability import Classification
-    from lagsolve.mechanics.analysis.linearize import Linearization
-    from lagsolve.mechanics.analysis.minimal import ReducedSystem
-    from lagsolve.mechanics.analysis.steady import SteadyMotion
     from lagsolve.mechanics.equations.constraints import ConstraintTerms
     from lagsolve.mechanics.equations.elimination import Elimination
     from lagsolve.mechanics.equations.forces import ForceTerm
@@ -170,7 +163,8 @@ class Derivation:
     - ``display``: the display forms of the steps (:class:`Display`);
     - ``solution``: the explicit solve and the forces of constraint (:class:`Solution`);
     - ``friction``: each friction contact's normal force, forces and sticking (:class:`FrictionResult`);
-    - ``analysis`` (:class:`Analysis`, None when not asked for) and its ``contract`` forms (:class:`Contract`);
+    - ``analysis`` (:class:`~lagsolve.mechanics.analysis.results.Analysis`, None when not asked for) and its
+      ``contract`` forms (:class:`Contract`);
     - ``canonical``: the Hamiltonian formulation or why there is none (:class:`Canonical`);
     - ``notes``: each later stage that ran out of its share of the budget, or did not apply, and why.
 
@@ -183,7 +177,7 @@ class Derivation:
     display: Display
     solution: Solution = Solution()
     friction: tuple[FrictionResult, ...] = ()
-    analysis: Any = None  # lagsolve.mechanics.results.Analysis: classification, reduction, conservation, ...
+    analysis: Any = None  # lagsolve.mechanics.analysis.results.Analysis: classification, reduction, ...
     contract: Contract = Contract()
     canonical: Canonical = Canonical()
     notes: tuple[StageNote, ...] = ()
@@ -244,25 +238,3 @@ class Derivation:
 
     def _repr_html_(self) -> str | None:
         return shown(self, "html")
-
-
-
-@dataclass(frozen=True)
-class Analysis:
-    """Everything :func:`analyse` found; each ``*_note`` says why a part is absent."""
-
-    classification: tuple[Classification, ...]
-    reduced: ReducedSystem | None
-    reduced_note: str
-    system: MotionSystem
-    conservation: Conservation
-    effective_potential: EffectivePotential | None
-    effective_note: str
-    linearization: Linearization | None
-    linearization_note: str
-    #: per equilibrium of ``effective_potential`` / ``linearization``: the unilateral constraints' forces there
-    effective_contact: tuple[tuple[ContactCheck, ...], ...] = ()
-    modes_contact: tuple[tuple[ContactCheck, ...], ...] = ()
-    #: the steady motions about the effective potential's coordinate (:mod:`lagsolve.mechanics.analysis.steady`)
-    steady: SteadyMotion | None = None
-    steady_note: str = ""

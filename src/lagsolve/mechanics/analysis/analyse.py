@@ -18,9 +18,10 @@ what the motion looks like near equilibrium.
    (the heavy top's steady precession), their stability and the frequency of small oscillations;
 7. :mod:`~lagsolve.mechanics.analysis.linearize` — with several left, equilibria and normal modes.
 
-:func:`lagsolve.mechanics.derivation.derive` builds the :class:`~lagsolve.mechanics.results.Analysis` part of a
-derivation with :func:`analyse` and its :class:`~lagsolve.mechanics.results.Contract` part (``reduced``,
-``conserved`` and ``effective_potential``, format section 2, SymPy expressions) with :func:`contract_forms`.
+:func:`lagsolve.mechanics.derivation.derive` builds the analysis part of a derivation
+(:class:`~lagsolve.mechanics.analysis.results.Analysis`) with :func:`analyse`, and its
+:class:`~lagsolve.mechanics.results.Contract` part (``reduced``, ``conserved`` and ``effective_potential``,
+format section 2, SymPy expressions) with :func:`contract_forms`.
 """
 
 from __future__ import annotations
@@ -37,10 +38,10 @@ from lagsolve.mechanics.analysis.linearize import Linearization, applies, linear
 from lagsolve.mechanics.analysis.minimal import ReducedSystem, reduce_system
 from lagsolve.mechanics.analysis.minimal_chart import MinimalChart, minimal_chart
 from lagsolve.mechanics.analysis.numeric_equilibria import complete_numerically, numeric_linearization
+from lagsolve.mechanics.analysis.results import Analysis
 from lagsolve.mechanics.analysis.steady import SteadyMotion, steady_motions
 from lagsolve.mechanics.analysis.symmetry import symmetries
 from lagsolve.mechanics.equations.surface import constraint_surface
-from lagsolve.mechanics.results import Analysis
 from lagsolve.mechanics.stages import Stages
 from lagsolve.problem.names import momentum_name
 

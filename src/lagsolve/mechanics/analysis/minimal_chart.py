@@ -21,8 +21,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from lagsolve.mechanics.analysis.results import Analysis
     from lagsolve.mechanics.equations.model import Model
-    from lagsolve.mechanics.results import Analysis
 
 
 @dataclass(frozen=True)
