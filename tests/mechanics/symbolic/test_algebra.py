@@ -89,7 +89,7 @@ def _derive_comparing(name: str, attribute: str, same: Any, monkeypatch: Any) ->
     for cache in caches:
         cache.cache_clear()
     try:
-        derive(load_problem(Path(__file__).resolve().parents[2] / "problems" / f"{name}.yaml"))
+        derive(load_problem(Path(__file__).resolve().parents[3] / "problems" / f"{name}.yaml"))
     finally:
         for cache in caches:
             cache.cache_clear()

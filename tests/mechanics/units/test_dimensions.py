@@ -16,7 +16,7 @@ from lagsolve.mechanics.units.result_units import missing_units, result_units
 from lagsolve.problem.load import load_problem, load_text
 from lagsolve.problem.units import unit_of
 
-PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
+PROBLEMS = Path(__file__).resolve().parents[3] / "problems"
 
 SPRING = """\
 name: spring

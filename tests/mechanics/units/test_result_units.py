@@ -12,7 +12,7 @@ from lagsolve.mechanics.units.result_units import result_units, unit_text
 from lagsolve.problem.load import load_problem
 from lagsolve.problem.units import unit_of
 
-PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
+PROBLEMS = Path(__file__).resolve().parents[3] / "problems"
 SHIPPED_WITH_UNITS = sorted(p.name for p in PROBLEMS.glob("*.yaml") if "unit:" in p.read_text(encoding="utf-8"))
 
 

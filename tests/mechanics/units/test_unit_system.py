@@ -339,5 +339,5 @@ def test_docs_show_the_messages_lagsolve_prints(tmp_path: Path, name: str, text:
     Path(name).write_text(text, encoding="utf-8")
     result = CliRunner().invoke(main, ["derive", name, "-o", "out"])
     assert result.exit_code == 2
-    docs = (Path(__file__).resolve().parents[2] / "docs" / "format.md").read_text(encoding="utf-8")
+    docs = (Path(__file__).resolve().parents[3] / "docs" / "format.md").read_text(encoding="utf-8")
     assert result.stderr.strip() in docs
