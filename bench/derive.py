@@ -46,7 +46,7 @@ the times leave out interpreter start-up and imports):
   lagsolve     load_problem(file) + derive(problem): the whole mechanics stage, including
                the display simplification of every shown result (T, V, momenta, equations,
                accelerations, multipliers, constraint and normal forces)
-  (tidy)       the part of the lagsolve time spent in lagsolve.mechanics.simplify
+  (tidy)       the part of the lagsolve time spent in lagsolve.mechanics.symbolic.simplify
                (tidy, tidy_sum, norm, ...), timed in the same run
   LM total     sympy.physics.mechanics.LagrangesMethod on the same system written by hand:
                building L (and forces) + form_lagranges_equations() + rhs() (LU solve of
@@ -64,9 +64,9 @@ the times leave out interpreter start-up and imports):
 
 
 def _time_simplify_module() -> Callable[[], float]:
-    """Wrap every function of lagsolve.mechanics.simplify wherever it was imported; return
+    """Wrap every function of lagsolve.mechanics.symbolic.simplify wherever it was imported; return
     a reader of the seconds spent inside them (outermost calls only)."""
-    from lagsolve.mechanics import simplify
+    from lagsolve.mechanics.symbolic import simplify
 
     spent = [0.0]
     depth = [0]

@@ -168,7 +168,7 @@ def child_derive(path: str) -> None:
 
 
 def child_build(path: str) -> None:
-    from lagsolve.mechanics.matrix_form import matrix_form
+    from lagsolve.mechanics.equations.matrix_form import matrix_form
     from lagsolve.numeric.system import bind
     from lagsolve.problem.load import load_problem
 

@@ -133,7 +133,7 @@ def child_lagsolve(name: str) -> dict[str, Any]:
     begin = time.perf_counter()
 
     import lagsolve.numeric.system as system_module
-    from lagsolve.mechanics.matrix_form import matrix_form
+    from lagsolve.mechanics.equations.matrix_form import matrix_form
     from lagsolve.numeric.compile import compile_state_function
     from lagsolve.numeric.initial import complete_initial
     from lagsolve.numeric.integrate import integrate_motion

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from lagsolve.mechanics.analysis import monitored
-from lagsolve.mechanics.matrix_form import matrix_form
+from lagsolve.mechanics.analysis.analyse import monitored
+from lagsolve.mechanics.equations.matrix_form import matrix_form
 from lagsolve.numeric.initial import complete_initial
 from lagsolve.numeric.integrate import Trajectory, integrate_motion
 from lagsolve.numeric.system import NumericSystem, bind

@@ -321,7 +321,7 @@ def simulate(path_or_derivation: str | Path | bytes | Problem | Derivation, *, t
     if isinstance(path_or_derivation, Derivation):
         result = simulate_derivation(path_or_derivation, options)
     else:
-        from lagsolve.mechanics.matrix_form import matrix_form
+        from lagsolve.mechanics.equations.matrix_form import matrix_form
 
         result = simulate_form(matrix_form(_problem(path_or_derivation), display=False), options)
     return _trajectory(result)

@@ -74,7 +74,7 @@ def test_a_derivation_stopped_after_its_core_names_each_missing_stage() -> None:
 
     from lagsolve.app.pipeline import _render_core
     from lagsolve.mechanics.derivation import core
-    from lagsolve.mechanics.matrix_form import matrix_form
+    from lagsolve.mechanics.equations.matrix_form import matrix_form
     from lagsolve.problem.load import load_problem
 
     bead = Path(__file__).resolve().parents[2] / "problems" / "bead.yaml"

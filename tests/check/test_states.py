@@ -6,7 +6,7 @@ import mpmath
 import sympy
 
 from lagsolve.check.states import GROUP, Compiled, StateSpace
-from lagsolve.mechanics.constraints import velocity_form
+from lagsolve.mechanics.equations.constraints import velocity_form
 from mechanics_support import derived_file
 
 

@@ -1,4 +1,5 @@
-"""Minimal charts (``lagsolve.mechanics.minimal_chart``): the dependent variables in closed form, for the numeric
+"""Minimal charts (``lagsolve.mechanics.analysis.minimal_chart``): the dependent variables in closed form, for the
+numeric
 stage."""
 
 from __future__ import annotations
@@ -6,8 +7,8 @@ from __future__ import annotations
 import pytest
 import sympy
 
-from lagsolve.mechanics.constraints import constraint_terms
-from lagsolve.mechanics.minimal_chart import minimal_chart
+from lagsolve.mechanics.analysis.minimal_chart import minimal_chart
+from lagsolve.mechanics.equations.constraints import constraint_terms
 from mechanics_support import TUBE, derived_file, derived_text, exactly_equal, names, shipped
 
 

@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 import sympy
 
-from lagsolve.mechanics.constraints import velocity_form
-from lagsolve.mechanics.simplify import norm
+from lagsolve.mechanics.equations.constraints import velocity_form
+from lagsolve.mechanics.symbolic.simplify import norm
 from mechanics_support import (
     TUBE,
     assert_same,

@@ -1,13 +1,13 @@
 """Dependent coordinates and velocities given explicitly by the constraints
-(``lagsolve.mechanics.elimination``)."""
+(``lagsolve.mechanics.equations.elimination``)."""
 
 from __future__ import annotations
 
 import sympy
 
-from lagsolve.mechanics.constraints import constraint_terms, velocity_form
-from lagsolve.mechanics.elimination import eliminate
-from lagsolve.mechanics.model import build_model
+from lagsolve.mechanics.equations.constraints import constraint_terms, velocity_form
+from lagsolve.mechanics.equations.elimination import eliminate
+from lagsolve.mechanics.equations.model import build_model
 from mechanics_support import TUBE, exactly_equal, names, problem_file, problem_text
 
 DRIVEN = """

@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 from lagsolve.api import load_problem
-from lagsolve.mechanics.geometry import sketch
-from lagsolve.mechanics.matrix_form import matrix_form
+from lagsolve.mechanics.equations.matrix_form import matrix_form
+from lagsolve.mechanics.geometry.shapes import sketch
 
 ROOT = Path(__file__).resolve().parents[2]
 

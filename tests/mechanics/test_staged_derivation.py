@@ -185,7 +185,7 @@ def test_the_core_alone_names_each_stage_that_did_not_complete(name: str, named:
     from pathlib import Path
 
     from lagsolve.mechanics.derivation import core
-    from lagsolve.mechanics.matrix_form import matrix_form
+    from lagsolve.mechanics.equations.matrix_form import matrix_form
     from lagsolve.problem.load import load_problem
 
     form = matrix_form(load_problem(Path(__file__).resolve().parents[2] / "problems" / f"{name}.yaml"), display=False)

@@ -15,7 +15,7 @@ import pytest
 import sympy
 
 from lagsolve.app.simulation import SimulationOptions, run_simulation
-from lagsolve.mechanics.minimal_chart import minimal_chart
+from lagsolve.mechanics.analysis.minimal_chart import minimal_chart
 from lagsolve.numeric.initial import complete_initial
 from lagsolve.numeric.integrate import integrate_motion
 from lagsolve.numeric.system import bind

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from lagsolve.mechanics.matrix_form import matrix_form
+from lagsolve.mechanics.equations.matrix_form import matrix_form
 from lagsolve.numeric.initial import complete_initial
 from lagsolve.numeric.integrate import integrate_motion
 from lagsolve.numeric.system import bind

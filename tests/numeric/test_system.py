@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from lagsolve.errors import SpecError
-from lagsolve.mechanics.matrix_form import matrix_form
+from lagsolve.mechanics.equations.matrix_form import matrix_form
 from lagsolve.numeric.system import bind
 from lagsolve.problem.load import load_text
 from simulation_support import CARTESIAN_PENDULUM
@@ -66,7 +66,7 @@ def test_unknown_override_is_refused() -> None:
 def test_energy_conservation_is_taken_from_the_mechanics() -> None:
     """The numeric system does not decide energy conservation again: it is conserved exactly when the
     mechanics (mechanics.analysis.monitored) gives an 'energy', and otherwise it carries the mechanics' reason."""
-    from lagsolve.mechanics.analysis import monitored
+    from lagsolve.mechanics.analysis.analyse import monitored
 
     form = matrix_form(load_text(CARTESIAN_PENDULUM))
     conserved, _, _, note = monitored(form)

@@ -130,10 +130,10 @@ def test_bad_unit_in_a_file_exits_2(tmp_path: Path, old: str, new: str, line: in
 
 def test_time_unit_changes_the_units_of_rates() -> None:
     """With time in ms, a velocity is in m/ms and a damping c*x_dot**2/2 must be an energy per ms."""
-    from lagsolve.mechanics.result_units import result_units
-    from lagsolve.mechanics.unit_system import check_units
+    from lagsolve.mechanics.units.result_units import result_units
+    from lagsolve.mechanics.units.unit_system import check_units
 
-    # one system (kg, m, ms): the stiffness in kg/ms^2, not N/m (mechanics/unit_system.py refuses mixed scales)
+    # one system (kg, m, ms): the stiffness in kg/ms^2, not N/m (mechanics/units/unit_system.py refuses mixed scales)
     text = GOOD.replace("unit: s}", "unit: ms}").replace("unit: N/m", "unit: kg/ms^2") + "dissipation: k*x*x_dot\n"
     problem = load_text(text)
     check_units(problem)  # kg*m^2/ms^3 is a power, and every unit is of one system

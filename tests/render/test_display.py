@@ -45,7 +45,7 @@ def test_html_is_well_formed_and_escaped() -> None:
 def test_html_lists_stages_not_completed() -> None:
     """A derivation whose later stages were skipped lists their notes."""
     from lagsolve.mechanics.derivation import core
-    from lagsolve.mechanics.matrix_form import matrix_form
+    from lagsolve.mechanics.equations.matrix_form import matrix_form
 
     derivation = core(matrix_form(lagsolve.load_problem(BEAD), display=False), "stopped at its CPU limit")
     html = derivation._repr_html_()

@@ -58,7 +58,7 @@ def test_png_and_gif_bytes(trajectory: Trajectory) -> None:
 def test_minimal_coordinates_conservation_figure() -> None:
     """Integrated in minimal coordinates the residual is exactly zero: the figure says so in a line under it
     instead of drawing an empty panel, and the energy is drawn once."""
-    from lagsolve.mechanics.minimal_chart import minimal_chart
+    from lagsolve.mechanics.analysis.minimal_chart import minimal_chart
     from lagsolve.numeric.initial import complete_initial
     from lagsolve.numeric.integrate import integrate_motion
     from lagsolve.numeric.system import bind
@@ -89,8 +89,8 @@ def test_a_name_with_dollar_signs_is_drawn_as_text(trajectory: Trajectory) -> No
 def _shipped(name: str, **options: object) -> object:
     """``lagsolve simulate problems/<name>.yaml`` as the library runs it (tables and scene, no PNGs)."""
     from lagsolve.app.simulation import SimulationOptions, run_simulation
-    from lagsolve.mechanics.analysis import monitored
-    from lagsolve.mechanics.matrix_form import matrix_form
+    from lagsolve.mechanics.analysis.analyse import monitored
+    from lagsolve.mechanics.equations.matrix_form import matrix_form
     from mechanics_support import problem_file
 
     problem = problem_file(name)

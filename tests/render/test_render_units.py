@@ -11,7 +11,7 @@ from click.testing import CliRunner
 
 from lagsolve.cli import main
 from lagsolve.mechanics.derivation import derive
-from lagsolve.mechanics.result_units import column_units
+from lagsolve.mechanics.units.result_units import column_units
 from lagsolve.numeric.integrate import Trajectory
 from lagsolve.problem.load import load_problem
 from lagsolve.render import plots
@@ -86,7 +86,7 @@ def test_csv_header_carries_units() -> None:
 
 
 def derive_kinetic(problem: object) -> object:
-    from lagsolve.mechanics.model import build_model
+    from lagsolve.mechanics.equations.model import build_model
 
     return build_model(problem).kinetic  # type: ignore[arg-type]
 

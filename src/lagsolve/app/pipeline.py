@@ -124,7 +124,7 @@ def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
 
 def _unit_warnings(problem: Problem) -> tuple[str, ...]:
     """A file that declares some units but not all: the names without one (their dimensions go unchecked)."""
-    from lagsolve.mechanics.result_units import missing_units
+    from lagsolve.mechanics.units.result_units import missing_units
 
     missing = missing_units(problem)
     if not missing:
@@ -151,7 +151,7 @@ def _potential_figure(derivation: Derivation) -> dict | None:
         curve = potential_curve(derivation, dict(spec.values), initial=dict(spec.initial))
     except (ValueError, KeyError, TypeError, ZeroDivisionError, StopIteration, NameError, OverflowError):
         return None
-    from lagsolve.mechanics.result_units import result_units
+    from lagsolve.mechanics.units.result_units import result_units
 
     units = result_units(problem, derivation.kinetic)
     coordinate = str(getattr(analysis.effective_potential, "coordinate", ""))
@@ -276,7 +276,7 @@ def golden_differences(reports: Reports, folder: Path) -> list[str]:
 
 
 def _simulate(problem: Problem, options: SimulationOptions, progress: Progress | None) -> SimulationResult:
-    from lagsolve.mechanics.matrix_form import matrix_form
+    from lagsolve.mechanics.equations.matrix_form import matrix_form
 
     return simulate_form(matrix_form(problem, display=False), options, progress)
 

@@ -14,7 +14,7 @@ from lagsolve.enums import TextEnum
 from lagsolve.problem.methods import DEFAULT as DEFAULT_METHOD
 
 if TYPE_CHECKING:
-    from lagsolve.mechanics.matrix_form import MatrixForm
+    from lagsolve.mechanics.equations.matrix_form import MatrixForm
     from lagsolve.mechanics.results import Derivation
     from lagsolve.numeric.integrate import Trajectory
     from lagsolve.numeric.scene import Scene
@@ -69,9 +69,9 @@ class SimulationResult:
 
 
 def _scene(form: Any, parameters: Any, trajectory: Any) -> Any:
-    """What the sketch draws (``mechanics/geometry.py``: rods, surfaces, wires, strings, springs, bodies and the
+    """What the sketch draws (``mechanics/geometry/shapes.py``: rods, surfaces, wires, strings, springs, bodies and the
     forces as arrows) along the trajectory."""
-    from lagsolve.mechanics.geometry import sketch
+    from lagsolve.mechanics.geometry.shapes import sketch
     from lagsolve.numeric.scene_shapes import evaluate
 
     return evaluate(sketch(form), form.problem, parameters, trajectory)
@@ -79,11 +79,11 @@ def _scene(form: Any, parameters: Any, trajectory: Any) -> Any:
 
 def run_simulation(form: Any, conserved: Any, options: SimulationOptions, progress: Progress | None = None,
                    note: str = "", chart: Any = None, chart_note: str = "", energy_note: str = "") -> SimulationResult:
-    """Bind ``form`` (a :class:`~lagsolve.mechanics.matrix_form.MatrixForm`) to numbers, integrate,
+    """Bind ``form`` (a :class:`~lagsolve.mechanics.equations.matrix_form.MatrixForm`) to numbers, integrate,
     and build the requested tables and figures. ``conserved`` maps names to expressions whose
     drift is reported (the energy is conserved exactly when it has an ``energy``; ``energy_note`` says
     why not); ``note`` is appended to the summary. ``chart`` (a
-    :class:`~lagsolve.mechanics.minimal_chart.MinimalChart`) lets the run integrate in minimal
+    :class:`~lagsolve.mechanics.analysis.minimal_chart.MinimalChart`) lets the run integrate in minimal
     coordinates; ``chart_note`` says why there is none.
 
     Raises
@@ -172,7 +172,7 @@ def _column_units(form: Any) -> dict[str, str]:
     problem = form.problem
     if not problem.has_units:
         return {}
-    from lagsolve.mechanics.result_units import column_units
+    from lagsolve.mechanics.units.result_units import column_units
 
     units: dict[str, str] = column_units(problem, form.model.kinetic)
     force = next((u for k, u in units.items() if k.startswith(("F_", "N_"))), None)
@@ -201,9 +201,9 @@ def _figures(problem: Any, trajectory: Any, options: SimulationOptions, scene: A
 
 def simulate_form(form: MatrixForm, options: SimulationOptions, progress: Progress | None = None) -> SimulationResult:
     """A run from the matrix form alone: the conserved quantities to monitor and the minimal coordinates come
-    from cheap criteria on the matrix form (:func:`lagsolve.mechanics.analysis.monitored`, the functions
+    from cheap criteria on the matrix form (:func:`lagsolve.mechanics.analysis.analyse.monitored`, the functions
     derive uses), never from the symbolic solve or the analysis of equilibria."""
-    from lagsolve.mechanics.analysis import monitored
+    from lagsolve.mechanics.analysis.analyse import monitored
 
     conserved, chart, chart_note, energy_note = monitored(form, options.analysis_timeout)
     return run_simulation(form, conserved, options, progress, "", chart, chart_note, energy_note)
@@ -220,7 +220,7 @@ def simulate_derivation(derivation: Derivation, options: SimulationOptions,
         The derivation has no matrix form (and the errors of :func:`run_simulation`).
     """
     from lagsolve.errors import Issue, SpecError
-    from lagsolve.mechanics.minimal_chart import minimal_chart
+    from lagsolve.mechanics.analysis.minimal_chart import minimal_chart
 
     if derivation.form is None:
         raise SpecError([Issue(derivation.problem.source, 0, "", "this derivation has no matrix form to simulate")])

@@ -7,7 +7,7 @@ derived D:
 1. **Symbolic.** E is written with the constraints used as the derivation does (multipliers
    :math:`\lambda_j` replaced by their derived values, explicitly solvable dependent coordinates
    and velocities eliminated), and :math:`E - D` is reduced by cheap steps first (structural
-   equality, ``cancel``), then :func:`lagsolve.mechanics.simplify.tidy`. Zero → *ok (symbolic)*.
+   equality, ``cancel``), then :func:`lagsolve.mechanics.symbolic.simplify.tidy`. Zero → *ok (symbolic)*.
 2. **Numeric.** Otherwise both are evaluated at random states on the constraint surface
    (:mod:`lagsolve.check.states`; declared functions become random smooth functions). Agreement at
    every state → *ok (numeric)*.
@@ -89,7 +89,7 @@ from lagsolve.check.verdicts import (
     symbolically_equal,
 )
 from lagsolve.mechanics.derivation import Derivation
-from lagsolve.mechanics.simplify import reproducible
+from lagsolve.mechanics.symbolic.simplify import reproducible
 from lagsolve.problem.names import momentum_name, momentum_symbol
 
 __all__ = [  # the verdicts and reasons are defined in verdicts.py; callers may name them here

@@ -23,7 +23,7 @@ import sympy
 
 from lagsolve.check.states import DIGITS, Compiled, State, StateSpace
 from lagsolve.mechanics.derivation import Derivation
-from lagsolve.mechanics.simplify import tidy
+from lagsolve.mechanics.symbolic.simplify import tidy
 
 #: relative tolerance of a numeric agreement (values carry 30 digits)
 TOLERANCE = mpmath.mpf(10) ** -12
@@ -190,7 +190,7 @@ def sign_condition(rows: Sequence[Row], agree: list[bool], expected: tuple[Any, 
 class ReleasedConstraints:
     r"""Accelerations with constraints released, to recognise an answer that ignores one.
 
-    At a state the augmented system of :mod:`lagsolve.mechanics.lagrange` is solved numerically
+    At a state the augmented system of :mod:`lagsolve.mechanics.equations.lagrange` is solved numerically
     with only the kept constraints S,
 
     .. math:: M\ddot q - A_S^T\lambda_S = F, \qquad A_S\ddot q = \beta_S,

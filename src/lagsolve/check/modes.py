@@ -40,8 +40,8 @@ from lagsolve.check.verdicts import (
 )
 
 if TYPE_CHECKING:
+    from lagsolve.mechanics.analysis.linearize import Mode
     from lagsolve.mechanics.derivation import Derivation
-    from lagsolve.mechanics.linearize import Mode
 
 #: reason of a comparison made at the simulation values (lagsolve's result there is numeric)
 AT_VALUES = "at the simulation values"
@@ -107,7 +107,7 @@ class _Context:
     """What the comparisons of one derivation share: its names, the simulation values, the periodic coordinates."""
 
     def __init__(self, checker: Comparer, derivation: Derivation) -> None:
-        from lagsolve.mechanics.numeric_equilibria import periodic
+        from lagsolve.mechanics.analysis.numeric_equilibria import periodic
 
         self.checker = checker
         self.derivation = derivation
@@ -165,8 +165,8 @@ class _Context:
 
     def absent(self, at: Any, label: str, modes: tuple[Mode, ...], complete: bool) -> Verdict:
         """The verdict when no equilibrium lagsolve lists is at ``at``."""
-        from lagsolve.mechanics.identities import proved_zero
-        from lagsolve.mechanics.lagrange import lagrange_terms
+        from lagsolve.mechanics.equations.lagrange import lagrange_terms
+        from lagsolve.mechanics.symbolic.identities import proved_zero
 
         expected = tuple(at.values())
         found = "; ".join(", ".join(f"{q.name} = {v}" for q, v in m.point) or "anywhere" for m in modes) or "none"
@@ -277,7 +277,7 @@ class _Context:
 
 def _turns(difference: Any) -> bool:
     """``difference`` is a whole number of turns, 2πk."""
-    from lagsolve.mechanics.simplify import tidy
+    from lagsolve.mechanics.symbolic.simplify import tidy
 
     turns = tidy(difference / (2 * sympy.pi))
     return bool(turns.is_Integer)

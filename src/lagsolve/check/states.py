@@ -4,7 +4,7 @@ A state assigns a number to the time, every parameter, coordinate and velocity, 
 replaces every declared function by a random smooth function, such that every
 constraint holds:
 
-* holonomic constraints that :mod:`lagsolve.mechanics.elimination` solves explicitly give their
+* holonomic constraints that :mod:`lagsolve.mechanics.equations.elimination` solves explicitly give their
   coordinate (``y = f(x)``) and velocity directly;
 * the other holonomic constraints :math:`\psi_j(q, t) = 0` are solved for one coordinate each
   by Newton's method, :math:`q_d \leftarrow q_d - (\partial\psi/\partial q_d)^{-1}\psi`;
@@ -31,9 +31,9 @@ from typing import Any
 import mpmath
 import sympy
 
-from lagsolve.mechanics.constraints import velocity_form
 from lagsolve.mechanics.derivation import Derivation
-from lagsolve.mechanics.surface import newton
+from lagsolve.mechanics.equations.constraints import velocity_form
+from lagsolve.mechanics.equations.surface import newton
 from lagsolve.problem.schema import ConstraintKind
 
 DIGITS = 30
@@ -255,7 +255,8 @@ class StateSpace:
         return state
 
     def _newton(self, state: State) -> bool:
-        """The dependent coordinates solved from their constraints (:func:`~lagsolve.mechanics.surface.newton`,
+        """The dependent coordinates solved from their constraints
+        (:func:`~lagsolve.mechanics.equations.surface.newton`,
         LU steps in mpmath), positive where they must be."""
 
         def at(x: list[Any]) -> State:

@@ -16,7 +16,7 @@ import sympy
 
 from lagsolve.check.diagnose import SYMBOLIC_LIMIT
 from lagsolve.check.status import Status
-from lagsolve.mechanics.simplify import tidy
+from lagsolve.mechanics.symbolic.simplify import tidy
 from lagsolve.notebook import shown
 
 OK, WARNING, MISMATCH, UNCHECKED = Status.OK, Status.WARNING, Status.MISMATCH, Status.UNCHECKED

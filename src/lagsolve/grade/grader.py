@@ -9,9 +9,9 @@ Each entry of a step (a coordinate's momentum, a constraint's multiplier, ...) i
    of the coordinates, velocities, accelerations and multipliers (the last two drawn at random too).
 2. **follows** — not the key's answer, but what follows from the student's own earlier steps: their
    Lagrangian (their T − V when they give no L) gives their momenta, ∂L/∂q and equations
-   (:func:`lagsolve.mechanics.lagrange.lagrange_terms`, with the key's constraints and applied forces); their
+   (:func:`lagsolve.mechanics.equations.lagrange.lagrange_terms`, with the key's constraints and applied forces); their
    equations, with the key's constraints at acceleration level, give their q̈ and λ; their λ gives their
-   forces of constraint (|λ|·|u|, :func:`lagsolve.mechanics.reactions.force_scale`).
+   forces of constraint (|λ|·|u|, :func:`lagsolve.mechanics.equations.reactions.force_scale`).
 3. **incorrect** — with a named mistake when one explains the difference: check's own diagnoses
    (opposite sign, constant factor, λ convention, a constraint released, a magnitude without ``Abs``), then
    the key's answer changed in one known way (:func:`_candidates`): the potential's sign, one term's sign,
@@ -53,13 +53,13 @@ from lagsolve.grade.evaluate import (
 )
 from lagsolve.grade.key import Grading
 from lagsolve.grade.submission import NOT_GRADED, STEPS, Submission, names_for
-from lagsolve.mechanics.constraints import velocity_form
 from lagsolve.mechanics.derivation import Derivation
-from lagsolve.mechanics.lagrange import LagrangeTerms, lagrange_terms
-from lagsolve.mechanics.linsolve import solve_linear
-from lagsolve.mechanics.model import Model
-from lagsolve.mechanics.reactions import force_scale
-from lagsolve.mechanics.simplify import reproducible
+from lagsolve.mechanics.equations.constraints import velocity_form
+from lagsolve.mechanics.equations.lagrange import LagrangeTerms, lagrange_terms
+from lagsolve.mechanics.equations.model import Model
+from lagsolve.mechanics.equations.reactions import force_scale
+from lagsolve.mechanics.symbolic.linsolve import solve_linear
+from lagsolve.mechanics.symbolic.simplify import reproducible
 
 
 class GradeStatus(TextEnum):

@@ -4,7 +4,7 @@ Every step a worked solution shows is recorded here (T, V, L; each constraint's
 a and b; each ∂L/∂q̇, its time derivative, ∂L/∂q; the augmented system; the
 results), so reports can never disagree with the results. The raw matrix form
 (``lagrange``) is kept unsimplified for numeric work; the display forms are
-simplified once, in :mod:`lagsolve.mechanics.simplify`.
+simplified once, in :mod:`lagsolve.mechanics.symbolic.simplify`.
 """
 
 from __future__ import annotations
@@ -16,20 +16,16 @@ from typing import Any
 import sympy
 
 from lagsolve.errors import DerivationError
-from lagsolve.mechanics.algebra import ops
-from lagsolve.mechanics.analysis import analyse, contract_forms
-from lagsolve.mechanics.constraints import ConstraintTerms
-from lagsolve.mechanics.elimination import Elimination, eliminate
-from lagsolve.mechanics.forces import ForceTerm
-from lagsolve.mechanics.friction import FrictionTerm
+from lagsolve.mechanics.analysis.analyse import analyse, contract_forms
+from lagsolve.mechanics.equations.constraints import ConstraintTerms
+from lagsolve.mechanics.equations.elimination import Elimination, eliminate
+from lagsolve.mechanics.equations.forces import ForceTerm
+from lagsolve.mechanics.equations.friction import FrictionTerm
+from lagsolve.mechanics.equations.lagrange import LagrangeTerms, solve_augmented
+from lagsolve.mechanics.equations.matrix_form import MatrixForm, matrix_form
+from lagsolve.mechanics.equations.model import Model
+from lagsolve.mechanics.equations.reactions import Reaction
 from lagsolve.mechanics.hamiltonian import canonical_form
-from lagsolve.mechanics.identities import proved_zero
-from lagsolve.mechanics.lagrange import LagrangeTerms, solve_augmented
-from lagsolve.mechanics.linsolve import SIZE_LIMIT
-from lagsolve.mechanics.matrix_form import MatrixForm, matrix_form
-from lagsolve.mechanics.model import Model
-from lagsolve.mechanics.normal import NormalForce, normal_forces
-from lagsolve.mechanics.reactions import Reaction
 from lagsolve.mechanics.results import (
     Canonical,
     ConstraintForce,
@@ -40,7 +36,13 @@ from lagsolve.mechanics.results import (
     FrictionResult,
     Solution,
 )
-from lagsolve.mechanics.simplify import (
+from lagsolve.mechanics.solution.normal import NormalForce, normal_forces
+from lagsolve.mechanics.solution.sticking import Sticking, sticking
+from lagsolve.mechanics.stages import DEFAULT_BUDGET, STAGES, StageNote, Stages, StageTimeout, cpu_limit
+from lagsolve.mechanics.symbolic.algebra import ops
+from lagsolve.mechanics.symbolic.identities import proved_zero
+from lagsolve.mechanics.symbolic.linsolve import SIZE_LIMIT
+from lagsolve.mechanics.symbolic.simplify import (
     compound_angles,
     measure,
     norm,
@@ -49,8 +51,6 @@ from lagsolve.mechanics.simplify import (
     tidy_sum,
     tidy_sum_light,
 )
-from lagsolve.mechanics.stages import DEFAULT_BUDGET, STAGES, StageNote, Stages, StageTimeout, cpu_limit
-from lagsolve.mechanics.sticking import Sticking, sticking
 from lagsolve.problem.schema import Problem
 
 #: above this many coordinates the equation pieces get the light display simplification
@@ -60,7 +60,8 @@ LARGE_SYSTEM = 4
 CONTACT_LIMIT = 60
 
 #: up to this many coordinates and constraints q̈ and λ are given explicitly however long they are, when the bound
-#: on their size lets the solve run (:mod:`~lagsolve.mechanics.ringsolve`); whether a report prints one is decided
+#: on their size lets the solve run (:mod:`~lagsolve.mechanics.symbolic.ringsolve`); whether a report prints one is
+#: decided
 #: there. A larger system's explicit results are given only while they are at most SIZE_LIMIT operations long
 EXPLICIT_COORDINATES = 6
 EXPLICIT_CONSTRAINTS = 3
@@ -270,7 +271,8 @@ def _friction_result(term: FrictionTerm, found: NormalForce | None, substituted:
 
 def _held(form: MatrixForm, friction: tuple[FrictionResult, ...], known: dict[Any, Any], elimination: Elimination,
           stages: Stages) -> tuple[FrictionResult, ...]:
-    """Each contact that slides along one line, held (:mod:`lagsolve.mechanics.sticking`): the force that holds it
+    """Each contact that slides along one line, held (:mod:`lagsolve.mechanics.solution.sticking`): the force that
+    holds it
     and the least static coefficient that can."""
     def all_held() -> tuple[FrictionResult, ...]:
         out = []

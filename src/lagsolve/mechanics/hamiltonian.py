@@ -22,7 +22,7 @@ holds none). Hamilton's equations, with the generalized forces :math:`Q` that ha
 :math:`R(q, \dot q, p_c) = L - \sum_c p_c\dot q_c`, a Lagrangian for the other coordinates
 (:math:`\frac{d}{dt}\partial R/\partial\dot q_k - \partial R/\partial q_k = Q_k`) with
 :math:`\dot q_c = -\partial R/\partial p_c`; with one coordinate left it is
-:mod:`~lagsolve.mechanics.equilibria`'s :math:`L_R`, whose part free of :math:`\dot q` is
+:mod:`~lagsolve.mechanics.analysis.equilibria`'s :math:`L_R`, whose part free of :math:`\dot q` is
 :math:`-V_{eff}` (same sign convention).
 
 **Poisson brackets.** Each conserved quantity C of the analysis, written in (q, p), has
@@ -49,20 +49,20 @@ from typing import TYPE_CHECKING, Any
 
 import sympy
 
-from lagsolve.mechanics.algebra import cancel, factor_terms, ops
-from lagsolve.mechanics.energy import jacobi_integral
-from lagsolve.mechanics.identities import Zero, numerically_zero, proved_zero, zero_status
-from lagsolve.mechanics.linsolve import SIZE_LIMIT, solve_structured
-from lagsolve.mechanics.model import Model, time_derivative
-from lagsolve.mechanics.partials import partial
+from lagsolve.mechanics.equations.energy import jacobi_integral
+from lagsolve.mechanics.equations.model import Model, time_derivative
 from lagsolve.mechanics.results import Canonical
-from lagsolve.mechanics.ringsolve import coupled
-from lagsolve.mechanics.simplify import measure, smallest, tidy, tidy_sum
 from lagsolve.mechanics.stages import Stages, StageSkipped, StageTooLarge
+from lagsolve.mechanics.symbolic.algebra import cancel, factor_terms, ops
+from lagsolve.mechanics.symbolic.identities import Zero, numerically_zero, proved_zero, zero_status
+from lagsolve.mechanics.symbolic.linsolve import SIZE_LIMIT, solve_structured
+from lagsolve.mechanics.symbolic.partials import partial
+from lagsolve.mechanics.symbolic.ringsolve import coupled
+from lagsolve.mechanics.symbolic.simplify import measure, smallest, tidy, tidy_sum
 from lagsolve.problem.names import momentum_symbol
 
 if TYPE_CHECKING:
-    from lagsolve.mechanics.results import Analysis
+    from lagsolve.mechanics.analysis.results import Analysis
     from lagsolve.problem.schema import Problem
 
 #: the statements of :attr:`Hamiltonian.form`
@@ -262,7 +262,7 @@ def _too_long(H: Any, velocities: tuple[Any, ...], momentum_rates: tuple[Any, ..
 
 
 def _long_inverse(A: sympy.Matrix, w: sympy.Matrix) -> tuple[Any, ...] | None:
-    """:math:`A^{-1}w` solved fraction-free (:func:`~lagsolve.mechanics.linsolve.solve_structured`) when A has
+    """:math:`A^{-1}w` solved fraction-free (:func:`~lagsolve.mechanics.symbolic.linsolve.solve_structured`) when A has
     a dense block of three or more coordinates and the solution is longer than :data:`INVERSE_LIMIT`; None
     when the sum of squares is worth completing (every block of A smaller, or the inverse short).
     ``ValueError`` when A is singular; :class:`StageSkipped` when the inverse is too large to give at all."""
@@ -461,7 +461,7 @@ def _dissipation(reduced: Any, rayleigh: Any) -> tuple[Any, ...]:
 
 def _symmetry_bracket(h: Hamiltonian, model: Model, name: str, flow: tuple[Any, ...]) -> Bracket:
     r"""The rate of the momentum :math:`C = \sum_i \xi_i p_i` of a symmetry's flow ξ
-    (:mod:`~lagsolve.mechanics.symmetry`): :math:`\{C, H\} = X^{(1)}L` at :math:`\dot q(q, p)`, since
+    (:mod:`~lagsolve.mechanics.analysis.symmetry`): :math:`\{C, H\} = X^{(1)}L` at :math:`\dot q(q, p)`, since
     :math:`\partial H/\partial q = -\partial L/\partial q` and :math:`\partial H/\partial p = \dot q`, so it is 0
     exactly when the flow leaves L invariant (proved here again; then the bracket of the long H is not formed);
     else it is computed from C."""
@@ -533,7 +533,7 @@ def claimed_rate(h: Hamiltonian, expression: Any, substitution: Any = None) -> t
     r"""The rate :math:`\{C, H\} + \partial C/\partial t + \sum_i \partial C/\partial p_i\,Q_i` of a claimed
     constant of the motion C (in the problem's coordinates and velocities), and whether it is 0:
     ``"symbolic"``, ``"numeric"`` or ``"differ"``. ``substitution`` (an
-    :class:`~lagsolve.mechanics.elimination.Elimination`) first writes C in the minimal coordinates."""
+    :class:`~lagsolve.mechanics.equations.elimination.Elimination`) first writes C in the minimal coordinates."""
     in_minimal = substitution.apply(expression) if substitution is not None else expression
     rate = h.rate(h.to_momenta(in_minimal))
     status = _status(rate)

@@ -1,9 +1,9 @@
 """The frozen results of the mechanics stage: :class:`Derivation` (with :class:`ConstraintForce` and
-:class:`FrictionResult`) and :class:`Analysis`.
+:class:`FrictionResult`) and its parts; the analysis part is
+:class:`~lagsolve.mechanics.analysis.results.Analysis`.
 
-They are data only, built by :func:`lagsolve.mechanics.derivation.derive` and
-:func:`lagsolve.mechanics.analysis.analyse`; keeping them apart from the code that builds them lets
-every stage name the results without importing the stages that run it (no import cycle).
+They are data only, built by :func:`lagsolve.mechanics.derivation.derive`; keeping them apart from the code
+that builds them lets every stage name the results without importing the stages that run it (no import cycle).
 """
 
 from __future__ import annotations
@@ -17,22 +17,15 @@ from lagsolve.notebook import shown
 T = TypeVar("T")
 
 if TYPE_CHECKING:
-    from lagsolve.mechanics.conserved import Conservation, MotionSystem
-    from lagsolve.mechanics.constraints import ConstraintTerms
-    from lagsolve.mechanics.contact import ContactCheck
-    from lagsolve.mechanics.elimination import Elimination
-    from lagsolve.mechanics.equilibria import EffectivePotential
-    from lagsolve.mechanics.forces import ForceTerm
-    from lagsolve.mechanics.friction import FrictionTerm
-    from lagsolve.mechanics.integrability import Classification
-    from lagsolve.mechanics.lagrange import LagrangeTerms  # noqa: F401 - named in _Part["..."] below
-    from lagsolve.mechanics.linearize import Linearization
-    from lagsolve.mechanics.matrix_form import MatrixForm
-    from lagsolve.mechanics.minimal import ReducedSystem
-    from lagsolve.mechanics.model import Model  # noqa: F401 - named in _Part["..."] below
+    from lagsolve.mechanics.equations.constraints import ConstraintTerms
+    from lagsolve.mechanics.equations.elimination import Elimination
+    from lagsolve.mechanics.equations.forces import ForceTerm
+    from lagsolve.mechanics.equations.friction import FrictionTerm
+    from lagsolve.mechanics.equations.lagrange import LagrangeTerms  # noqa: F401 - named in _Part["..."] below
+    from lagsolve.mechanics.equations.matrix_form import MatrixForm
+    from lagsolve.mechanics.equations.model import Model  # noqa: F401 - named in _Part["..."] below
+    from lagsolve.mechanics.solution.sticking import Sticking
     from lagsolve.mechanics.stages import StageNote
-    from lagsolve.mechanics.steady import SteadyMotion
-    from lagsolve.mechanics.sticking import Sticking
     from lagsolve.problem.schema import Problem  # noqa: F401 - named in _Part["..."] below
 
 
@@ -122,7 +115,7 @@ class Solution:
 @dataclass(frozen=True)
 class Contract:
     """The format's section 2 forms of the analysis: ``reduced``, ``conserved``, ``effective_potential``
-    (:func:`lagsolve.mechanics.analysis.contract_forms`; all None without an analysis)."""
+    (:func:`lagsolve.mechanics.analysis.analyse.contract_forms`; all None without an analysis)."""
 
     reduced: dict[str, Any] | None = None
     conserved: dict[str, Any] | None = None
@@ -164,13 +157,14 @@ class Derivation:
     """Everything derived for one problem (immutable; nothing to "compute first"), composed of parts, each built
     before the one constructor call in :func:`lagsolve.mechanics.derivation.derive`:
 
-    - ``form``: the matrix form (:class:`~lagsolve.mechanics.matrix_form.MatrixForm`: the problem, its model,
+    - ``form``: the matrix form (:class:`~lagsolve.mechanics.equations.matrix_form.MatrixForm`: the problem, its model,
       Lagrange's terms, the raw constraints, loads and friction terms), always there;
     - ``elimination``: the dependent variables the constraints give, put into every display form;
     - ``display``: the display forms of the steps (:class:`Display`);
     - ``solution``: the explicit solve and the forces of constraint (:class:`Solution`);
     - ``friction``: each friction contact's normal force, forces and sticking (:class:`FrictionResult`);
-    - ``analysis`` (:class:`Analysis`, None when not asked for) and its ``contract`` forms (:class:`Contract`);
+    - ``analysis`` (:class:`~lagsolve.mechanics.analysis.results.Analysis`, None when not asked for) and its
+      ``contract`` forms (:class:`Contract`);
     - ``canonical``: the Hamiltonian formulation or why there is none (:class:`Canonical`);
     - ``notes``: each later stage that ran out of its share of the budget, or did not apply, and why.
 
@@ -183,7 +177,7 @@ class Derivation:
     display: Display
     solution: Solution = Solution()
     friction: tuple[FrictionResult, ...] = ()
-    analysis: Any = None  # lagsolve.mechanics.results.Analysis: classification, reduction, conservation, ...
+    analysis: Any = None  # lagsolve.mechanics.analysis.results.Analysis: classification, reduction, ...
     contract: Contract = Contract()
     canonical: Canonical = Canonical()
     notes: tuple[StageNote, ...] = ()
@@ -244,25 +238,3 @@ class Derivation:
 
     def _repr_html_(self) -> str | None:
         return shown(self, "html")
-
-
-
-@dataclass(frozen=True)
-class Analysis:
-    """Everything :func:`analyse` found; each ``*_note`` says why a part is absent."""
-
-    classification: tuple[Classification, ...]
-    reduced: ReducedSystem | None
-    reduced_note: str
-    system: MotionSystem
-    conservation: Conservation
-    effective_potential: EffectivePotential | None
-    effective_note: str
-    linearization: Linearization | None
-    linearization_note: str
-    #: per equilibrium of ``effective_potential`` / ``linearization``: the unilateral constraints' forces there
-    effective_contact: tuple[tuple[ContactCheck, ...], ...] = ()
-    modes_contact: tuple[tuple[ContactCheck, ...], ...] = ()
-    #: the steady motions about the effective potential's coordinate (:mod:`lagsolve.mechanics.steady`)
-    steady: SteadyMotion | None = None
-    steady_note: str = ""

@@ -13,7 +13,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from lagsolve.errors import Issue, SpecError
-from lagsolve.mechanics.surface import least_squares, newton
+from lagsolve.mechanics.equations.surface import least_squares, newton
 from lagsolve.numeric.system import NumericSystem
 
 TOLERANCE = 1e-9
@@ -78,7 +78,7 @@ GUESSES = (0.0, -1.0, 1.0, -0.5, 0.5, -2.0, 2.0)
 
 def _solve_positions(system: NumericSystem, q: np.ndarray, qd: np.ndarray, free: np.ndarray,
                      t0: float) -> np.ndarray:
-    """Least-norm Newton iteration (:func:`~lagsolve.mechanics.surface.newton`) on the free coordinates;
+    """Least-norm Newton iteration (:func:`~lagsolve.mechanics.equations.surface.newton`) on the free coordinates;
     tries several starting values, since a start such as y = 0 for x² + y² = l² has a singular Jacobian."""
     p, n = system.parameters, system.n
 

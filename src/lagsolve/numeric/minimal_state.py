@@ -1,4 +1,5 @@
-"""A :class:`~lagsolve.mechanics.minimal_chart.MinimalChart` compiled: the integrator's state in minimal coordinates.
+"""A :class:`~lagsolve.mechanics.analysis.minimal_chart.MinimalChart` compiled: the integrator's state in minimal
+coordinates.
 
 The integrator then carries ``(q_I, q̇_I)`` only. :meth:`NumericChart.full` rebuilds the
 whole state from it (the dependent coordinates and velocities from their closed forms,
@@ -14,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from lagsolve.mechanics.minimal_chart import MinimalChart
+from lagsolve.mechanics.analysis.minimal_chart import MinimalChart
 from lagsolve.numeric.compile import StateFunction, compile_state_function
 
 

@@ -16,8 +16,8 @@ import sympy
 
 if TYPE_CHECKING:
 
+    from lagsolve.mechanics.analysis.equilibria import EffectivePotential, Equilibrium
     from lagsolve.mechanics.derivation import Derivation
-    from lagsolve.mechanics.equilibria import EffectivePotential, Equilibrium
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,4 @@
-"""The geometry of a problem (``mechanics/geometry.py``) evaluated along a trajectory: plain arrays to draw.
+"""The geometry of a problem (``mechanics/geometry/shapes.py``) evaluated along a trajectory: plain arrays to draw.
 
 Mechanics decides what is a rod, a surface, a wire, a string, a spring, a body or a force; this module only
 puts numbers in (the run's parameter values and concrete functions) and evaluates at every sample, so the
@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 import sympy
 
-from lagsolve.mechanics.geometry import Anchor
+from lagsolve.mechanics.geometry.shapes import Anchor
 from lagsolve.numeric.compile import compile_state_function, substitute_functions
 
 #: points along a drawn curve

@@ -1,7 +1,7 @@
 """The polylines of a scene (``numeric/scene.py``): wires, grounds and wedges, strings and pulleys, springs,
 dampers and walls, knife edges, bodies, surfaces of revolution, and the forces, evaluated along a run.
 
-Everything here is arithmetic on what ``mechanics/geometry.py`` decided; the only choices are of drawing sizes,
+Everything here is arithmetic on what ``mechanics/geometry/shapes.py`` decided; the only choices are of drawing sizes,
 proportional to the system's ``scale`` (the members' extent over the run), and of where the problem leaves a
 place open: how far a line is drawn (past the members' extent), where a spring's wall stands (beyond the motion,
 on the side of the spring's fixed point), where a pulley sits along a strand (so no strand has a negative
@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 import sympy
 
-from lagsolve.mechanics.geometry import Anchor, Geometry, Surface
+from lagsolve.mechanics.geometry.shapes import Anchor, Geometry, Surface
 from lagsolve.numeric.compile import substitute_functions
 from lagsolve.numeric.scene import CURVE_POINTS, Force, Run, Scene, Shape
 

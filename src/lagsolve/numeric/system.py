@@ -30,11 +30,11 @@ import sympy
 from scipy.linalg import lapack
 
 from lagsolve.errors import Issue, SimulationError, SpecError
-from lagsolve.mechanics.energy import jacobi_integral
-from lagsolve.mechanics.friction import contact_directions, normal_forces_at
-from lagsolve.mechanics.matrix_form import MatrixForm
-from lagsolve.mechanics.minimal_chart import MinimalChart
-from lagsolve.mechanics.reactions import force_scale
+from lagsolve.mechanics.analysis.minimal_chart import MinimalChart
+from lagsolve.mechanics.equations.energy import jacobi_integral
+from lagsolve.mechanics.equations.friction import contact_directions, normal_forces_at
+from lagsolve.mechanics.equations.matrix_form import MatrixForm
+from lagsolve.mechanics.equations.reactions import force_scale
 from lagsolve.numeric.compile import StateFunction, compile_state_function, substitute_functions
 from lagsolve.numeric.minimal_state import NumericChart, compile_chart
 from lagsolve.problem.schema import ConstraintKind, Problem

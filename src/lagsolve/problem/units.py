@@ -8,7 +8,7 @@ scale factor (``2*m``) or an exponent beyond :data:`MAX_EXPONENT` is refused wit
 
 A unit is kept as the text written (checked, with ``·`` read as ``*``), so the
 :class:`~lagsolve.problem.schema.Problem` stays plain data; the dimensional checks
-(:mod:`lagsolve.mechanics.dimensions`) read it back with :func:`unit_of`.
+(:mod:`lagsolve.mechanics.units.dimensions`) read it back with :func:`unit_of`.
 
 >>> canonical("kg·m^2")
 'kg*m^2'

@@ -1,6 +1,6 @@
 """The sketch of a system and its animation: only draws what a :class:`~lagsolve.numeric.scene.Scene` holds.
 
-``mechanics/geometry.py`` decides what the parts are, ``numeric/scene.py`` evaluates them along the run; this
+``mechanics/geometry/shapes.py`` decides what the parts are, ``numeric/scene.py`` evaluates them along the run; this
 module puts them in one or two views (a problem in the plane: x–y; in space: the top view x–y and the side view,
 x–z or y–z, whichever shows more of the motion, or only the top view when nothing moves along z), styles them
 by kind, draws the particles as labelled dots and each force as an arrow from its point, all arrows of a figure

@@ -1,6 +1,6 @@
 """Units as a report prints them: :class:`Unit`, a result's unit that prints itself in each format.
 
-The units themselves are decided in :func:`lagsolve.mechanics.result_units.result_units` and listed in
+The units themselves are decided in :func:`lagsolve.mechanics.units.result_units.result_units` and listed in
 :class:`~lagsolve.render.sections.units.UnitsSection`; a unit is text such as ``m/s^2`` (None: unknown). The
 JSON writes the text (or null), LaTeX ``\\mathrm{m/s^{2}}`` (:func:`unit_tex`), MathML and the terminal the
 text, with ``?`` for an unknown unit.

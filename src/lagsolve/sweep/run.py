@@ -75,8 +75,8 @@ def compiled(text: str, source: str) -> Compiled:
 def _compile(text: str, source: str) -> Compiled:
     import sympy
 
-    from lagsolve.mechanics.analysis import monitored
-    from lagsolve.mechanics.matrix_form import matrix_form
+    from lagsolve.mechanics.analysis.analyse import monitored
+    from lagsolve.mechanics.equations.matrix_form import matrix_form
     from lagsolve.numeric.system import bind
     from lagsolve.problem.load import load_text
     from lagsolve.sweep.batch import batch_system

@@ -18,16 +18,16 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import sympy
 
 from lagsolve.enums import TextEnum
-from lagsolve.mechanics.integrability import Integrability
+from lagsolve.mechanics.analysis.integrability import Integrability
 from lagsolve.render.model import Expr, Printer, Rows, shown
 
 if TYPE_CHECKING:
-    from lagsolve.mechanics.equilibria import EffectivePotential
-    from lagsolve.mechanics.integrability import Classification
-    from lagsolve.mechanics.linearize import Linearization
-    from lagsolve.mechanics.minimal import ReducedSystem
+    from lagsolve.mechanics.analysis.equilibria import EffectivePotential
+    from lagsolve.mechanics.analysis.integrability import Classification
+    from lagsolve.mechanics.analysis.linearize import Linearization
+    from lagsolve.mechanics.analysis.minimal import ReducedSystem
+    from lagsolve.mechanics.analysis.steady import SteadyMotion
     from lagsolve.mechanics.results import Derivation
-    from lagsolve.mechanics.steady import SteadyMotion
 
 _STRINGS: dict[str, Any] = {"type": "array", "items": {"type": "string"}}
 

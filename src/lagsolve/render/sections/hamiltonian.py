@@ -220,7 +220,7 @@ def hamiltonian_section(derivation: Derivation) -> HamiltonianPart:
 
 def _written_back(back: Mapping[Any, Any]) -> Callable[[Any], Any]:
     """How an expression is written in the JSON: with the constants of integration written back as the integrals
-    they stand for (as :func:`lagsolve.mechanics.analysis.contract_forms` writes them)."""
+    they stand for (as :func:`lagsolve.mechanics.analysis.analyse.contract_forms` writes them)."""
     return lambda expr: expr.xreplace(back) if isinstance(expr, sympy.Basic) else expr
 
 

@@ -1,6 +1,6 @@
 """The units section of a report, as data (only when the problem file declares units).
 
-The units themselves are decided in :func:`lagsolve.mechanics.result_units.result_units`;
+The units themselves are decided in :func:`lagsolve.mechanics.units.result_units.result_units`;
 :func:`units_section` lists what a report shows of them, in display order: the JSON key ``units``
 (``docs/format.md``, *Units*) and the templates' table (``templates/*/_units.*.j2``) are both
 :func:`lagsolve.render.model.present` of the one record.
@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import sympy
 
-from lagsolve.mechanics.result_units import result_units
+from lagsolve.mechanics.units.result_units import result_units
 from lagsolve.render.model import Expr, shown
 from lagsolve.render.units import Unit
 
