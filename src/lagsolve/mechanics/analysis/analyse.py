@@ -33,6 +33,7 @@ import sympy
 from lagsolve.mechanics.analysis.conserved import Conservation, MotionSystem, conserved_quantities
 from lagsolve.mechanics.analysis.contact import ContactCheck, check_point
 from lagsolve.mechanics.analysis.equilibria import EffectivePotential, effective_potential
+from lagsolve.mechanics.analysis.freedom import freedom
 from lagsolve.mechanics.analysis.integrability import classify_all
 from lagsolve.mechanics.analysis.linearize import Linearization, applies, linearize
 from lagsolve.mechanics.analysis.minimal import ReducedSystem, reduce_system
@@ -73,7 +74,8 @@ def analyse(form: MatrixForm, solution: Solution, friction_results: tuple[Fricti
     linear, linear_note = _linear(stages, problem, system, conservation, effective, friction)
     effective_contact, modes_contact = _contact(form, solution, reduced, effective, linear)
     return Analysis(classes, reduced, reduced_note, system, conservation, effective, effective_note,
-                    linear, linear_note, effective_contact, modes_contact, steady, steady_note)
+                    linear, linear_note, effective_contact, modes_contact, steady, steady_note,
+                    freedom(problem, classes))
 
 
 def _kept_normals(solution: Solution, friction_results: tuple[FrictionResult, ...]) -> dict[Any, Any]:

@@ -11,6 +11,7 @@ if TYPE_CHECKING:
     from lagsolve.mechanics.analysis.conserved import Conservation, MotionSystem
     from lagsolve.mechanics.analysis.contact import ContactCheck
     from lagsolve.mechanics.analysis.equilibria import EffectivePotential
+    from lagsolve.mechanics.analysis.freedom import Freedom
     from lagsolve.mechanics.analysis.integrability import Classification
     from lagsolve.mechanics.analysis.linearize import Linearization
     from lagsolve.mechanics.analysis.minimal import ReducedSystem
@@ -36,3 +37,6 @@ class Analysis:
     #: the steady motions about the effective potential's coordinate (:mod:`lagsolve.mechanics.analysis.steady`)
     steady: SteadyMotion | None = None
     steady_note: str = ""
+    #: how many coordinates fix a configuration and how many velocities are free
+    #: (:mod:`lagsolve.mechanics.analysis.freedom`)
+    freedom: Freedom | None = None

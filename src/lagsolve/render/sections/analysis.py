@@ -433,12 +433,59 @@ class Modes:
     search: str = shown("", optional=True)
 
 
+def _count(n: int, one: str, many: str) -> str:
+    return f"{n} {one if n == 1 else many}"
+
+
+@dataclass(frozen=True)
+class Freedom:
+    """The degrees of freedom (:mod:`lagsolve.mechanics.analysis.freedom`): the counts, how many coordinates fix a
+    ``configuration`` (None: not settled) and how many ``velocities`` are free, and the one sentence every format
+    prints."""
+
+    coordinates: int = shown()
+    holonomic: int = shown()
+    nonholonomic: int = shown()
+    unresolved: int = shown()
+    configuration: int | None = shown(terminal=True)
+    velocities: int = shown(terminal=True)
+    sentence: str = shown(json=None, terminal=True)
+
+
+def _freedom_sentence(n: int, h: int, k: int, u: int, free: int) -> str:
+    """The degrees of freedom in words: n coordinates less the constraints, and, for a nonholonomic system, the
+    coordinates a configuration needs beside the free velocities."""
+    coordinates, degrees = _count(n, "coordinate", "coordinates"), _count(free, "degree", "degrees")
+    if h + k + u == 0:
+        return f"{coordinates} and no constraint: {degrees} of freedom."
+    holonomic = _count(h, "holonomic constraint", "holonomic constraints")
+    if k + u == 0:
+        return f"{coordinates} less {holonomic}: {degrees} of freedom."
+    velocities = _count(free, "velocity is", "velocities are")
+    if u:
+        unsettled = _count(u, "velocity constraint is", "velocity constraints are")
+        return (f"{coordinates} less {_count(h + k + u, 'constraint', 'constraints')}: {velocities} free, "
+                f"{degrees} of freedom. Whether {unsettled} integrable is not settled, so how many coordinates a "
+                "configuration needs is not known.")
+    configuration = _count(n - h, "coordinate", "coordinates")
+    binding = _count(k, "nonholonomic constraint binds", "nonholonomic constraints bind")
+    fixed = f"{coordinates} less {holonomic} leave {configuration}" if h else f"All {coordinates} are needed"
+    return (f"{fixed} to fix a configuration, but {binding} the velocities as well, so {velocities} free: "
+            f"{degrees} of freedom, fewer than the coordinates a configuration needs: the system is nonholonomic.")
+
+
+def _freedom(f: Any) -> Freedom:
+    return Freedom(f.coordinates, f.holonomic, f.nonholonomic, f.unresolved, f.configuration, f.velocities,
+                   _freedom_sentence(f.coordinates, f.holonomic, f.nonholonomic, f.unresolved, f.velocities))
+
+
 @dataclass(frozen=True)
 class AnalysisSection:
     """Every part of the analysis a report shows; each ``*_note`` says why a part is absent (the JSON writes
     ``{"note": ...}`` in its place)."""
 
     constraints: tuple[Classified, ...] = shown(keyed="name", terminal=True)
+    freedom: Freedom | None = shown(json="degrees_of_freedom", terminal=True)
     reduced: Reduced | None = shown(absent="reduced_note", terminal=True)
     reduced_note: str = shown(json=None)
     system: str = shown(json=None)
@@ -466,6 +513,7 @@ def analysis_section(derivation: Derivation) -> AnalysisSection | None:
     full = ", with the constraints," if analysis.system.kind == "full" else ""
     return AnalysisSection(
         constraints=tuple(_classified(k) for k in analysis.classification),
+        freedom=_freedom(analysis.freedom) if analysis.freedom is not None else None,
         reduced=_reduced(analysis.reduced, derivation) if analysis.reduced is not None else None,
         reduced_note=analysis.reduced_note,
         system=analysis.system.kind,
