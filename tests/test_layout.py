@@ -147,3 +147,10 @@ def test_the_cycle_finder_finds_a_cycle():
 def test_no_module_over_the_line_limit():
     long = {name: n for name, path in _modules().items() if (n := len(path.read_text().splitlines())) > MAX_LINES}
     assert long == {}, f"modules over {MAX_LINES} lines: {long}"
+
+
+def test_test_files_have_unique_names():
+    """pytest's default import mode refuses two test files of one name in different folders (tests mirror modules,
+    and two packages may have modules of one name: the second test takes its package's name as a prefix)."""
+    names = [p.name for p in (Path(__file__).resolve().parent).rglob("test_*.py")]
+    assert sorted({n for n in names if names.count(n) > 1}) == []
