@@ -327,8 +327,12 @@ def _described(schema: dict[str, Any], meta: Shown) -> dict[str, Any]:
 
 
 def _description(meta: Shown) -> str:
-    unit = f" (in the unit of {meta.unit})" if meta.unit else ""
-    return (meta.doc + unit).strip()
+    """The schema's description of a field: its ``doc``, and the unit of its value (the ``units`` key of a result
+    gives the unit when the problem declares units)."""
+    if not meta.unit:
+        return meta.doc
+    unit = f"in the unit of {meta.unit}"
+    return f"{meta.doc} ({unit})" if meta.doc else unit[0].upper() + unit[1:]
 
 
 def _nullable(hint: Any) -> bool:

@@ -200,8 +200,8 @@ class ConstraintForce:
     every coordinate; ``generalized_shown`` in the reports, the nonzero ones)."""
 
     name: str = shown(json=None, terminal=True)
-    vector: tuple[Expr, ...] | None = shown(optional=True)
-    magnitude: Expr | None = shown(terminal=True)
+    vector: tuple[Expr, ...] | None = shown(optional=True, unit="force")
+    magnitude: Expr | None = shown(terminal=True, unit="force")
     particles: tuple[ParticleForce, ...] = shown(keyed="name", optional=True, terminal=True)  # when several
     generalized: tuple[CoordinateValue, ...] = shown(
         keyed="name", optional=True, template=False,
@@ -238,7 +238,8 @@ class Friction:
     term with the symbol N (``term_force``, ``term_generalized``: the nonzero ones)."""
 
     name: str = shown(json=None, terminal=True)
-    normal_force: Expr = shown(template=False)  # the closed form of N (N itself when only an implicit equation)
+    # the closed form of N (N itself when only an implicit equation)
+    normal_force: Expr = shown(template=False, unit="force")
     force: tuple[Expr, ...] = shown(template=False)
     generalized: tuple[CoordinateValue, ...] = shown(keyed="name", template=False)
     valid_while: Expr = shown()
@@ -315,9 +316,9 @@ class CoreSections:
     particles: tuple[Particle, ...] = shown(json=None)
     bodies: tuple[Body, ...] = shown(json=None)
     gravity: tuple[Expr, ...] | None = shown(json=None)
-    kinetic: Expr = shown()
-    potential: Expr = shown()
-    lagrangian: Expr = shown()
+    kinetic: Expr = shown(unit="energy")
+    potential: Expr = shown(unit="energy")
+    lagrangian: Expr = shown(unit="energy")
     loads: tuple[Load, ...] = shown(json=None)
     constraints: tuple[Constraint, ...] = shown(keyed="name", terminal=True)
     equations: tuple[Equation, ...] = shown(json=None)
@@ -325,8 +326,10 @@ class CoreSections:
     substitutions: tuple[Substitution, ...] = shown(json=None)
     constrained: tuple[Side, ...] = shown(json=None)  # the equations with the constraints used (none without)
     matrix: MatrixForm = shown(inline=True, terminal=True)
-    accelerations: tuple[Solved, ...] | None = shown(keyed="name", terminal=True)
-    multipliers: tuple[Solved, ...] | None = shown(keyed="name", terminal=True)
+    accelerations: tuple[Solved, ...] | None = shown(keyed="name", terminal=True,
+                                                      unit="each coordinate's acceleration (units.accelerations)")
+    multipliers: tuple[Solved, ...] | None = shown(keyed="name", terminal=True,
+                                                    unit="each multiplier (units.multipliers)")
     solve_note: str = shown(json=None)
     forces: tuple[ConstraintForce, ...] | None = shown(json="constraint_forces", keyed="name", terminal=True)
     friction: tuple[Friction, ...] = shown(keyed="name", terminal=True)
