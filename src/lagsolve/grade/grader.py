@@ -52,7 +52,7 @@ from lagsolve.grade.evaluate import (
     relation,
 )
 from lagsolve.grade.key import Grading
-from lagsolve.grade.submission import NOT_GRADED, STEPS, Submission, names_for
+from lagsolve.grade.submission import LISTS, STEPS, Submission, names_for
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.equations.constraints import velocity_form
 from lagsolve.mechanics.equations.lagrange import LagrangeTerms, lagrange_terms
@@ -60,6 +60,7 @@ from lagsolve.mechanics.equations.model import Model
 from lagsolve.mechanics.equations.reactions import force_scale
 from lagsolve.mechanics.symbolic.linsolve import solve_linear
 from lagsolve.mechanics.symbolic.simplify import reproducible
+from lagsolve.problem.names import momentum_name
 
 
 class GradeStatus(TextEnum):
@@ -85,9 +86,14 @@ POTENTIAL_SIGN = "wrong_potential_sign"
 KINETIC_TERM, ABS = "missing_kinetic_term", "missing_abs"
 
 #: steps whose answers may differ from the key's by a constant
-SHIFTS = ("potential", "lagrangian", "conserved", "effective_potential")
+SHIFTS = ("potential", "lagrangian", "conserved", "effective_potential", "hamiltonian")
 #: most terms tried one at a time in a diagnosis (a larger answer gets only the whole-answer candidates)
 MAX_TERMS = 24
+#: steps graded only when the key's derivation has the result, and what it is called
+NO_KEY = {"effective_potential": "effective potential", "hamiltonian": "Hamiltonian",
+          "equilibria": "equilibria in closed form", "frequencies": "frequencies of small oscillations"}
+#: fewest shared states at which a listed value (an equilibrium, an ω²) must be a number to be compared there
+LIST_STATES = 4
 
 
 @dataclass(frozen=True)
@@ -154,7 +160,7 @@ def unreadable_grade(student: str, source: str, message: str, grading: Grading) 
 
 
 def _weighted(grading: Grading) -> list[tuple[str, float]]:
-    return [(s, grading.weights[s]) for s in STEPS if s in grading.weights and s not in NOT_GRADED]
+    return [(s, grading.weights[s]) for s in STEPS if s in grading.weights]
 
 
 def key_answers(derivation: Derivation) -> dict[str, dict[str, Any]]:
@@ -181,7 +187,60 @@ def key_answers(derivation: Derivation) -> dict[str, dict[str, Any]]:
     potential = derivation.effective_potential
     if potential is not None and isinstance(potential.get("expression"), sympy.Basic):
         out["effective_potential"] = {str(potential["coordinate"]): potential["expression"]}
+    if derivation.hamiltonian is not None:
+        out["hamiltonian"] = {"": derivation.hamiltonian.expression}
+    points, squares = _equilibria(derivation)
+    if points:
+        out["equilibria"] = {str(i + 1): p for i, p in enumerate(points)}
+    if squares:
+        out["frequencies"] = {str(i + 1): w for i, w in enumerate(squares)}
     return out
+
+
+def _equilibria(derivation: Derivation) -> tuple[list[dict[str, Any]], list[Any]]:
+    """The key's equilibria (each a mapping coordinate → value) and the ω² of small oscillations about those not
+    known to be unstable (stable, or stable under a condition on the parameters), from the effective potential
+    when there is one, else from the normal modes. Only equilibria in closed form count: a point found
+    numerically, or known only by its condition, makes the key's list unusable (empty). An equilibrium whose ω²
+    are those of an earlier one (a symmetric pair, ±θ₀) adds none."""
+    analysis = derivation.analysis
+    points: list[dict[str, Any]] = []
+    groups: list[list[Any]] = []
+    potential = analysis.effective_potential if analysis is not None else None
+    linear = analysis.linearization if analysis is not None else None
+    if potential is not None and potential.equilibria:
+        name = str(potential.coordinate)
+        for eq in potential.equilibria:
+            if eq.value is None:
+                return [], []
+            points.append({name: eq.value})
+            if eq.stable is not False and eq.frequency_squared is not None:
+                groups.append([eq.frequency_squared])
+    elif linear is not None and linear.modes:
+        for mode in linear.modes:
+            values = [v for _, v in mode.point]
+            if any(isinstance(v, sympy.Basic) and v.atoms(sympy.Float) for v in values):
+                return [], []
+            points.append({str(q): v for q, v in mode.point})
+            if mode.stable is not False and mode.squared_frequencies is not None:
+                groups.append(list(mode.squared_frequencies))
+    squares: list[Any] = []
+    seen: list[list[Any]] = []
+    for group in groups:
+        if any(len(group) == len(other) and all(_same_symbolic(a, b) for a, b in zip(group, other, strict=True))
+               for other in seen):
+            continue
+        seen.append(group)
+        squares.extend(group)
+    return points, squares
+
+
+def _same_symbolic(a: Any, b: Any) -> bool:
+    from lagsolve.check.verdicts import symbolically_equal
+
+    with contextlib.suppress(TypeError, ValueError, AttributeError):
+        return bool(symbolically_equal(sympy.sympify(a), sympy.sympify(b)))
+    return False
 
 
 def grade(derivation: Derivation, grading: Grading, submission: Submission, *, seed: int = 0,
@@ -206,9 +265,26 @@ class GradingKey:
         self.comparer = Comparer(derivation, [], STATES, seed)  # check's preparation and rate of a quantity
         self._values: Evaluator | None = None
         self._equations: Evaluator | None = None
+        self._canonical: Evaluator | None = None
         self._released: ReleasedConstraints | None = None
         self._follows: dict[Any, dict[str, dict[str, Any]]] = {}
         self._candidates: dict[tuple[str, Any], list[tuple[str, Any, str]]] = {}
+        self._angles: set[str] | None = None
+
+    @property
+    def angles(self) -> set[str]:
+        """The coordinates that appear only inside sines and cosines (their equilibria are equal modulo 2π)."""
+        if self._angles is None:
+            from lagsolve.mechanics.analysis.numeric_equilibria import periodic
+
+            analysis = self.derivation.analysis
+            self._angles = set()
+            if analysis is not None:
+                system = analysis.system
+                coordinates = list(system.model.coordinates)
+                flags = periodic([system.model.lagrangian, *system.generalized_forces], coordinates)
+                self._angles = {str(q) for q, flag in zip(coordinates, flags, strict=True) if flag}
+        return self._angles
 
     @property
     def values(self) -> Evaluator:
@@ -224,6 +300,17 @@ class GradingKey:
                     extra |= self.comparer.prepare(sympy.sympify(s)).free_symbols
             self._values = Evaluator(derivation, extra, self.seed, self.comparer.prepare)
         return self._values
+
+    @property
+    def canonical(self) -> Evaluator:
+        """Functions of the coordinates and momenta (H): the momenta p_q random anew at each state, so that a
+        constant (in H up to a constant) cannot depend on them."""
+        if self._canonical is None:
+            derivation = self.derivation
+            names = names_for(derivation.problem)
+            momenta = [names.symbols[momentum_name(q.name)] for q in derivation.problem.coordinates]
+            self._canonical = Evaluator(derivation, momenta, self.seed, self.comparer.prepare, varying=True)
+        return self._canonical
 
     @property
     def equations(self) -> Evaluator:
@@ -296,15 +383,17 @@ class _Grader:
             return StepGrade(step, MISSING, None, 0.0, weight, "not in the submission")
         if read.issue is not None:
             return StepGrade(step, UNREADABLE, None, 0.0, weight, str(read.issue))
-        if step in ("effective_potential",) and step not in self.key:
-            return StepGrade(step, INCORRECT, None, 0.0, weight, "the key gives no effective potential to compare")
-        names = self.expected_entries(step) or list(read.entries)
+        if step in NO_KEY and step not in self.key:
+            return StepGrade(step, INCORRECT, None, 0.0, weight, f"the key gives no {NO_KEY[step]} to compare")
         entries: list[_Entry] = []
-        for name in names:
-            if name not in read.entries:
-                entries.append(_Entry(name, INCORRECT, None, f"{_label(name)}no entry"))
-                continue
-            entries.append(self.entry(step, name, read.entries[name]))
+        if step in LISTS:
+            entries = self.listed(step, read.entries)
+        else:
+            for name in self.expected_entries(step) or list(read.entries):
+                if name not in read.entries:
+                    entries.append(_Entry(name, INCORRECT, None, f"{_label(name)}no entry"))
+                    continue
+                entries.append(self.entry(step, name, read.entries[name]))
         if not entries:
             return StepGrade(step, INCORRECT, None, 0.0, weight, "the step has no entries")
         share = weight / len(entries)
@@ -318,9 +407,129 @@ class _Grader:
         example = _example(entries, mistake, read.texts)
         return StepGrade(step, status, mistake, round(points, 6), weight, message, example)
 
-    def relation(self, value: Any, reference: Any) -> Relation:
-        values = self.context.values
+    def relation(self, value: Any, reference: Any, step: str = "") -> Relation:
+        values = self.context.canonical if step == "hamiltonian" else self.context.values
         return relation(values.values(value), values.values(reference), values.states)
+
+    # -- equilibria and frequencies: lists compared as a set, a multiset
+
+    def same_value(self, value: Any, reference: Any, *, angle: bool = False) -> bool:
+        """A value of the parameters (and conserved momenta) equal to the key's: symbolically (an angle up to
+        whole turns), else at every shared state where the key's value is a number (complex ones too: an
+        equilibrium that exists only for some parameters), at least :data:`LIST_STATES` of them."""
+        if _same_symbolic(value, reference) or (angle and _whole_turns(value - reference)):
+            return True
+        values = self.context.values
+        student, key = values.values(value), values.values(reference)
+        if student is None or key is None:
+            return False
+        rows = [(e, d) for e, d in zip(student, key, strict=True) if _number(d)]
+        if len(rows) < LIST_STATES:
+            return False
+        return all(_number(e) and _near(e, d, angle) for e, d in rows)
+
+    def listed(self, step: str, entries: dict[str, Any]) -> list[_Entry]:
+        """One entry per item of the key's list (matched, or missing) and one per extra item of the student's."""
+        if step == "equilibria":
+            return self.equilibria(entries)
+        return self.frequencies(entries)
+
+    def equilibria(self, entries: dict[str, Any]) -> list[_Entry]:
+        key = list(self.key["equilibria"].values())
+        coordinates = {q for point in key for q in point}
+        lone = next(iter(coordinates)) if len(coordinates) == 1 else None
+        angles = self.context.angles
+        given: list[dict[str, Any] | None] = []
+        out: list[_Entry] = []
+        for name, pairs in entries.items():
+            point = {(lone or "") if q == "" else q: v for q, v in pairs}
+            if "" in point:
+                out.append(_Entry(name, INCORRECT, None, f"equilibrium {name}: a bare value, but the key's "
+                                  "equilibria have several coordinates: write each as a mapping coordinate: value"))
+                given.append(None)
+                continue
+            given.append(point)
+
+        def same(point: dict[str, Any] | None, reference: dict[str, Any]) -> bool:
+            return point is not None and set(point) == set(reference) and all(
+                self.same_value(point[q], reference[q], angle=q in angles) for q in reference)
+
+        used: set[int] = set()
+        for reference in key:
+            found = next((i for i, p in enumerate(given) if i not in used and same(p, reference)), None)
+            if found is None:
+                shown = _point(reference)
+                out.append(_Entry(shown, INCORRECT, None, f"the equilibrium {shown} is missing"))
+            else:
+                used.add(found)
+                out.append(_Entry(_point(reference), CORRECT))
+        for i, extra in enumerate(given):
+            if i in used or extra is None:
+                continue
+            if any(same(extra, reference) for reference in key):
+                continue  # the same point again (an angle written another way): no more, no less credit
+            out.append(_Entry(str(i + 1), INCORRECT, None, f"{_point(extra)} is not an equilibrium of the key's"
+                              + ("" if set(extra) == coordinates else
+                                 f" (the key's equilibria give {', '.join(sorted(coordinates))})")))
+        return out
+
+    def frequencies(self, entries: dict[str, Any]) -> list[_Entry]:
+        key = list(self.key["frequencies"].values())
+        either = self.grading.frequency_form == "either"
+        given = list(entries.items())
+
+        def how(value: Any, reference: Any) -> str:
+            if self.same_value(value, reference):
+                return "squared"
+            if self.same_value(value**2, reference):
+                return "omega"
+            return ""
+
+        out: list[_Entry] = []
+        used: set[int] = set()
+        unmatched: list[Any] = []
+        for reference in key:
+            found = None
+            for i, (_, value) in enumerate(given):
+                if i in used:
+                    continue
+                kind = how(value, reference)
+                if kind:
+                    found = (i, kind)
+                    break
+            label = f"ω² = {sympy.sstr(reference)}"
+            if found is None:
+                if reference == 0:
+                    continue  # the zero ω² of a free motion (a continuum of equilibria) may be left out
+                unmatched.append(reference)
+                out.append(_Entry(label, INCORRECT, None, f"the squared frequency {sympy.sstr(reference)} is missing"))
+                continue
+            used.add(found[0])
+            if found[1] == "omega" and not either:
+                out.append(_Entry(label, INCORRECT, None, f"{given[found[0]][0]}: this is ω; the key asks for ω² "
+                                  f"({sympy.sstr(reference)})"))
+            else:
+                out.append(_Entry(label, CORRECT))
+        extras = [(i, value) for i, (_, value) in enumerate(given) if i not in used]
+        for i, value in extras:
+            if any(how(value, reference) for reference in key):
+                continue  # the same frequency again (about a symmetric equilibrium)
+            mistake, detail = None, "is not a squared frequency (nor a frequency) of the key's"
+            if len(unmatched) == 1 and len(extras) == 1:
+                mistake, detail = self.frequency_mistake(value, unmatched[0], detail)
+            out.append(_Entry(given[i][0], INCORRECT, mistake, f"{given[i][0]}: {sympy.sstr(value)} {detail}"))
+        return out
+
+    def frequency_mistake(self, value: Any, reference: Any, detail: str) -> tuple[str | None, str]:
+        """The mistake when one ω² is missing and one other given: the opposite sign, or a constant factor."""
+        for candidate in (value, value**2):
+            ratio = _ratio(candidate, reference)
+            if ratio is None or ratio == 1 or not _monomial(ratio):
+                continue
+            if ratio == -1:
+                return SIGN, f"has the opposite sign of the key's {sympy.sstr(reference)}"
+            return FACTOR_MISSING, f"is {sympy.sstr(ratio)} times the key's {sympy.sstr(reference)}"
+        return None, detail
 
     def entry(self, step: str, name: str, value: Any) -> _Entry:
         if step in ("equations", "constraints"):
@@ -330,7 +539,7 @@ class _Grader:
             return self.conserved(name, value)
         if reference is None:
             return _Entry(name, INCORRECT, None, f"{_label(name)}the key has no such quantity")
-        found = self.relation(value, reference)
+        found = self.relation(value, reference, step)
         if found.kind == SAME or (found.kind == OFFSET and step in SHIFTS):
             note = " up to a constant" if found.kind == OFFSET else ""
             return _Entry(name, CORRECT, None, f"{_label(name)}equivalent to the key{note}" if note else "")
@@ -339,7 +548,7 @@ class _Grader:
             return _Entry(name, CORRECT, None, f"{_label(name)}correct in the opposite sign convention of λ (accepted)")
         own = self.follows.get(step, {}).get(name)
         if own is not None:
-            followed = self.relation(value, own)
+            followed = self.relation(value, own, step)
             if followed.kind == SAME or (followed.kind == OFFSET and step in SHIFTS):
                 return _Entry(name, FOLLOWS, None, f"{_label(name)}follows from the submission's own earlier steps")
         mistake, detail = self.diagnose(step, name, found, value, reference)
@@ -377,9 +586,11 @@ class _Grader:
         if found.kind == FACTOR:
             return FACTOR_MISSING, f"off by a constant factor{_factor(found)}"
         for mistake, candidate, detail in self.context.candidates(step, reference):
-            same = self.relation(value, candidate)
+            same = self.relation(value, candidate, step)
             if same.kind == SAME or (same.kind == OFFSET and step in SHIFTS):
-                return mistake, detail
+                return mistake or None, detail
+        if step == "hamiltonian" and value.has(*self.derivation.model.velocities):
+            return None, "written with velocities: H is a function of the coordinates and the momenta p_q"
         return None, self.differs(found)
 
     def differs(self, found: Relation) -> str:
@@ -440,6 +651,36 @@ def _example(entries: list[_Entry], mistake: str | None, texts: dict[str, str]) 
     return ""
 
 
+def _monomial(expr: Any) -> bool:
+    """A number times powers of symbols (a constant factor of values that depend on the parameters only)."""
+    return all(not (f.is_Add or f.is_Function) for f in sympy.Mul.make_args(expr)) and bool(expr != 0)
+
+
+def _number(value: Any) -> bool:
+    return isinstance(value, mpmath.mpf | mpmath.mpc) and bool(mpmath.isfinite(value))
+
+
+def _near(e: Any, d: Any, angle: bool) -> bool:
+    """E = D to the comparisons' tolerance; an angle's real part modulo 2π."""
+    if not angle:
+        return close(e, d)
+    gap = mpmath.re(e) - mpmath.re(d)
+    turns = mpmath.nint(gap / (2 * mpmath.pi))
+    return close(gap - 2 * mpmath.pi * turns, 0) and close(mpmath.im(e), mpmath.im(d))
+
+
+def _whole_turns(difference: Any) -> bool:
+    """``difference`` is 2πk for an integer k."""
+    with contextlib.suppress(TypeError, ValueError, AttributeError):
+        turns = sympy.nsimplify(sympy.simplify(difference / (2 * sympy.pi)))
+        return bool(turns.is_Integer)
+    return False
+
+
+def _point(point: dict[str, Any]) -> str:
+    return ", ".join(f"{q} = {sympy.sstr(v)}" for q, v in point.items())
+
+
 def _ratio(a: Any, b: Any) -> Any:
     with contextlib.suppress(sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError, ZeroDivisionError):
         if b == 0:
@@ -495,7 +736,8 @@ def _terms(expr: Any) -> tuple[Any, ...]:
 
 
 def _candidates(step: str, reference: Any, derivation: Derivation) -> list[tuple[str, Any, str]]:
-    """(mistake, the key's answer with that mistake made, evidence) for ``step``, most specific first."""
+    """(mistake, the key's answer with that mistake made, evidence) for ``step``, most specific first; a mistake
+    "" is a known difference without a name (said in the evidence only)."""
     model = derivation.model
     out: list[tuple[str, Any, str]] = []
     if step == "lagrangian":
@@ -505,10 +747,12 @@ def _candidates(step: str, reference: Any, derivation: Derivation) -> list[tuple
                         f"the kinetic energy is {k} times the key's"))
         for term in _terms(model.kinetic):
             out.append((KINETIC_TERM, model.lagrangian - term, f"the kinetic term {sympy.sstr(term)} is missing"))
+    if step == "hamiltonian":
+        out.extend(_hamiltonian_candidates(derivation))
     if step == "kinetic":
         for term in _terms(reference):
             out.append((KINETIC_TERM, reference - term, f"the kinetic term {sympy.sstr(term)} is missing"))
-    if step not in ("kinetic", "potential", "lagrangian", "constraints"):
+    if step not in ("kinetic", "potential", "lagrangian", "constraints", "hamiltonian"):
         without = _without_velocity_squared(reference, model.velocities)
         if without != reference:
             out.append((VELOCITY_SQUARED, without,
@@ -517,6 +761,48 @@ def _candidates(step: str, reference: Any, derivation: Derivation) -> list[tuple
     for term in _terms(reference):
         out.append((signs, reference - 2 * term, f"the term {sympy.sstr(term)} has the wrong sign"))
     return out
+
+
+def _hamiltonian_candidates(derivation: Derivation) -> list[tuple[str, Any, str]]:
+    """H with −V; with a moving constraint (H = T2 − T0 + V, the Jacobi integral), T + V written in the momenta
+    (named when T has no part linear in the velocities: it is then H with T0's sign flipped); the kinetic part
+    T2(p) doubled or halved."""
+    h, analysis = derivation.hamiltonian, derivation.analysis
+    if h is None or analysis is None:
+        return []
+    potential = analysis.system.model.potential
+    to_p = dict(zip(h.velocities, h.inverse, strict=True))
+    t2, t1, t0 = (sympy.sympify(part).xreplace(to_p) for part in h.kinetic_parts)
+    out: list[tuple[str, Any, str]] = [(POTENTIAL_SIGN, h.expression - 2 * potential,
+                                        "the potential has the wrong sign (H with −V)")]
+    if t0 != 0:
+        energy = "T + V written in the momenta, but with a moving constraint H = T2 − T0 + V (the Jacobi integral)"
+        if t1 == 0:
+            out.append((SIGN, h.expression + 2 * t0, f"it is {energy}: the term T0 = {sympy.sstr(t0)} has the "
+                                                      "wrong sign"))
+        else:
+            out.append(("", t2 + t1 + t0 + potential, f"it is {energy}"))
+    for k in (2, sympy.Rational(1, 2)):
+        out.append((FACTOR_MISSING, h.expression + (k - 1) * t2, f"the kinetic part T2 in the momenta is {k} times "
+                                                                   "the key's"))
+    return out
+
+
+def _legendre(derivation: Derivation, lagrangian: Any) -> Any:
+    """The Legendre transform of the student's L in the key's minimal coordinates (its constraints put in):
+    p = A q̇ + b, H = ½ (p − b)ᵀ A⁻¹ (p − b) − L(q̇ = 0); None when L is not quadratic in the velocities."""
+    h, analysis = derivation.hamiltonian, derivation.analysis
+    if h is None or analysis is None or analysis.reduced is None:
+        return None
+    L = sympy.expand(analysis.reduced.substitution.apply(lagrangian))
+    qd = list(h.velocities)
+    zero = {v: 0 for v in qd}
+    A = sympy.Matrix(len(qd), len(qd), lambda i, j: sympy.diff(L, qd[i], qd[j]))
+    if any(entry.has(*qd) for entry in A) or A.det() == 0:
+        return None
+    b = sympy.Matrix([sympy.diff(L, v).xreplace(zero) for v in qd])
+    w = sympy.Matrix(h.momentum_symbols) - b
+    return (w.T * A.LUsolve(w))[0, 0] / 2 - L.xreplace(zero)
 
 
 # -- follow-through: what the submission's own steps give -----------------------------------------------
@@ -541,6 +827,11 @@ def _follow_through(derivation: Derivation, own: dict[str, dict[str, Any]]) -> d
                         sympy.Integer(0), sympy.Integer(0), lagrangian)
         with contextlib.suppress(TypeError, ValueError, AttributeError, NotImplementedError):
             terms = lagrange_terms(student, tuple(_constraint_terms(derivation)), tuple(forces))
+    if lagrangian is not None:
+        with contextlib.suppress(TypeError, ValueError, AttributeError, NotImplementedError, ZeroDivisionError):
+            legendre = _legendre(derivation, lagrangian)
+            if legendre is not None:
+                out["hamiltonian"] = {"": legendre}
     if terms is not None:
         out["momenta"] = dict(zip(names, terms.momenta, strict=True))
         out["generalized_forces"] = dict(zip(names, terms.gradients, strict=True))

@@ -7,6 +7,7 @@ earlier mistake, and whether the opposite sign convention of λ is accepted.
       weights: {equations: 4, multipliers: 2}   # points per step; a step with no weight is not graded
       follow_through: 0.5                         # share of a step's points for `follows` (default 1)
       lambda_sign: either                         # strict (default): -λ is the mistake lambda_sign_convention
+      frequency_form: squared                     # either (default): ω or ω²; squared: ω² only
 
 Without ``weights`` the steps of the derivation's core are graded (:func:`default_weights`).
 """
@@ -18,7 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from lagsolve.errors import Issue, SpecError
-from lagsolve.grade.submission import NOT_GRADED, STEPS
+from lagsolve.grade.submission import STEPS
 from lagsolve.problem.schema import Problem
 from lagsolve.problem.yamlread import dotted, kind_of, read_document
 
@@ -27,16 +28,19 @@ DEFAULT_WEIGHTS = {"kinetic": 1.0, "potential": 1.0, "lagrangian": 1.0, "constra
                    "generalized_forces": 1.0, "equations": 2.0, "accelerations": 2.0, "multipliers": 1.0,
                    "constraint_forces": 1.0, "normal_force": 1.0}
 LAMBDA_SIGN = ("strict", "either")
+#: what a submission's frequencies may be: ω² or ω (either, the default), or ω² only (squared)
+FREQUENCY_FORM = ("either", "squared")
 
 
 @dataclass(frozen=True)
 class Grading:
     """``weights`` by step (in :data:`~lagsolve.grade.submission.STEPS` order), ``follow_through`` in [0, 1],
-    ``lambda_sign`` strict or either."""
+    ``lambda_sign`` strict or either, ``frequency_form`` either (ω or ω²) or squared (ω² only)."""
 
     weights: dict[str, float]
     follow_through: float = 1.0
     lambda_sign: str = "strict"
+    frequency_form: str = "either"
 
 
 def default_weights(problem: Problem) -> dict[str, float]:
@@ -72,8 +76,9 @@ def read_grading(path: str | Path, problem: Problem) -> Grading:
         raise fail(("grading",), f"expected a mapping, found {kind_of(spec)}",
                    "write e.g. 'grading: {weights: {equations: 4}, follow_through: 0.5}'")
     for key in spec:
-        if key not in ("weights", "follow_through", "lambda_sign"):
-            raise fail(("grading", key), f"unknown key {key!r}", "use weights, follow_through, lambda_sign")
+        if key not in ("weights", "follow_through", "lambda_sign", "frequency_form"):
+            raise fail(("grading", key), f"unknown key {key!r}",
+                       "use weights, follow_through, lambda_sign, frequency_form")
     weights = default_weights(problem)
     if "weights" in spec:
         raw = spec["weights"]
@@ -84,9 +89,6 @@ def read_grading(path: str | Path, problem: Problem) -> Grading:
             if step not in raw:
                 continue
             value = raw[step]
-            if step in NOT_GRADED:
-                raise fail(("grading", "weights", step), f"the step {step!r} is not graded by this version",
-                           "leave it out of the weights")
             if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) \
                     or not 0 <= value <= 1000:
                 raise fail(("grading", "weights", step), f"expected a number of points from 0 to 1000, found "
@@ -102,4 +104,7 @@ def read_grading(path: str | Path, problem: Problem) -> Grading:
     sign = spec.get("lambda_sign", "strict")
     if sign not in LAMBDA_SIGN:
         raise fail(("grading", "lambda_sign"), f"expected one of {', '.join(LAMBDA_SIGN)}, found {sign!r}")
-    return Grading(weights, float(follow), sign)
+    form = spec.get("frequency_form", "either")
+    if form not in FREQUENCY_FORM:
+        raise fail(("grading", "frequency_form"), f"expected one of {', '.join(FREQUENCY_FORM)}, found {form!r}")
+    return Grading(weights, float(follow), sign, form)

@@ -22,7 +22,7 @@ from lagsolve.problem import expr as gateway
 from lagsolve.problem.names import momentum_name, momentum_symbol
 from lagsolve.problem.readers.base import line_of
 from lagsolve.problem.schema import Problem
-from lagsolve.problem.yamlread import Document, dotted, kind_of, read_document
+from lagsolve.problem.yamlread import SUBMISSION, Document, dotted, kind_of, read_document
 
 #: the steps a submission may contain, in the order of a derivation (names fixed by the contract)
 STEPS = ("kinetic", "potential", "lagrangian", "constraints", "momenta", "generalized_forces", "equations",
@@ -36,8 +36,10 @@ PER_CONSTRAINT = ("constraints", "multipliers", "constraint_forces")
 PER_CONTACT = ("normal_force",)
 #: steps whose entries may be written ``lhs = rhs`` (read as lhs − rhs)
 EQUATIONS = ("constraints", "equations")
-#: steps the contract lists that this version reads but does not grade
-NOT_GRADED = ("equilibria", "frequencies", "hamiltonian")
+#: lists compared as a set (equilibria) or a multiset (frequencies): entries are named 1, 2, ... in order
+LISTS = ("equilibria", "frequencies")
+#: most items in a list step
+MAX_ITEMS = 32
 MAX_NAME = 200
 
 
@@ -105,7 +107,7 @@ def read_text(raw: bytes | str, problem: Problem, source: str = "<text>", stem: 
     SpecError
         The file is not one YAML mapping with ``steps`` (nothing in it can be graded).
     """
-    document = read_document(raw.encode("utf-8") if isinstance(raw, str) else raw, source)
+    document = read_document(raw.encode("utf-8") if isinstance(raw, str) else raw, source, SUBMISSION)
     return _Reader(document, problem, source, normals or {}).submission(stem or "student")
 
 
@@ -160,8 +162,8 @@ class _Reader:
     def entries(self, name: str, value: Any, path: tuple) -> dict[str, Any]:
         if name in SCALAR:
             return {"": self.expression(value, path, self.plain)}
-        if name in NOT_GRADED:
-            return {}
+        if name in LISTS:
+            return self.items(name, value, path)
         if name == "effective_potential":
             spec = self.mapping(value, path, "{coordinate: r, expression: ...}")
             self.known(path, spec, ("coordinate", "expression"), "the keys")
@@ -190,6 +192,33 @@ class _Reader:
             if not isinstance(key, str) or not key or len(key) > MAX_NAME:
                 raise _Unreadable(self.issue(path, f"{key!r} is not a name", "write names as plain words"))
             out[key] = self.expression(text, (*path, key), names, equation=name in EQUATIONS)
+        return out
+
+    def items(self, name: str, value: Any, path: tuple) -> dict[str, Any]:
+        """A list step: ``equilibria`` as points (a mapping coordinate → value, or a bare value for a system
+        with one coordinate left: a tuple of (coordinate or "", expression) pairs), ``frequencies`` as
+        expressions (ω² or ω); one item may be written without the list."""
+        items = value if isinstance(value, list) else [value]
+        example = ("[{theta1: 0, theta2: 0}, ...] or, with one coordinate, [0, pi, ...]" if name == "equilibria"
+                   else '["g/l", "g/l + 2*k/m"]')
+        if not items or len(items) > MAX_ITEMS:
+            raise _Unreadable(self.issue(path, f"expected a list of 1 to {MAX_ITEMS} items, found {len(items)}",
+                                         f"write {example}"))
+        coordinates = tuple(q.name for q in self.problem.coordinates)
+        out: dict[str, Any] = {}
+        for i, item in enumerate(items):
+            where = (*path, i) if isinstance(value, list) else path
+            if name == "frequencies" or not isinstance(item, dict):
+                if isinstance(item, dict | list):
+                    raise _Unreadable(self.issue(where, f"expected an expression, found {kind_of(item)}",
+                                                 f"write {example}"))
+                parsed = self.expression(item, where, self.plain)
+                out[str(i + 1)] = parsed if name == "frequencies" else (("", parsed),)
+                continue
+            if not item:
+                raise _Unreadable(self.issue(where, "an equilibrium with no coordinate", f"write {example}"))
+            self.known(where, item, coordinates, "coordinates")
+            out[str(i + 1)] = tuple((q, self.expression(item[q], (*where, q), self.plain)) for q in item)
         return out
 
     def mapping(self, value: Any, path: tuple, example: str) -> dict[str, Any]:
@@ -222,7 +251,17 @@ def _texts(name: str, value: Any, entries: dict[str, Any]) -> dict[str, str]:
         return {"": str(value)}
     if name == "effective_potential":
         return {k: str(value["expression"]) for k in entries}
+    if name in LISTS:
+        items = value if isinstance(value, list) else [value]
+        return {str(i + 1): _shown(item) for i, item in enumerate(items)}
     return {k: str(value[k]) for k in entries if k in value}
+
+
+def _shown(item: Any) -> str:
+    """A list step's item as written: ``theta1: 0, theta2: pi`` for a point."""
+    if isinstance(item, dict):
+        return ", ".join(f"{k}: {v}" for k, v in item.items())
+    return str(item)
 
 
 def _sides(text: str) -> tuple[str, str] | None:

@@ -32,6 +32,29 @@ _CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f-\x9f\ud800-\udfff\u202a-\u202e\u
 
 
 @dataclass(frozen=True)
+class FileKind:
+    """What kind of file is read, for the hints of its errors: ``plural`` ("problem files"), ``empty`` (the hint
+    for an empty file), ``mapping`` (for a file that is not a mapping), ``tag`` (for a tag on the whole file),
+    ``one`` (what a file holds one of)."""
+
+    plural: str
+    empty: str
+    mapping: str
+    tag: str
+    one: str
+
+
+#: a problem file (the default)
+PROBLEM = FileKind("problem files", "a problem file is a mapping with at least name and coordinates",
+                   "start with 'name: ...' and 'coordinates: [...]'", "a problem file is a plain mapping of fields",
+                   "one problem")
+#: a submission of ``lagsolve grade`` (docs/grading.md)
+SUBMISSION = FileKind("submissions", "a submission is a mapping with 'student' and 'steps' (see docs/grading.md)",
+                      "start with 'student: ...' and 'steps:' (see docs/grading.md)",
+                      "a submission is a plain mapping with 'student' and 'steps'", "one submission")
+
+
+@dataclass(frozen=True)
 class Document:
     """A parsed file: ``data`` is plain dicts/lists/scalars; ``lines`` maps a path
     (tuple of keys and indices) to the 1-based line where that value starts."""
@@ -40,8 +63,8 @@ class Document:
     lines: dict[tuple, int]
 
 
-def read_document(raw: bytes, source: str) -> Document:
-    """Parse ``raw`` (the bytes of ``source``) into a :class:`Document`.
+def read_document(raw: bytes, source: str, kind: FileKind = PROBLEM) -> Document:
+    """Parse ``raw`` (the bytes of ``source``) into a :class:`Document`; ``kind`` words the hints.
 
     Raises
     ------
@@ -54,7 +77,7 @@ def read_document(raw: bytes, source: str) -> Document:
 
     if len(raw) > MAX_BYTES:
         raise fail(0, f"file is {len(raw)} bytes; the limit is {MAX_BYTES}",
-                   "problem files are small")
+                   f"{kind.plural} are small")
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -64,7 +87,7 @@ def read_document(raw: bytes, source: str) -> Document:
     if text.startswith("\ufeff"):
         text = text[1:]
     empty = "file is empty"
-    empty_hint = "a problem file is a mapping with at least name and coordinates"
+    empty_hint = kind.empty
     if all(ln.strip().startswith("#") or not ln.strip() for ln in text.splitlines()):
         raise fail(1, empty, empty_hint)
 
@@ -77,14 +100,14 @@ def read_document(raw: bytes, source: str) -> Document:
         # a first pass over the parser's events: it is flat (no recursion), so nesting,
         # size, versions and extra documents are refused, with their line, before the
         # recursive composer could exhaust the stack or spend seconds on a huge file
-        _check_events(yaml.parse(io.StringIO(text)), fail)
+        _check_events(yaml.parse(io.StringIO(text)), fail, kind)
         nodes = list(yaml.compose_all(io.StringIO(text)))
     except SpecError:
         raise
     except ReaderError as exc:
         line = text[: exc.position].count("\n") + 1
         raise fail(line, f"file contains the control character U+{exc.character:04X}",
-                   "remove it; problem files are plain text") from None
+                   f"remove it; {kind.plural} are plain text") from None
     except MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         line = mark.line + 1 if mark is not None else 0
@@ -100,10 +123,10 @@ def read_document(raw: bytes, source: str) -> Document:
     nodes = [n for n in nodes if n is not None and not _is_empty(n)]
     if not nodes:
         raise fail(1, empty, empty_hint)
-    return _Converter(source).document(nodes[0])
+    return _Converter(source, kind).document(nodes[0])
 
 
-def _check_events(events: Any, fail: Any) -> None:
+def _check_events(events: Any, fail: Any, kind: FileKind = PROBLEM) -> None:
     from ruamel.yaml.events import (
         AliasEvent,
         CollectionEndEvent,
@@ -123,12 +146,12 @@ def _check_events(events: Any, fail: Any) -> None:
             documents += 1
             if documents > 1:
                 raise fail(line, "file holds more than one YAML document",
-                           "put one problem per file (remove the '---' separators)")
+                           f"put {kind.one} per file (remove the '---' separators)")
             version = getattr(event, "version", None)
             if version is not None and tuple(version) != (1, 2):
                 shown = ".".join(str(v) for v in version)
                 raise fail(line, f"YAML {shown} documents are not supported",
-                           "remove the '%YAML' line; problem files are read as YAML 1.2")
+                           f"remove the '%YAML' line; {kind.plural} are read as YAML 1.2")
         if isinstance(event, CollectionStartEvent | ScalarEvent | AliasEvent):
             in_mapping = bool(open_collections) and open_collections[-1] >= 0
             is_key = in_mapping and open_collections[-1] % 2 == 0
@@ -138,12 +161,12 @@ def _check_events(events: Any, fail: Any) -> None:
                 count += 1
                 if count > MAX_NODES:
                     raise fail(line, f"the file has more than {MAX_NODES} values",
-                               "problem files are small")
+                               f"{kind.plural} are small")
         if isinstance(event, CollectionStartEvent):
             open_collections.append(0 if isinstance(event, MappingStartEvent) else -1)
             if len(open_collections) > MAX_DEPTH + 1:
                 raise fail(line, f"values are nested more than {MAX_DEPTH} levels deep",
-                           "problem files need only a few levels")
+                           f"{kind.plural} need only a few levels")
         elif isinstance(event, CollectionEndEvent):
             open_collections.pop()
 
@@ -155,8 +178,8 @@ def _is_empty(node: Any) -> bool:
 
 
 class _Converter:
-    def __init__(self, source: str) -> None:
-        self.source = source
+    def __init__(self, source: str, kind: FileKind = PROBLEM) -> None:
+        self.source, self.kind = source, kind
         self.lines: dict[tuple, int] = {}
         self.key_lines: dict[tuple, int] = {}
         self.seen: set[int] = set()
@@ -172,11 +195,11 @@ class _Converter:
 
         if root.tag not in _ALLOWED_TAGS:
             raise self.fail(root, (), f"YAML tag {_show_tag(root.tag)!r} is not allowed",
-                            "remove the tag; a problem file is a plain mapping of fields")
+                            f"remove the tag; {self.kind.tag}")
         if not isinstance(root, MappingNode):
             kind = "a list" if type(root).__name__ == "SequenceNode" else "a single value"
             raise self.fail(root, (), f"the file holds {kind}, not a mapping of fields",
-                            "start with 'name: ...' and 'coordinates: [...]'")
+                            self.kind.mapping)
         return Document(self.value(root, (), 0), self.lines)
 
     def value(self, node: Any, path: tuple, depth: int, line: int | None = None) -> Any:
@@ -186,18 +209,18 @@ class _Converter:
         self.count += 1
         if self.count > MAX_NODES:
             raise self.fail(node, path, f"the file has more than {MAX_NODES} values",
-                            "problem files are small", line)
+                            f"{self.kind.plural} are small", line)
         if depth > MAX_DEPTH:
             raise self.fail(node, path, f"values are nested more than {MAX_DEPTH} levels deep",
-                            "problem files need only a few levels", line)
+                            f"{self.kind.plural} need only a few levels", line)
         if id(node) in self.seen or getattr(node, "anchor", None):
             raise self.fail(node, path,
-                            "anchors and aliases (&name, *name) are not allowed in problem files",
+                            f"anchors and aliases (&name, *name) are not allowed in {self.kind.plural}",
                             "write the value out in full", line)
         self.seen.add(id(node))
         if node.tag not in _ALLOWED_TAGS:
             raise self.fail(node, path, f"YAML tag {_show_tag(node.tag)!r} is not allowed",
-                            "remove the tag; problem files hold plain text, numbers, lists and "
+                            f"remove the tag; {self.kind.plural} hold plain text, numbers, lists and "
                             "mappings", line)
         self.lines[path] = line
         if isinstance(node, MappingNode):
