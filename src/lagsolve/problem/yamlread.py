@@ -50,7 +50,7 @@ PROBLEM = FileKind("problem files", "a problem file is a mapping with at least n
                    "one problem")
 #: a submission of ``lagsolve grade`` (docs/grading.md)
 SUBMISSION = FileKind("submissions", "a submission is a mapping with 'student' and 'steps' (see docs/grading.md)",
-                      "start with 'student: ...' and 'steps:' (see docs/grading.md)",
+                      "a submission starts with 'student: ...' and 'steps:' (see docs/grading.md)",
                       "a submission is a plain mapping with 'student' and 'steps'", "one submission")
 
 
