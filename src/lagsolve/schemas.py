@@ -170,6 +170,8 @@ def _running() -> dict[str, Any]:
         "weights": {"type": "object", "additionalProperties": {"type": "number", "minimum": 0, "maximum": 1000}},
         "follow_through": {"type": "number", "minimum": 0, "maximum": 1},
         "lambda_sign": {"enum": ["strict", "either"]},
+        "frequency_form": {"enum": ["either", "squared"],
+                           "description": "the frequencies step: ω or ω² (either) or ω² only (squared)"},
     }),
     }
 

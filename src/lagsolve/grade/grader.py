@@ -52,6 +52,18 @@ from lagsolve.grade.evaluate import (
     relation,
 )
 from lagsolve.grade.key import Grading
+from lagsolve.grade.later import (
+    angle_coordinates,
+    frequency_mistake,
+    hamiltonian_candidates,
+    key_lists,
+    legendre,
+    ratio,
+    same_at_states,
+    same_symbolic,
+    shown_point,
+    whole_turns,
+)
 from lagsolve.grade.submission import LISTS, STEPS, Submission, names_for
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.equations.constraints import velocity_form
@@ -92,8 +104,6 @@ MAX_TERMS = 24
 #: steps graded only when the key's derivation has the result, and what it is called
 NO_KEY = {"effective_potential": "effective potential", "hamiltonian": "Hamiltonian",
           "equilibria": "equilibria in closed form", "frequencies": "frequencies of small oscillations"}
-#: fewest shared states at which a listed value (an equilibrium, an ω²) must be a number to be compared there
-LIST_STATES = 4
 
 
 @dataclass(frozen=True)
@@ -189,58 +199,12 @@ def key_answers(derivation: Derivation) -> dict[str, dict[str, Any]]:
         out["effective_potential"] = {str(potential["coordinate"]): potential["expression"]}
     if derivation.hamiltonian is not None:
         out["hamiltonian"] = {"": derivation.hamiltonian.expression}
-    points, squares = _equilibria(derivation)
+    points, squares = key_lists(derivation)
     if points:
         out["equilibria"] = {str(i + 1): p for i, p in enumerate(points)}
     if squares:
         out["frequencies"] = {str(i + 1): w for i, w in enumerate(squares)}
     return out
-
-
-def _equilibria(derivation: Derivation) -> tuple[list[dict[str, Any]], list[Any]]:
-    """The key's equilibria (each a mapping coordinate → value) and the ω² of small oscillations about those not
-    known to be unstable (stable, or stable under a condition on the parameters), from the effective potential
-    when there is one, else from the normal modes. Only equilibria in closed form count: a point found
-    numerically, or known only by its condition, makes the key's list unusable (empty). An equilibrium whose ω²
-    are those of an earlier one (a symmetric pair, ±θ₀) adds none."""
-    analysis = derivation.analysis
-    points: list[dict[str, Any]] = []
-    groups: list[list[Any]] = []
-    potential = analysis.effective_potential if analysis is not None else None
-    linear = analysis.linearization if analysis is not None else None
-    if potential is not None and potential.equilibria:
-        name = str(potential.coordinate)
-        for eq in potential.equilibria:
-            if eq.value is None:
-                return [], []
-            points.append({name: eq.value})
-            if eq.stable is not False and eq.frequency_squared is not None:
-                groups.append([eq.frequency_squared])
-    elif linear is not None and linear.modes:
-        for mode in linear.modes:
-            values = [v for _, v in mode.point]
-            if any(isinstance(v, sympy.Basic) and v.atoms(sympy.Float) for v in values):
-                return [], []
-            points.append({str(q): v for q, v in mode.point})
-            if mode.stable is not False and mode.squared_frequencies is not None:
-                groups.append(list(mode.squared_frequencies))
-    squares: list[Any] = []
-    seen: list[list[Any]] = []
-    for group in groups:
-        if any(len(group) == len(other) and all(_same_symbolic(a, b) for a, b in zip(group, other, strict=True))
-               for other in seen):
-            continue
-        seen.append(group)
-        squares.extend(group)
-    return points, squares
-
-
-def _same_symbolic(a: Any, b: Any) -> bool:
-    from lagsolve.check.verdicts import symbolically_equal
-
-    with contextlib.suppress(TypeError, ValueError, AttributeError):
-        return bool(symbolically_equal(sympy.sympify(a), sympy.sympify(b)))
-    return False
 
 
 def grade(derivation: Derivation, grading: Grading, submission: Submission, *, seed: int = 0,
@@ -275,15 +239,7 @@ class GradingKey:
     def angles(self) -> set[str]:
         """The coordinates that appear only inside sines and cosines (their equilibria are equal modulo 2π)."""
         if self._angles is None:
-            from lagsolve.mechanics.analysis.numeric_equilibria import periodic
-
-            analysis = self.derivation.analysis
-            self._angles = set()
-            if analysis is not None:
-                system = analysis.system
-                coordinates = list(system.model.coordinates)
-                flags = periodic([system.model.lagrangian, *system.generalized_forces], coordinates)
-                self._angles = {str(q) for q, flag in zip(coordinates, flags, strict=True) if flag}
+            self._angles = angle_coordinates(self.derivation)
         return self._angles
 
     @property
@@ -417,16 +373,10 @@ class _Grader:
         """A value of the parameters (and conserved momenta) equal to the key's: symbolically (an angle up to
         whole turns), else at every shared state where the key's value is a number (complex ones too: an
         equilibrium that exists only for some parameters), at least :data:`LIST_STATES` of them."""
-        if _same_symbolic(value, reference) or (angle and _whole_turns(value - reference)):
+        if same_symbolic(value, reference) or (angle and whole_turns(value - reference)):
             return True
         values = self.context.values
-        student, key = values.values(value), values.values(reference)
-        if student is None or key is None:
-            return False
-        rows = [(e, d) for e, d in zip(student, key, strict=True) if _number(d)]
-        if len(rows) < LIST_STATES:
-            return False
-        return all(_number(e) and _near(e, d, angle) for e, d in rows)
+        return same_at_states(values.values(value), values.values(reference), angle=angle)
 
     def listed(self, step: str, entries: dict[str, Any]) -> list[_Entry]:
         """One entry per item of the key's list (matched, or missing) and one per extra item of the student's."""
@@ -458,17 +408,17 @@ class _Grader:
         for reference in key:
             found = next((i for i, p in enumerate(given) if i not in used and same(p, reference)), None)
             if found is None:
-                shown = _point(reference)
+                shown = shown_point(reference)
                 out.append(_Entry(shown, INCORRECT, None, f"the equilibrium {shown} is missing"))
             else:
                 used.add(found)
-                out.append(_Entry(_point(reference), CORRECT))
+                out.append(_Entry(shown_point(reference), CORRECT))
         for i, extra in enumerate(given):
             if i in used or extra is None:
                 continue
             if any(same(extra, reference) for reference in key):
                 continue  # the same point again (an angle written another way): no more, no less credit
-            out.append(_Entry(str(i + 1), INCORRECT, None, f"{_point(extra)} is not an equilibrium of the key's"
+            out.append(_Entry(str(i + 1), INCORRECT, None, f"{shown_point(extra)} is not an equilibrium of the key's"
                               + ("" if set(extra) == coordinates else
                                  f" (the key's equilibria give {', '.join(sorted(coordinates))})")))
         return out
@@ -516,20 +466,10 @@ class _Grader:
                 continue  # the same frequency again (about a symmetric equilibrium)
             mistake, detail = None, "is not a squared frequency (nor a frequency) of the key's"
             if len(unmatched) == 1 and len(extras) == 1:
-                mistake, detail = self.frequency_mistake(value, unmatched[0], detail)
+                mistake, detail = frequency_mistake(value, unmatched[0], detail)
             out.append(_Entry(given[i][0], INCORRECT, mistake, f"{given[i][0]}: {sympy.sstr(value)} {detail}"))
         return out
 
-    def frequency_mistake(self, value: Any, reference: Any, detail: str) -> tuple[str | None, str]:
-        """The mistake when one ω² is missing and one other given: the opposite sign, or a constant factor."""
-        for candidate in (value, value**2):
-            ratio = _ratio(candidate, reference)
-            if ratio is None or ratio == 1 or not _monomial(ratio):
-                continue
-            if ratio == -1:
-                return SIGN, f"has the opposite sign of the key's {sympy.sstr(reference)}"
-            return FACTOR_MISSING, f"is {sympy.sstr(ratio)} times the key's {sympy.sstr(reference)}"
-        return None, detail
 
     def entry(self, step: str, name: str, value: Any) -> _Entry:
         if step in ("equations", "constraints"):
@@ -636,8 +576,8 @@ class _Grader:
         model = derivation.model
         variables = {model.time, *model.coordinates, *model.velocities}
         for reference in (terms.expression, velocity_form(terms, model)):
-            ratio = _ratio(value, reference)
-            if ratio is not None and not (ratio.free_symbols & variables) and ratio != 0:
+            factor = ratio(value, reference)
+            if factor is not None and not (factor.free_symbols & variables) and factor != 0:
                 return _Entry(name, CORRECT)
         return _Entry(name, INCORRECT, None, f"{_label(name)}not the key's constraint ψ = "
                                              f"{sympy.sstr(terms.expression)} = 0 up to a constant factor")
@@ -649,44 +589,6 @@ def _example(entries: list[_Entry], mistake: str | None, texts: dict[str, str]) 
         if e.status == INCORRECT and e.mistake == mistake and e.name in texts:
             return f"{_label(e.name)}{texts[e.name]}"
     return ""
-
-
-def _monomial(expr: Any) -> bool:
-    """A number times powers of symbols (a constant factor of values that depend on the parameters only)."""
-    return all(not (f.is_Add or f.is_Function) for f in sympy.Mul.make_args(expr)) and bool(expr != 0)
-
-
-def _number(value: Any) -> bool:
-    return isinstance(value, mpmath.mpf | mpmath.mpc) and bool(mpmath.isfinite(value))
-
-
-def _near(e: Any, d: Any, angle: bool) -> bool:
-    """E = D to the comparisons' tolerance; an angle's real part modulo 2π."""
-    if not angle:
-        return close(e, d)
-    gap = mpmath.re(e) - mpmath.re(d)
-    turns = mpmath.nint(gap / (2 * mpmath.pi))
-    return close(gap - 2 * mpmath.pi * turns, 0) and close(mpmath.im(e), mpmath.im(d))
-
-
-def _whole_turns(difference: Any) -> bool:
-    """``difference`` is 2πk for an integer k."""
-    with contextlib.suppress(TypeError, ValueError, AttributeError):
-        turns = sympy.nsimplify(sympy.simplify(difference / (2 * sympy.pi)))
-        return bool(turns.is_Integer)
-    return False
-
-
-def _point(point: dict[str, Any]) -> str:
-    return ", ".join(f"{q} = {sympy.sstr(v)}" for q, v in point.items())
-
-
-def _ratio(a: Any, b: Any) -> Any:
-    with contextlib.suppress(sympy.PolynomialError, sympy.CoercionFailed, ValueError, TypeError, ZeroDivisionError):
-        if b == 0:
-            return None
-        return sympy.cancel(sympy.together(a / b))
-    return None
 
 
 def _opposite_up_to_constant(found: Relation) -> bool:
@@ -748,7 +650,7 @@ def _candidates(step: str, reference: Any, derivation: Derivation) -> list[tuple
         for term in _terms(model.kinetic):
             out.append((KINETIC_TERM, model.lagrangian - term, f"the kinetic term {sympy.sstr(term)} is missing"))
     if step == "hamiltonian":
-        out.extend(_hamiltonian_candidates(derivation))
+        out.extend(hamiltonian_candidates(derivation))
     if step == "kinetic":
         for term in _terms(reference):
             out.append((KINETIC_TERM, reference - term, f"the kinetic term {sympy.sstr(term)} is missing"))
@@ -761,48 +663,6 @@ def _candidates(step: str, reference: Any, derivation: Derivation) -> list[tuple
     for term in _terms(reference):
         out.append((signs, reference - 2 * term, f"the term {sympy.sstr(term)} has the wrong sign"))
     return out
-
-
-def _hamiltonian_candidates(derivation: Derivation) -> list[tuple[str, Any, str]]:
-    """H with −V; with a moving constraint (H = T2 − T0 + V, the Jacobi integral), T + V written in the momenta
-    (named when T has no part linear in the velocities: it is then H with T0's sign flipped); the kinetic part
-    T2(p) doubled or halved."""
-    h, analysis = derivation.hamiltonian, derivation.analysis
-    if h is None or analysis is None:
-        return []
-    potential = analysis.system.model.potential
-    to_p = dict(zip(h.velocities, h.inverse, strict=True))
-    t2, t1, t0 = (sympy.sympify(part).xreplace(to_p) for part in h.kinetic_parts)
-    out: list[tuple[str, Any, str]] = [(POTENTIAL_SIGN, h.expression - 2 * potential,
-                                        "the potential has the wrong sign (H with −V)")]
-    if t0 != 0:
-        energy = "T + V written in the momenta, but with a moving constraint H = T2 − T0 + V (the Jacobi integral)"
-        if t1 == 0:
-            out.append((SIGN, h.expression + 2 * t0, f"it is {energy}: the term T0 = {sympy.sstr(t0)} has the "
-                                                      "wrong sign"))
-        else:
-            out.append(("", t2 + t1 + t0 + potential, f"it is {energy}"))
-    for k in (2, sympy.Rational(1, 2)):
-        out.append((FACTOR_MISSING, h.expression + (k - 1) * t2, f"the kinetic part T2 in the momenta is {k} times "
-                                                                   "the key's"))
-    return out
-
-
-def _legendre(derivation: Derivation, lagrangian: Any) -> Any:
-    """The Legendre transform of the student's L in the key's minimal coordinates (its constraints put in):
-    p = A q̇ + b, H = ½ (p − b)ᵀ A⁻¹ (p − b) − L(q̇ = 0); None when L is not quadratic in the velocities."""
-    h, analysis = derivation.hamiltonian, derivation.analysis
-    if h is None or analysis is None or analysis.reduced is None:
-        return None
-    L = sympy.expand(analysis.reduced.substitution.apply(lagrangian))
-    qd = list(h.velocities)
-    zero = {v: 0 for v in qd}
-    A = sympy.Matrix(len(qd), len(qd), lambda i, j: sympy.diff(L, qd[i], qd[j]))
-    if any(entry.has(*qd) for entry in A) or A.det() == 0:
-        return None
-    b = sympy.Matrix([sympy.diff(L, v).xreplace(zero) for v in qd])
-    w = sympy.Matrix(h.momentum_symbols) - b
-    return (w.T * A.LUsolve(w))[0, 0] / 2 - L.xreplace(zero)
 
 
 # -- follow-through: what the submission's own steps give -----------------------------------------------
@@ -829,9 +689,9 @@ def _follow_through(derivation: Derivation, own: dict[str, dict[str, Any]]) -> d
             terms = lagrange_terms(student, tuple(_constraint_terms(derivation)), tuple(forces))
     if lagrangian is not None:
         with contextlib.suppress(TypeError, ValueError, AttributeError, NotImplementedError, ZeroDivisionError):
-            legendre = _legendre(derivation, lagrangian)
-            if legendre is not None:
-                out["hamiltonian"] = {"": legendre}
+            own_h = legendre(derivation, lagrangian)
+            if own_h is not None:
+                out["hamiltonian"] = {"": own_h}
     if terms is not None:
         out["momenta"] = dict(zip(names, terms.momenta, strict=True))
         out["generalized_forces"] = dict(zip(names, terms.gradients, strict=True))
