@@ -175,6 +175,8 @@ HAMILTONIAN_WRONG = [
     (HOOP, '"p_theta**2/(2*m*R**2) - m*g*R*cos(theta) + m*R**2*Omega**2*sin(theta)**2/2"', "sign_error"),
     # p²/m: the kinetic part doubled
     (HOOP, '"p_theta**2/(m*R**2) - m*g*R*cos(theta) - m*R**2*Omega**2*sin(theta)**2/2"', "missing_factor"),
+    # the frame's motion left out: −T0 missing
+    (HOOP, '"p_theta**2/(2*m*R**2) - m*g*R*cos(theta)"', "missing_kinetic_term"),
     ("hole_table", '"-p_r**2/(2*(m1 + m2)) - p_theta**2/(2*m1*r**2) - m2*g*r"', "sign_error"),
     ("two_masses_spring", '"p_x1**2/(2*m1) + p_x2**2/(2*m2) - k*(x2 - x1 - L0)**2/2"', "wrong_potential_sign"),
     ("hole_table", '"p_r**2/(2*m1) + p_theta**2/(2*m1*r**2) + m2*g*r"', None),

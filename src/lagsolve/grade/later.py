@@ -154,6 +154,8 @@ def hamiltonian_candidates(derivation: Derivation) -> list[tuple[str, Any, str]]
     out: list[tuple[str, Any, str]] = [(POTENTIAL_SIGN, h.expression - 2 * potential,
                                         "the potential has the wrong sign (H with −V)")]
     if t0 != 0:
+        out.append(("missing_kinetic_term", h.expression + t0, f"the transport term −T0 = {sympy.sstr(-t0)} of the "
+                                                               "moving frame is missing"))
         energy = "T + V written in the momenta, but with a moving constraint H = T2 − T0 + V (the Jacobi integral)"
         if t1 == 0:
             out.append((SIGN, h.expression + 2 * t0, f"it is {energy}: the term T0 = {sympy.sstr(t0)} has the "
