@@ -36,6 +36,18 @@ from lagsolve.check.compare import STATES, Comparer
 from lagsolve.check.diagnose import ReleasedConstraints, close
 from lagsolve.enums import TextEnum
 from lagsolve.errors import DerivationError
+from lagsolve.grade.analysis_steps import (
+    angle_coordinates,
+    frequency_mistake,
+    hamiltonian_candidates,
+    key_lists,
+    legendre,
+    ratio,
+    same_at_states,
+    same_symbolic,
+    shown_point,
+    whole_turns,
+)
 from lagsolve.grade.evaluate import (
     DIFFERS,
     FACTOR,
@@ -52,18 +64,6 @@ from lagsolve.grade.evaluate import (
     relation,
 )
 from lagsolve.grade.key import Grading
-from lagsolve.grade.later import (
-    angle_coordinates,
-    frequency_mistake,
-    hamiltonian_candidates,
-    key_lists,
-    legendre,
-    ratio,
-    same_at_states,
-    same_symbolic,
-    shown_point,
-    whole_turns,
-)
 from lagsolve.grade.submission import LISTS, STEPS, Submission, names_for
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.equations.constraints import velocity_form

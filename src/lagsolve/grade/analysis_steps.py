@@ -1,4 +1,4 @@
-r"""The steps of ``lagsolve grade`` past the core (issue 31): the key's equilibria and ω² (:func:`key_lists`), how
+r"""The analysis steps of ``lagsolve grade`` (issue 31): the key's equilibria and ω² (:func:`key_lists`), how
 listed values are compared (symbolically, else numerically, an angle modulo 2π), the Hamiltonian's known mistakes
 (:func:`hamiltonian_candidates`) and the Legendre transform of a student's own L (:func:`legendre`). The grading
 itself is :class:`lagsolve.grade.grader._Grader`'s; see ``docs/grading.md``."""
