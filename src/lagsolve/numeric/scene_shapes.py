@@ -462,7 +462,7 @@ class Builder:
             if start is None or end is None:
                 continue
             if spring.kind == "centre":
-                out.append(Shape("centre", spring.label, start[:1]))
+                out.append(Shape("centre", spring.label, start[:1], expression=spring.term))
                 continue
             if spring.wall:
                 start, wall = self._wall(start, end, spring.wall, spring.label)
@@ -480,7 +480,7 @@ class Builder:
                 shift = (2.2 * width) * (k - (pairs[key] - 1) / 2) * _perpendicular(_unit(end - start))
                 start, end = start + shift, end + shift
             drawn = zigzag(start, end, width) if spring.kind == "spring" else dashpot(start, end, width)
-            out.append(Shape(spring.kind, spring.label, drawn))
+            out.append(Shape(spring.kind, spring.label, drawn, expression=spring.term))
         return out, fixed
 
     def _wall(self, foot: np.ndarray, end: np.ndarray, normal: tuple[Any, ...], label: str

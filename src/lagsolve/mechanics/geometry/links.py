@@ -239,9 +239,9 @@ def _spring(term: Any, measures: list[tuple], coordinates: list[Any]) -> Spring 
         curvature = sympy.simplify(sympy.diff(slope, q) / sympy.diff(w, q))  # h''(w)
         if curvature != 0 and not curvature.free_symbols & set(coordinates):
             length = sympy.simplify(w - slope / curvature)
-            return Spring(_label(term, "spring"), "spring", start, end, wall, length)
+            return Spring(_label(term, "spring"), "spring", start, end, wall, length, term)
         if start.particle is None and not wall:
-            return Spring(_label(term, "centre"), "centre", start, end)
+            return Spring(_label(term, "centre"), "centre", start, end, term=term)
     return None
 
 
@@ -266,7 +266,7 @@ def _damper(term: Any, measures: list[tuple], problem: Problem, coordinates: lis
     moved = term.xreplace(rates)  # the rate of w is a function of the rates as w is of the coordinates
     for w, start, end, wall in measures:
         if _linear(w, coordinates) and _function_of(moved, w, coordinates):
-            return Spring(_label(term, "damper"), "damper", start, end, wall)
+            return Spring(_label(term, "damper"), "damper", start, end, wall, term=term)
     return None
 
 
@@ -275,7 +275,9 @@ def _linear(w: Any, coordinates: list[Any]) -> bool:
 
 
 def _label(term: Any, kind: str) -> str:
-    text = str(term)
+    """The element's name in the element list (tests, checks): the kind, with the term in SymPy's syntax where it
+    is short; a sketch's legend prints ``term`` itself (``render/sketch.py``)."""
+    text = sympy.sstr(term)
     return kind if len(text) > 24 else f"{kind} ({text})"
 
 
