@@ -73,6 +73,9 @@ ELEMENTS: dict[str, set[tuple[str, str, tuple[str, ...]]]] = {
         ("body plate", "chassis", ()),
         ("body plate", "left", ()),
         ("body plate", "right", ()),
+        # the axle's sideways velocity is each wheel's: both wheels are knife edges along the heading
+        ("blade", "lateral", ("left",)),
+        ("blade", "lateral", ("right",)),
     },
     "double_pendulum": {
         ("pivot", "", ()),

@@ -97,3 +97,13 @@ def test_dotted_letters_in_notes_are_math_in_latex() -> None:
     from lagsolve.render.notation import tex_escape
 
     assert tex_escape("M q\u0308 = F + A\u1d40\u03bb, x\u0307") == r"M $\ddot{q}$ = F + A$^{T}$$\lambda$, $\dot{x}$"
+
+
+def test_inline_reads_as_written_for_figure_text() -> None:
+    """Figure text (mathtext): fractions on the line, no `*` or `**`, and in a sum the terms with a minus sign last,
+    a coordinate's before a parameter's."""
+    k, L0 = sympy.symbols("k L0", positive=True)
+    x1, x2 = sympy.symbols("x1 x2", real=True)
+    two = Notation(["x1", "x2"])
+    assert two.inline(k * (x2 - x1 - L0) ** 2 / 2) == r"k \left(x_{2} - x_{1} - L_{0}\right)^{2} / 2"
+    assert note.inline(k * x_dot ** 2 / 2) == r"k \dot{x}^{2} / 2"

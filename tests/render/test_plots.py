@@ -224,3 +224,24 @@ def test_friction_column_is_mu_n_against_the_sliding_rate(name: str, contact: st
     assert sliding.all()
     assert np.allclose(np.abs(col[f"friction_{contact}"]), mu * col[f"N_{contact}"], rtol=1e-12, atol=1e-12)
     assert np.all(col[f"friction_{contact}"] * col[rate] <= 0)
+
+
+def test_spring_legend_is_mathematics_not_python() -> None:
+    """The legend names the spring and the damper with their terms as mathematics (mathtext), never in Python's
+    syntax (`*`, `**`)."""
+    result, scene = _shipped("spring_on_rough_floor")
+    fig = plots.sketch_figure(result.trajectory, scene, result.name)
+    texts = [t.get_text() for ax in fig.axes if ax.get_legend() for t in ax.get_legend().get_texts()]
+    assert "spring ($k x^{2} / 2$)" in texts and all("*" not in t for t in texts)
+
+
+def test_the_table_has_a_gap_at_the_hole() -> None:
+    """The hole table's table top is drawn in two pieces, with a gap wider than the hole's ring around the hole,
+    so the string goes down through the table, not through a drawn top."""
+    _, scene = _shipped("hole_table")
+    (hole,) = [s.points[0] for s in scene.shapes if s.kind == "hole"]
+    side = [s.points for s in scene.shapes if s.kind == "support" and s.views == (0, 2)]
+    assert len(side) == 2
+    assert all(not (band[:, 0].min() < hole[0] + 0.05 * scene.scale and band[:, 0].max() > hole[0] - 0.05
+                    * scene.scale) for band in side)
+    assert min(band[:, 0].min() for band in side) < hole[0] < max(band[:, 0].max() for band in side)

@@ -115,13 +115,17 @@ def test_the_core_writes_the_contracts_keys_in_order(bead: Derivation) -> None:
 
 def test_pages_include_one_partial_per_section_in_field_order(bead: Derivation, wedge: Derivation) -> None:
     """Markdown and LaTeX pages include the sections' partials in the order of the fields of Sections (no units
-    partial without units), each figure after its section; every partial exists in each template folder."""
+    partial without units), each figure after its section (in LaTeX, whose figures float, the simulation after the
+    results); every partial exists in each template folder."""
     assert page_parts(build(bead), ".md") == ["_core.md.j2", "_units.md.j2", "_analysis.md.j2", "_potential.md.j2",
                                               "_hamiltonian.md.j2", "_simulation.md.j2"]
     no_units = build(wedge)
     assert no_units.units is None
-    assert page_parts(no_units, ".tex") == ["_core.tex.j2", "_analysis.tex.j2", "_potential.tex.j2",
-                                            "_hamiltonian.tex.j2", "_simulation.tex.j2"]
+    # LaTeX floats its figures: the simulation follows the results (the units where there are), so that the
+    # analysis after it fills the pages around its figures
+    assert page_parts(no_units, ".tex") == ["_core.tex.j2", "_simulation.tex.j2", "_analysis.tex.j2",
+                                            "_potential.tex.j2", "_hamiltonian.tex.j2"]
+    assert page_parts(build(bead), ".tex")[:3] == ["_core.tex.j2", "_units.tex.j2", "_simulation.tex.j2"]
     partials = [meta.partial for f in dataclasses.fields(Sections) if (meta := metadata(f, Sections)).partial]
     for kind, extension in (("markdown", ".md"), ("latex", ".tex"), ("html", ".html")):
         for partial in partials:

@@ -28,13 +28,15 @@ class Shape:
     NaN break it into pieces. ``kind`` says how it is drawn (``wire``, ``ground``, ``solid``, ``string``,
     ``pulley``, ``hole``, ``spring``, ``damper``, ``wall``, ``blade``, ``body``, ``spoke``, ``profile``, ``ring``,
     ``centre``); ``views`` the components a view must show to draw it (a plane seen edge-on, the profile of a
-    surface of revolution), empty for every view."""
+    surface of revolution), empty for every view; ``expression`` the SymPy term a spring, damper or centre of
+    force stands for (the legend prints it), else None."""
 
     kind: str
     label: str
     points: np.ndarray
     closed: bool = False
     views: tuple[int, ...] = ()
+    expression: Any = None
 
     def at(self, sample: int) -> np.ndarray:
         """The polyline at one sample, shape (k, dims)."""

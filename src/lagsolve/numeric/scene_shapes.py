@@ -359,6 +359,24 @@ class Builder:
             out.append(Shape(kind, surface.constraint, band if moving else band[0], True, views))
         return out
 
+    def holes_in_grounds(self, shapes: list[Shape]) -> list[Shape]:
+        """``shapes`` with each fixed band of a floor or table (a ``support`` or ``ground``) that a string's hole
+        lies on cut in two at the hole, so that the string goes through a gap in the table, not through it."""
+        holes = [s.points[0] for s in shapes if s.kind == "hole" and s.points.ndim == 2]
+        if not holes:
+            return shapes
+        half = 0.07 * self.scale  # wider than the ring that marks the hole
+        out: list[Shape] = []
+        for shape in shapes:
+            pieces = [shape.points] if shape.kind in ("support", "ground") and shape.points.shape[:1] == (4,) else []
+            for hole in holes:
+                pieces = [cut for piece in pieces for cut in _cut_band(piece, hole, half)]
+            if not pieces or (len(pieces) == 1 and pieces[0] is shape.points):
+                out.append(shape)
+                continue
+            out += [Shape(shape.kind, shape.label, piece, shape.closed, shape.views) for piece in pieces]
+        return out
+
     def _wedge(self, surface: Surface, point: np.ndarray, normal: np.ndarray) -> Shape | None:
         """The carrier's body under the face it carries: from the face (as far as the member on it goes, past its
         ends, and to the carrier's own point) down to the carrier's lowest point, across gravity."""
@@ -462,7 +480,7 @@ class Builder:
             if start is None or end is None:
                 continue
             if spring.kind == "centre":
-                out.append(Shape("centre", spring.label, start[:1]))
+                out.append(Shape("centre", spring.label, start[:1], expression=spring.term))
                 continue
             if spring.wall:
                 start, wall = self._wall(start, end, spring.wall, spring.label)
@@ -480,7 +498,7 @@ class Builder:
                 shift = (2.2 * width) * (k - (pairs[key] - 1) / 2) * _perpendicular(_unit(end - start))
                 start, end = start + shift, end + shift
             drawn = zigzag(start, end, width) if spring.kind == "spring" else dashpot(start, end, width)
-            out.append(Shape(spring.kind, spring.label, drawn))
+            out.append(Shape(spring.kind, spring.label, drawn, expression=spring.term))
         return out, fixed
 
     def _wall(self, foot: np.ndarray, end: np.ndarray, normal: tuple[Any, ...], label: str
@@ -662,6 +680,7 @@ def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, trajector
     surfaces, ground = build.surfaces()
     shapes += ground
     shapes += build.strings()
+    shapes = build.holes_in_grounds(shapes)
     for values in build.pivots:
         add_pivot(values)
     springs, fixed = build.springs()
@@ -677,6 +696,24 @@ def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, trajector
     markers += tuple((b.name, run.members[b.name]) for b in geometry.bodies if b.name in run.members)
     return Scene(tuple(rods), tuple(pivots), tuple(surfaces), tuple(curves), tuple(shapes), tuple(forces), markers,
                  build.gravity, scale, tuple(joints))
+
+
+def _cut_band(band: np.ndarray, hole: np.ndarray, half: float) -> list[np.ndarray]:
+    """A band of material (corners a, b on the surface, then b and a moved into the material) in two, with a gap
+    of half-width ``half`` about ``hole`` where the hole lies on the surface between a and b; else the band."""
+    if band.shape[1] != hole.shape[0]:
+        return [band]
+    a, b, into = band[0], band[1], band[3] - band[0]
+    along = b - a
+    length, depth = float(np.linalg.norm(along)), float(np.linalg.norm(into))
+    if length <= 2 * half or depth <= 0:
+        return [band]
+    e, n = along / length, into / depth
+    t = float((hole - a) @ e)
+    if abs(float((hole - a) @ n)) > 1e-6 * length or not half < t < length - half:
+        return [band]
+    left, right = a + (t - half) * e, a + (t + half) * e
+    return [np.stack([a, left, left + into, a + into]), np.stack([right, b, b + into, right + into])]
 
 
 def _on_member(anchor: Anchor, problem: Any) -> bool:

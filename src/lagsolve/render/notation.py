@@ -230,11 +230,33 @@ class Notation:
         rates = frozenset(coordinates)
         self.coordinates = tuple(coordinates)
         self._latex = MechanicsLatexPrinter(rates, {"mul_symbol": None})
+        self._inline = MechanicsLatexPrinter(rates, {"mul_symbol": None, "fold_short_frac": True, "order": "none"})
         self._text = MechanicsTextPrinter(rates)
         self._mathml = MechanicsMathMLPrinter(rates)
 
     def latex(self, expr: Any) -> str:
         return self._latex.doprint(expr)
+
+    def inline(self, expr: Any) -> str:
+        """LaTeX for one line of figure text (matplotlib's mathtext): short fractions on the line (``k x^{2} / 2``)
+        and, in each sum, the terms with a minus sign after the others, a coordinate's before a parameter's
+        (``x_{2} - x_{1} - L_{0}``, not ``- L_{0} - x_{1} + x_{2}``)."""
+        return self._inline.doprint(self._signs_last(expr))
+
+    def _signs_last(self, expr: Any) -> Any:
+        """``expr`` rebuilt unevaluated (so that nothing is reordered or distributed again), its sums reordered."""
+        if not expr.args or not isinstance(expr, sympy.Basic) or isinstance(expr, sympy.Derivative):
+            return expr
+        args = [self._signs_last(a) for a in expr.args]
+        if isinstance(expr, sympy.Add):
+            args.sort(key=lambda term: (term.could_extract_minus_sign(), not self._moves(term)))
+        try:
+            return expr.func(*args, evaluate=False)
+        except TypeError:  # a class that takes no ``evaluate``
+            return expr
+
+    def _moves(self, term: Any) -> bool:
+        return any(_split_rate(s.name)[0] in self.coordinates for s in term.free_symbols if isinstance(s, sympy.Symbol))
 
     def text(self, expr: Any) -> str:
         return self._text.doprint(expr)

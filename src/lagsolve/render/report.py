@@ -53,15 +53,23 @@ def sections_context(sections: Sections, math: str = "latex") -> dict[str, Any]:
 #: the figures a page shows, which are not sections (they come with the call): each one's partial and the
 #: section partial it follows (None: the end of the page)
 FIGURES: tuple[tuple[str, str | None], ...] = (("_potential", "_analysis"), ("_simulation", None))
+#: where a format whose figures float places them instead, by extension: the first of the partials given that the
+#: page has. In LaTeX the simulation (its summary and half-page figures) follows the results, so that the analysis
+#: after it fills the pages around the figures; at the end of the page nothing would, and the page where the
+#: summary ends would stay empty below it.
+FLOATING: dict[str, dict[str, tuple[str, ...]]] = {".tex": {"_simulation": ("_units", "_core")}}
 
 
 def page_parts(sections: Sections, extension: str) -> list[str]:
     """The partials a Markdown or LaTeX page includes, in reading order: one per section (the order of the fields
     of :class:`~lagsolve.render.sections.Sections`; a section that is None has none), each figure's after its
-    section's (:data:`FIGURES`); ``extension`` is the format's (``.md``: ``_core.md.j2`` ...)."""
+    section's (:data:`FIGURES`, or for a format whose figures float :data:`FLOATING`); ``extension`` is the
+    format's (``.md``: ``_core.md.j2`` ...)."""
     names = [meta.partial for field in dataclasses.fields(sections)
              if (meta := metadata(field, Sections)).partial is not None and getattr(sections, field.name) is not None]
+    floating = FLOATING.get(extension, {})
     for figure, after in FIGURES:
+        after = next((a for a in floating.get(figure, ()) if a in names), after)
         names.insert(names.index(after) + 1 if after in names else len(names), figure)
     return [f"{name}{extension}.j2" for name in names]
 

@@ -24,6 +24,8 @@ FORCE_COLOURS = ("#c0392b", "#8e44ad", "#1f7a5a", "#2c3e50", "#b03a7a", "#5d6d7e
 FRICTION_COLOURS = ("#e67e22", "#a0522d", "#d4ac0d")
 #: the longest arrow of a figure, as a fraction of the view's width
 ARROW = 0.22
+#: a spring's or damper's term longer than this (printed as text) is left out of its legend entry
+TERM_LENGTH = 26
 
 #: how each kind of shape is drawn: (line style, fill or None, z-order, legend label or None)
 STYLES: dict[str, dict[str, Any]] = {
@@ -281,13 +283,34 @@ class Drawing:
         n = normal[0]
         return bool(abs(n[depth]) <= 1e-9 * max(float(np.linalg.norm(n)), 1e-300))
 
-    @staticmethod
-    def _legend_label(shape: Shape) -> str | None:
+    def _legend_label(self, shape: Shape) -> str | None:
         if shape.kind in ("body", "wall", "spoke", "ground"):
             return None
         if shape.kind in ("blade", "pulley", "hole"):
             return f"{shape.kind}: {shape.label}"
+        if shape.expression is not None:
+            return self._term_label(shape.kind, shape.expression)
         return shape.label or None
+
+    def _term_label(self, kind: str, term: Any) -> str:
+        """A spring's, damper's or centre's entry: its kind and the term it stands for as mathematics
+        (``spring (k (x₂ − x₁ − L₀)²/2)`` in mathtext), or the kind alone where the term is long or mathtext cannot
+        set it."""
+        from matplotlib.font_manager import FontProperties
+        from matplotlib.mathtext import MathTextParser
+
+        from lagsolve.render.notation import Notation
+
+        name = "centre of force" if kind == "centre" else kind
+        note = Notation(self.trajectory.coordinates)
+        if len(note.text(term)) > TERM_LENGTH:
+            return name
+        tex = f"${note.inline(term)}$"
+        try:
+            MathTextParser("path").parse(tex, 72, FontProperties())
+        except ValueError:
+            return name
+        return f"{name} ({tex})"
 
     def legend_options(self) -> dict[str, Any]:
         title = None

@@ -239,9 +239,9 @@ def _spring(term: Any, measures: list[tuple], coordinates: list[Any]) -> Spring 
         curvature = sympy.simplify(sympy.diff(slope, q) / sympy.diff(w, q))  # h''(w)
         if curvature != 0 and not curvature.free_symbols & set(coordinates):
             length = sympy.simplify(w - slope / curvature)
-            return Spring(_label(term, "spring"), "spring", start, end, wall, length)
+            return Spring(_label(term, "spring"), "spring", start, end, wall, length, term)
         if start.particle is None and not wall:
-            return Spring(_label(term, "centre"), "centre", start, end)
+            return Spring(_label(term, "centre"), "centre", start, end, term=term)
     return None
 
 
@@ -266,7 +266,7 @@ def _damper(term: Any, measures: list[tuple], problem: Problem, coordinates: lis
     moved = term.xreplace(rates)  # the rate of w is a function of the rates as w is of the coordinates
     for w, start, end, wall in measures:
         if _linear(w, coordinates) and _function_of(moved, w, coordinates):
-            return Spring(_label(term, "damper"), "damper", start, end, wall)
+            return Spring(_label(term, "damper"), "damper", start, end, wall, term=term)
     return None
 
 
@@ -275,34 +275,47 @@ def _linear(w: Any, coordinates: list[Any]) -> bool:
 
 
 def _label(term: Any, kind: str) -> str:
-    text = str(term)
+    """The element's name in the element list (tests, checks): the kind, with the term in SymPy's syntax where it
+    is short; a sketch's legend prints ``term`` itself (``render/sketch.py``)."""
+    text = sympy.sstr(term)
     return kind if len(text) > 24 else f"{kind} ({text})"
 
 
 def blades(problem: Problem, coordinates: list[Any]) -> list[Blade]:
-    """Knife edges: homogeneous velocity constraints n·v = 0 on one particle in the plane."""
+    """Knife edges: homogeneous velocity constraints n·v = 0 on a member in the plane: the one the constraint is
+    ``on``, or, for a constraint on none, every particle or body whose velocity it is n·v = 0 of (the wheels on a
+    cart's axle: the axle's sideways velocity is each wheel's)."""
     from lagsolve.mechanics.geometry.curves import holds
 
     out: list[Blade] = []
     rates = [c.velocity for c in problem.coordinates]
-    particles = {p.name: p for p in problem.particles}
+    members = {name: position for name, position in _members(problem) if len(position) == 2}
     for constraint in problem.constraints:
-        if constraint.kind != ConstraintKind.NONHOLONOMIC or len(constraint.on) != 1 or constraint.at is not None:
+        if constraint.kind != ConstraintKind.NONHOLONOMIC or len(constraint.on) > 1 or constraint.at is not None:
             continue
-        particle = particles.get(constraint.on[0])
-        if particle is None or len(particle.position) != 2 or holds(constraint, problem) is not None:
+        if holds(constraint, problem) is not None:
             continue
         a = sympy.Matrix([sympy.diff(constraint.expression, v) for v in rates])
         if sympy.expand(constraint.expression - (a.T * sympy.Matrix(rates))[0]) != 0:
             continue
-        J = sympy.Matrix(particle.position).jacobian(coordinates)
-        gram = (J * J.T).applyfunc(sympy.trigsimp)
-        if gram.det() == 0:
-            continue
-        n = (gram.LUsolve(J * a)).applyfunc(sympy.trigsimp)
-        if all(_zero(e) for e in (J.T * n - a)):
-            out.append(Blade(constraint.name, particle.name, (-n[1], n[0])))
+        names = list(constraint.on) if constraint.on else list(members)
+        for name in names:
+            if name in members:
+                n = _across(members[name], coordinates, a)
+                if n is not None:
+                    out.append(Blade(constraint.name, name, (-n[1], n[0])))
     return out
+
+
+def _across(position: tuple[Any, ...], coordinates: list[Any], a: sympy.Matrix) -> Any:
+    """The n with Jᵀ n = a (J the Jacobian of ``position``): the velocity constraint a·q̇ = 0 is n·v = 0 of that
+    point; None when there is none."""
+    J = sympy.Matrix(position).jacobian(coordinates)
+    gram = (J * J.T).applyfunc(sympy.trigsimp)
+    if gram.det() == 0:
+        return None
+    n = (gram.LUsolve(J * a)).applyfunc(sympy.trigsimp)
+    return n if all(_zero(e) for e in (J.T * n - a)) else None
 
 
 def supports(problem: Problem, coordinates: list[Any], holding: set[str | None],

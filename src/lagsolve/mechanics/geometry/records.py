@@ -108,7 +108,9 @@ class Spring:
     """A ``spring`` (a potential term quadratic in a distance), a ``damper`` (a dissipation term quadratic in its
     rate) or a ``centre`` of force (any other potential of a distance) between ``start`` and ``end``; ``wall``
     is the normal of the plane ``start`` lies on (a spring fixed to a wall), else empty. ``length`` is the
-    spring's natural length (None for the others)."""
+    spring's natural length (None for the others). ``term`` is the potential or dissipation term it stands for
+    (a SymPy expression, printed by ``render/``); ``label`` names it in the element list (the kind, with the term in
+    SymPy's syntax where it is short)."""
 
     label: str
     kind: str
@@ -116,6 +118,7 @@ class Spring:
     end: Anchor
     wall: tuple[Any, ...] = ()
     length: Any = None
+    term: Any = None
 
 
 @dataclass(frozen=True)
