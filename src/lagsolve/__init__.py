@@ -22,7 +22,7 @@ from lagsolve import notebook
 __version__ = "0.1.0"
 
 if TYPE_CHECKING:
-    from lagsolve.api import Trajectory, check, derive, load_problem, simulate
+    from lagsolve.api import Trajectory, check, derive, export, load_problem, simulate
     from lagsolve.check.compare import CheckReport
     from lagsolve.errors import DerivationError, LagsolveError, RenderError, SimulationError, SpecError
     from lagsolve.mechanics.derivation import Derivation
@@ -34,6 +34,7 @@ _PUBLIC = {
     "load_problem": "lagsolve.api",
     "derive": "lagsolve.api",
     "simulate": "lagsolve.api",
+    "export": "lagsolve.api",
     "sweep": "lagsolve.sweep.api",
     "check": "lagsolve.api",
     "Trajectory": "lagsolve.api",
@@ -49,7 +50,7 @@ _PUBLIC = {
 
 __all__ = [
     "CheckReport", "Derivation", "DerivationError", "LagsolveError", "Problem", "RenderError", "SimulationError",
-    "SpecError", "Trajectory", "__version__", "check", "derive", "load_problem", "simulate", "sweep",
+    "SpecError", "Trajectory", "__version__", "check", "derive", "export", "load_problem", "simulate", "sweep",
 ]
 
 

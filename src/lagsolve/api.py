@@ -376,3 +376,11 @@ def check(path_or_derivation: str | Path | bytes | Problem | Derivation, *, budg
         path_or_derivation, budget=budget)
     return run(derivation, states=states, seed=seed)
 
+
+
+def export(path: str | Path, *, to: str = "python", output: str | Path = "out") -> Path:
+    """Write the problem's equations as code (``to="python"``: one NumPy module ``<slug>.py``) into
+    ``output`` and return the file's path. Raises :class:`SpecError` for what cannot be exported."""
+    from lagsolve.app.export import export_file
+
+    return export_file(path, to, output)

@@ -327,6 +327,27 @@ def _write_reports(reports: Any, plan: _DerivePlan, output: Path | None) -> None
         _note(f"  wrote {write_file(root, place / name, data)}")
 
 
+@main.command()
+@click.argument("file", type=click.Path(path_type=Path))
+@click.option("--to", "to", type=click.Choice(["python"]), default="python", show_default=True,
+              help="Target: python (one NumPy module <slug>.py).")
+@click.option("-o", "--output", type=click.Path(path_type=Path), default=Path("out"), show_default=True,
+              help="Output folder.")
+def export(file: Path, to: str, output: Path) -> None:
+    """Write the equations of problem FILE as code (rhs for solve_ivp, outputs with the multipliers).
+
+    \b
+    lagsolve export problems/bead.yaml --to python -o out/
+    """
+    from lagsolve.app.export import export_file
+
+    try:
+        written = export_file(file, to, output)
+    except LagsolveError as error:
+        sys.exit(_fail(error))
+    _note(f"lagsolve: wrote {written}", err=True)
+
+
 def _assignments(pairs: tuple[str, ...], option: str) -> dict[str, float]:
     """``("g=1.62", "m=2")`` → ``{"g": 1.62, "m": 2.0}``; a bad pair is a usage error (exit 2)."""
     import math
