@@ -38,5 +38,9 @@ def export_file(path: Path | str, to: str = "python", output: Path | str = "out"
         raise SpecError([Issue(problem.source, 0, "export", "the equations (" + ", ".join(unusable) + ") hold a "
                                "symbol that is neither a coordinate, a velocity, time nor a parameter with a value",
                                "give every symbol a value under simulation.values, or simulate instead")])
-    text = python_module(system, problem.name, __version__)
+    try:
+        text = python_module(system, problem.name, __version__)
+    except ValueError as exc:
+        raise SpecError([Issue(problem.source, 0, "export", f"the equations cannot be exported to {to}: {exc}",
+                               "simulate it with lagsolve simulate instead")]) from None
     return write_file(Path(output), f"{safe_slug(problem.source)}.py", text)
