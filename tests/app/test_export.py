@@ -115,3 +115,9 @@ def test_hostile_names_stay_string_literals(tmp_path: Path) -> None:
     assert module.rhs(0.0, [1.0, 0.0, 0.0, 0.0]) == pytest.approx([0.0, 0.0, 0.0, -9.81])
     assert module.rhs(0.0, [0.0, 1.0, 1.0, 0.0], {"np": 1.0, "numpy": 0.0, "out": 1.0}) == pytest.approx(
         [1.0, 0.0, 0.0, -1.0])
+
+
+def test_a_parameter_without_value_is_nan_in_the_module(tmp_path: Path) -> None:
+    from lagsolve.render.python_module import _number
+
+    assert _number(float("nan")) == "float('nan')" and _number(2.5) == "2.5"

@@ -10,6 +10,7 @@ every identifier in the code is generated (``_t``, ``_q0``, ``_p0``, ``_x0``...)
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -21,6 +22,11 @@ from lagsolve.numeric.system import NumericSystem
 
 def _one_line(text: str) -> str:
     return " ".join(str(text).split())
+
+
+def _number(value: float) -> str:
+    """A float as Python source (a parameter without a value, unused by the equations, is NaN)."""
+    return repr(value) if math.isfinite(value) else f"float({str(value)!r})"
 
 
 def _block(name: str, expressions: Sequence[Any], mapping: dict[Any, Any], printer: NumPyPrinter) -> list[str]:
@@ -108,7 +114,7 @@ def python_module(system: NumericSystem, name: str, version: str) -> str:
         "import numpy",
         "import numpy as np",
         "",
-        f"PARAMETERS = {{{', '.join(f'{k!r}: {v!r}' for k, v in values.items())}}}",
+        f"PARAMETERS = {{{', '.join(f'{k!r}: {_number(v)}' for k, v in values.items())}}}",
         f"STATE = ({''.join(f'{s!r}, ' for s in state)})",
         f"CONSTRAINTS = ({''.join(f'{c!r}, ' for c in system.constraints)})",
         "",
