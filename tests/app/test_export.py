@@ -28,7 +28,8 @@ def _load(path: Path) -> ModuleType:
     return module
 
 
-@pytest.mark.parametrize("name", ["bead", "rotating_tube", "atwood", "pendulum_cartesian", "rough_incline"])
+@pytest.mark.parametrize("name", ["bead", "rotating_tube", "atwood", "pendulum_cartesian", "rough_incline",
+                                  "moving_support"])
 def test_module_matches_simulate(name: str, tmp_path: Path) -> None:
     written = lagsolve.export(PROBLEMS / f"{name}.yaml", to="python", output=tmp_path)
     assert written == tmp_path / f"{name}.py"
