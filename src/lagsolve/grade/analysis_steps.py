@@ -107,7 +107,7 @@ def same_symbolic(a: Any, b: Any) -> bool:
     from lagsolve.check.verdicts import symbolically_equal
 
     with contextlib.suppress(TypeError, ValueError, AttributeError):
-        return bool(symbolically_equal(sympy.sympify(a), sympy.sympify(b)))
+        return bool(symbolically_equal(sympy.sympify(a, strict=True), sympy.sympify(b, strict=True)))
     return False
 
 
@@ -150,7 +150,7 @@ def hamiltonian_candidates(derivation: Derivation) -> list[tuple[str, Any, str]]
         return []
     potential = analysis.system.model.potential
     to_p = dict(zip(h.velocities, h.inverse, strict=True))
-    t2, t1, t0 = (sympy.sympify(part).xreplace(to_p) for part in h.kinetic_parts)
+    t2, t1, t0 = (sympy.sympify(part, strict=True).xreplace(to_p) for part in h.kinetic_parts)
     out: list[tuple[str, Any, str]] = [(POTENTIAL_SIGN, h.expression - 2 * potential,
                                         "the potential has the wrong sign (H with −V)")]
     if t0 != 0:

@@ -253,7 +253,7 @@ class GradingKey:
             extra: set[Any] = set()
             for s in symbols:
                 with contextlib.suppress(TypeError, ValueError, AttributeError):
-                    extra |= self.comparer.prepare(sympy.sympify(s)).free_symbols
+                    extra |= self.comparer.prepare(sympy.sympify(s, strict=True)).free_symbols
             self._values = Evaluator(derivation, extra, self.seed, self.comparer.prepare)
         return self._values
 

@@ -31,7 +31,7 @@ def _number(value: float) -> str:
 
 def _block(name: str, expressions: Sequence[Any], mapping: dict[Any, Any], printer: NumPyPrinter) -> list[str]:
     """``name = np.array([...])`` of the expressions, with common subexpressions as ``_x0, _x1...``."""
-    exprs = [sympy.sympify(e).xreplace(mapping) for e in expressions]
+    exprs = [sympy.sympify(e, strict=True).xreplace(mapping) for e in expressions]  # SymPy values, never text
     symbols = sympy.numbered_symbols(f"_{name}")
     replacements, reduced = sympy.cse(exprs, symbols=symbols, order="canonical")
     lines = [f"    {printer.doprint(s)} = {printer.doprint(e)}" for s, e in replacements]
