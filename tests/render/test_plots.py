@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from lagsolve.numeric.integrate import Trajectory
@@ -88,12 +89,16 @@ def test_a_name_with_dollar_signs_is_drawn_as_text(trajectory: Trajectory) -> No
 
 def _shipped(name: str, **options: object) -> object:
     """``lagsolve simulate problems/<name>.yaml`` as the library runs it (tables and scene, no PNGs)."""
+    from mechanics_support import problem_file
+
+    return _scene(problem_file(name), **options)
+
+
+def _scene(problem: object, **options: object) -> object:
     from lagsolve.app.simulation import SimulationOptions, run_simulation
     from lagsolve.mechanics.analysis.analyse import monitored
     from lagsolve.mechanics.equations.matrix_form import matrix_form
-    from mechanics_support import problem_file
 
-    problem = problem_file(name)
     form = matrix_form(problem, display=False)
     conserved, _, _, note = monitored(form)
     settings = SimulationOptions(values={}, initial={}, tables=("csv",), scene=True, **options)  # type: ignore[arg-type]
@@ -245,3 +250,51 @@ def test_the_table_has_a_gap_at_the_hole() -> None:
     assert all(not (band[:, 0].min() < hole[0] + 0.05 * scene.scale and band[:, 0].max() > hole[0] - 0.05
                     * scene.scale) for band in side)
     assert min(band[:, 0].min() for band in side) < hole[0] < max(band[:, 0].max() for band in side)
+
+
+INCLINE_RISING_RIGHT = """
+name: block on an incline rising to the right, pulling a weight over the pulley at the top
+parameters: {m1: block, m2: weight, g: gravity, beta: angle}
+coordinates: {x: across, y: height, h: the weight's height}
+particles:
+  block: {mass: m1, position: [x, y]}
+  weight: {mass: m2, position: [6, h]}
+gravity: [0, -g]
+constraints:
+  plane: {holonomic: y - x*tan(beta), on: block}
+  string: {holonomic: x*cos(beta) + y*sin(beta) + h, on: [block, weight]}
+simulation:
+  values: {m1: 1.0, m2: 2.0, g: 9.81, beta: 0.5}
+  initial: {x: 1.0, y: 0.5463024898437905, h: -1.1394939273245491}
+  t_end: 0.6
+"""
+
+
+@pytest.mark.parametrize("source", ["incline_pulley", INCLINE_RISING_RIGHT])
+def test_an_incline_ends_at_its_pulley(source: str) -> None:
+    """A string from a block up an incline over a pulley to a hanging weight is drawn over one pulley, where the
+    strand up the slope meets the weight's vertical strand (on the plane's line, at its top); the plane ends
+    there and a face goes down from the corner (the weight hangs beside it, not inside the incline)."""
+    from mechanics_support import problem_file, problem_text
+
+    problem = problem_file(source) if source == "incline_pulley" else problem_text(source)
+    _, scene = _scene(problem)
+    pulleys = [s for s in scene.shapes if s.kind == "pulley"]
+    assert len(pulleys) == 1
+    (string,) = [s.points for s in scene.shapes if s.kind == "string"]
+    corner = string[0, 1]
+    assert all(np.allclose((p.points.min(axis=0) + p.points.max(axis=0)) / 2, corner, atol=1e-3) for p in pulleys)
+    (label, stop, towards), = scene.ends
+    assert label == "plane"
+    grounds = [s.points for s in scene.shapes if s.kind == "ground"]
+    assert len(grounds) == 2  # the slope and the face
+    slope, face = grounds
+    assert abs(float(face[0, 0] - face[1, 0])) < 1e-9 and face[0, 1] > face[1, 1]  # vertical, down from the top
+    # the weight hangs on the side of the face away from the slope, and below the corner all the run
+    weight = string[:, 2]
+    assert np.all(np.sign(weight[:, 0] - face[0, 0]) == -np.sign(slope[0, 0] - face[0, 0]))
+    assert np.all(weight[:, 1] < corner[1])
+    # the corner is on the plane's line, the block's strand runs along it
+    block = string[:, 0]
+    along = (corner - block) / np.linalg.norm(corner - block, axis=1, keepdims=True)
+    assert np.allclose(along, towards / np.linalg.norm(towards), atol=1e-9)

@@ -66,7 +66,9 @@ class Scene:
     the coordinates fix a distance. ``shapes``: everything else (:class:`Shape`); ``forces``: the arrows;
     ``markers``: the members drawn as labelled dots besides the particles (bodies' centres, a mass on a line),
     (name, (samples, dims)); ``gravity``: its direction, or empty; ``scale``: the size of the system (the
-    largest extent of the members and pivots over the run), which sizes blocks, coils and pulleys.
+    largest extent of the members and pivots over the run), which sizes blocks, coils and pulleys; ``ends``:
+    (label, stop, direction), a surface line that ends at the point ``stop`` (dims,) and runs from it only against
+    ``direction`` (an incline that ends at its top corner, where the pulley is).
     """
 
     rods: tuple[tuple[str, np.ndarray, np.ndarray], ...] = ()
@@ -79,6 +81,7 @@ class Scene:
     gravity: np.ndarray = field(default_factory=lambda: np.zeros(0))
     scale: float = 1.0
     joints: tuple[np.ndarray, ...] = ()  # hinges on a moving member (a bob's rod on the end of a bar), (samples, dims)
+    ends: tuple[tuple[str, np.ndarray, np.ndarray], ...] = ()
 
     def __bool__(self) -> bool:
         return bool(self.rods or self.pivots or self.surfaces or self.curves or self.shapes or self.forces

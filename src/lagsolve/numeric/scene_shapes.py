@@ -126,6 +126,8 @@ class Builder:
         self.bases: dict[str, np.ndarray] = {}  # a carrier's lowest point (the base of its wedge or box)
         self.corners: dict[str, np.ndarray] = {}  # and the corners of that wedge or box
         self.pivots: list[np.ndarray] = []  # fixed points found on the way (a pulley's axle)
+        self.pulleys: list[tuple[np.ndarray, list[np.ndarray]]] = []  # a pulley where two strands meet, their ups
+        self.ends: list[tuple[str, np.ndarray, np.ndarray]] = []  # a surface line ended at its pulley
 
     # --- helpers ---------------------------------------------------------------------------------------------
 
@@ -377,6 +379,46 @@ class Builder:
             out += [Shape(shape.kind, shape.label, piece, shape.closed, shape.views) for piece in pieces]
         return out
 
+    def grounds_at_pulleys(self, shapes: list[Shape]) -> list[Shape]:
+        """``shapes`` with each fixed plane that a strand runs along to its pulley ended at the pulley, and a face
+        down from there (the top corner of an incline with the weight hanging beside it)."""
+        out: list[Shape] = []
+        for shape in shapes:
+            cut = None
+            if shape.kind == "ground" and shape.points.shape == (4, 2) and self.gravity.size == 2:
+                cut = next((c for pulley, ups in self.pulleys for u in ups
+                            if (c := self._corner(shape.points, pulley, u)) is not None), None)
+            if cut is None:
+                out.append(shape)
+                continue
+            out += [Shape(shape.kind, shape.label, band, shape.closed, shape.views) for band in cut]
+            self.ends.append((shape.label, cut[0][1], cut[0][1] - cut[0][0]))
+        return out
+
+    def _corner(self, band: np.ndarray, pulley: np.ndarray, u: np.ndarray) -> list[np.ndarray] | None:
+        """The band (a, b on the surface, then into the material) ended where the strand along it meets its pulley,
+        and the face down from that corner; None when the pulley is not on the band's surface or the strand does
+        not run along it."""
+        a, b, into = band[0], band[1], band[3] - band[0]
+        e = (b - a) / np.linalg.norm(b - a)
+        u = u / np.linalg.norm(u)
+        n = into / np.linalg.norm(into)
+        if abs(float((pulley - a) @ n)) > 1e-6 * self.scale or abs(abs(float(u @ e)) - 1.0) > 1e-9:
+            return None
+        far = a if float((a - pulley) @ u) < float((b - pulley) @ u) else b
+        top = pulley - 0.06 * self.scale * u  # clear of the pulley's rim
+        g = self.gravity
+        drop = float((far - top) @ g)
+        if drop <= 0:
+            return None
+        level = top + drop * g
+        across = u - (u @ g) * g
+        inward = -across / np.linalg.norm(across)
+        depth = float(np.linalg.norm(into))
+        slope = np.stack([far, top, top + into, far + into])
+        face = np.stack([top, level, level + depth * inward, top + depth * inward])
+        return [slope, face]
+
     def _wedge(self, surface: Surface, point: np.ndarray, normal: np.ndarray) -> Shape | None:
         """The carrier's body under the face it carries: from the face (as far as the member on it goes, past its
         ends, and to the carrier's own point) down to the carrier's lowest point, across gravity."""
@@ -438,9 +480,17 @@ class Builder:
                 shift = closest + margin if closest > -margin else 0.0  # past the nearest the end comes
                 anchors[i] = anchors[i] + shift * u
                 towards.append(u)
+            u1, u2 = towards
+            meet = self._meeting(ends, anchors, u1, u2)
+            if meet is not None:  # both strands' lines meet beyond their ends: one pulley there
+                wheel = circle(meet[:1], 0.04 * self.scale, np.array([[1.0, 0.0]]), np.array([[0.0, 1.0]]))
+                out.insert(0, Shape("string", string.constraint, np.stack([first, meet, second], axis=1)))
+                out.append(Shape("pulley", string.constraint, wheel[0], closed=True))
+                self.pivots.append(meet)
+                self.pulleys.append((meet[0], [u for u in towards if u is not None]))
+                continue
             a1, a2 = anchors
             gap = float(np.linalg.norm(a2[0] - a1[0]))
-            u1, u2 = towards
             if gap < 1e-9 * self.scale:
                 path = np.stack([first, a1, second], axis=1)
                 out.append(Shape("hole", string.constraint, a1[:1]))
@@ -461,6 +511,22 @@ class Builder:
                         out.append(Shape("pulley", string.constraint, small[0], closed=True))
             out.insert(0, Shape("string", string.constraint, path))
         return out
+
+    def _meeting(self, ends: list[np.ndarray], anchors: list[np.ndarray], u1: np.ndarray | None,
+                 u2: np.ndarray | None) -> np.ndarray | None:
+        """The fixed point (samples, 2) where two strands of fixed, different directions ``u1``, ``u2`` (a block's
+        string up a slope, a weight's up from it) meet beyond where either end comes, or None."""
+        if u1 is None or u2 is None or anchors[0].shape[1] != 2 or np.allclose(u1, u2):
+            return None
+        basis = np.stack([u1, -u2], axis=1)
+        if abs(float(np.linalg.det(basis))) < 1e-6:
+            return None
+        t, _ = np.linalg.solve(basis, anchors[1][0] - anchors[0][0])
+        meet = anchors[0][0] + t * u1
+        for end, u in ((ends[0], u1), (ends[1], u2)):
+            if float(np.min((meet - end) @ u)) < 0.08 * self.scale:  # an end would pass the pulley
+                return None
+        return np.broadcast_to(meet, anchors[0].shape).copy()
 
     def springs(self) -> tuple[list[Shape], list[np.ndarray]]:
         """Springs as zig-zags and dampers as dashpots (side by side where both join the same ends), fixed to a
@@ -680,7 +746,7 @@ def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, trajector
     surfaces, ground = build.surfaces()
     shapes += ground
     shapes += build.strings()
-    shapes = build.holes_in_grounds(shapes)
+    shapes = build.holes_in_grounds(build.grounds_at_pulleys(shapes))
     for values in build.pivots:
         add_pivot(values)
     springs, fixed = build.springs()
@@ -695,7 +761,7 @@ def evaluate(geometry: Geometry, problem: Any, parameters: np.ndarray, trajector
     markers = tuple((name, run.members[name]) for name, _ in geometry.markers if name in run.members)
     markers += tuple((b.name, run.members[b.name]) for b in geometry.bodies if b.name in run.members)
     return Scene(tuple(rods), tuple(pivots), tuple(surfaces), tuple(curves), tuple(shapes), tuple(forces), markers,
-                 build.gravity, scale, tuple(joints))
+                 build.gravity, scale, tuple(joints), tuple(build.ends))
 
 
 def _cut_band(band: np.ndarray, hole: np.ndarray, half: float) -> list[np.ndarray]:

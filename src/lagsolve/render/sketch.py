@@ -188,16 +188,26 @@ class Drawing:
         artist, = self.ax.plot([], [], label=name, **style)
         return artist
 
-    def _surface_lines(self) -> list[tuple[np.ndarray, np.ndarray, Any]]:
-        """(point, normal, line) of each surface seen edge-on in this view, each in its own colour."""
+    def _surface_lines(self) -> list[tuple[str, np.ndarray, np.ndarray, Any]]:
+        """(label, point, normal, line) of each surface seen edge-on in this view, each in its own colour."""
         surfaces = []
         for k, (label, point, normal) in enumerate(self.scene.surfaces):
             if not self._edge_on(normal):
                 continue
             line, = self.ax.plot([], [], "-", color=SURFACE_COLOURS[k % len(SURFACE_COLOURS)], linewidth=2.2,
                                  zorder=1.2, label=label)
-            surfaces.append((point, normal, line))
+            surfaces.append((label, point, normal, line))
         return surfaces
+
+    def _line_ends(self, label: str, p: np.ndarray, direction: np.ndarray) -> np.ndarray:
+        """The two ends of a surface line through ``p`` along ``direction`` in this view: across the view, or
+        from its stop (the scene's ``ends``) back across the view."""
+        for name, stop, towards in self.scene.ends:
+            if name == label:
+                s, u = _cut(stop, self.i, self.j), _cut(towards, self.i, self.j)
+                back = -self.reach * u / max(float(np.hypot(u[0], u[1])), 1e-300)
+                return np.array([s + back, s])
+        return np.array([p - self.reach * direction, p + self.reach * direction])
 
     def _linkage(self) -> None:
         """The rods (their ends in this view and a line each), the pivots (triangles) and the joints (rings)."""
@@ -374,13 +384,13 @@ class Drawing:
         """Every moving part at ``sample``; the artists that changed (the time stamp last)."""
         for (a, b), rod in zip(self.rod_ends, self.rods, strict=True):
             rod.set_data([a[sample, 0], b[sample, 0]], [a[sample, 1], b[sample, 1]])
-        for point, normal, line in self.surfaces:
+        for label, point, normal, line in self.surfaces:
             p, n = _cut(point[sample], self.i, self.j), _cut(normal[sample], self.i, self.j)
             size = float(np.hypot(n[0], n[1]))
             if size < 1e-300:
                 continue
             direction = np.array([-n[1], n[0]]) / size
-            ends = np.array([p - self.reach * direction, p + self.reach * direction])
+            ends = self._line_ends(label, p, direction)
             line.set_data(ends[:, 0], ends[:, 1])
         for shape, artist in self.artists:
             pts = _cut(shape.at(sample), self.i, self.j)
@@ -410,7 +420,7 @@ class Drawing:
             arrow.set_positions(tuple(tail), tuple(head))
         unit = self.units.get("t")
         self.stamp.set_text(f"t = {self.trajectory.t[sample]:.2f}" + (f" {unit}" if unit else ""))
-        return [*self.rods, *(line for _, _, line in self.surfaces), *(a for _, a in self.artists), *self.pivots,
+        return [*self.rods, *(line for *_, line in self.surfaces), *(a for _, a in self.artists), *self.pivots,
                 *self.joints, *self.trails, *self.dots, *self.labels, *self.arrows, self.stamp]
 
 
