@@ -76,6 +76,10 @@ ELEMENTS: dict[str, set[tuple[str, str, tuple[str, ...]]]] = {
         # the axle's sideways velocity is each wheel's: both wheels are knife edges along the heading
         ("blade", "lateral", ("left",)),
         ("blade", "lateral", ("right",)),
+        # one frame: the axle between the wheels (the spine), the chassis joined at its foot on it (the midpoint)
+        ("rod", "", ("right", "left")),
+        ("rod", "", ("pivot", "chassis")),
+        ("pivot", "", ()),
     },
     "double_pendulum": {
         ("pivot", "", ()),

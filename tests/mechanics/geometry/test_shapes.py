@@ -103,3 +103,51 @@ def test_a_bob_hangs_from_a_joint_at_the_end_of_a_bar() -> None:
     assert rod.end == Anchor("bob") and rod.length == length
     assert [sympy.simplify(a - b) for a, b in zip(rod.start.point, (q1 + length * sympy.sin(q2),
                                                                      -length * sympy.cos(q2)), strict=True)] == [0, 0]
+
+
+def test_bodies_the_coordinates_move_as_one_are_joined_by_a_frame() -> None:
+    """A tricycle seen from above, written here (not shipped): two rear wheels on an axle of half-length b and a
+    front wheel a distance c ahead of its midpoint, all bodies in (x, y, θ). The frame is the axle (the pair the
+    front wheel's foot falls between, at the midpoint) and a rod from there to the front wheel; a dumbbell of two
+    discs is one rod; of three discs at the corners of a scalene triangle, the longest side is the spine (the
+    third's foot falls inside it, at 8/17 of the way here)."""
+    from mechanics_support import problem_text
+
+    tricycle = problem_text("""
+name: tricycle frame
+parameters: {m: mass, I: inertia, b: half axle, c: wheelbase}
+coordinates: {x: x, y: y, theta: heading}
+bodies:
+  rearR: {mass: m, position: [x + b*sin(theta), y - b*cos(theta)], inertia: I, angular_velocity: theta_dot}
+  rearL: {mass: m, position: [x - b*sin(theta), y + b*cos(theta)], inertia: I, angular_velocity: theta_dot}
+  front: {mass: m, position: [x + c*cos(theta), y + c*sin(theta)], inertia: I, angular_velocity: theta_dot}
+""")
+    rods = geometry(tricycle).rods
+    assert [(r.start.particle, r.end.particle) for r in rods] == [("rearR", "rearL"), (None, "front")]
+    assert [str(c) for c in rods[1].start.point] == ["x", "y"]  # the front wheel's foot on the axle: its midpoint
+    dumbbell = problem_text("""
+name: dumbbell
+parameters: {m: mass, I: inertia, l: half length}
+coordinates: {x: x, y: y, theta: angle}
+bodies:
+  one: {mass: m, position: [x + l*cos(theta), y + l*sin(theta)], inertia: I, angular_velocity: theta_dot}
+  two: {mass: m, position: [x - l*cos(theta), y - l*sin(theta)], inertia: I, angular_velocity: theta_dot}
+""")
+    rods = geometry(dumbbell).rods
+    assert [(r.start.particle, r.end.particle) for r in rods] == [("one", "two")]
+    assert str(rods[0].length) in ("2*Abs(l)", "2*l")
+    skew = problem_text("""
+name: three discs, one far out
+parameters: {m: mass, I: inertia}
+coordinates: {x: x, theta: angle}
+bodies:
+  a: {mass: m, position: [x + cos(theta), sin(theta)], inertia: I, angular_velocity: theta_dot}
+  b: {mass: m, position: [x - cos(theta), -sin(theta)], inertia: I, angular_velocity: theta_dot}
+  c: {mass: m, position: [x + 3*cos(theta) - sin(theta), 3*sin(theta) + cos(theta)], inertia: I,
+      angular_velocity: theta_dot}
+""")
+    spine, arm = geometry(skew).rods
+    assert (spine.start.particle, spine.end.particle, arm.start.particle, arm.end.particle) == ("b", "c", None, "a")
+    b, c = sympy.Matrix([-1, 0]), sympy.Matrix([3, 1])  # at x = 0, theta = 0
+    foot = sympy.Matrix([p.xreplace({s: 0 for s in p.free_symbols}) for p in arm.start.point])
+    assert foot == b + sympy.Rational(8, 17) * (c - b)

@@ -29,7 +29,17 @@ from typing import Any
 
 import sympy
 
-from lagsolve.mechanics.geometry.records import SIZE_LIMIT, Anchor, Blade, Rod, Spring, String, Surface, free_part
+from lagsolve.mechanics.geometry.records import (
+    SIZE_LIMIT,
+    Anchor,
+    Blade,
+    Rod,
+    Spring,
+    String,
+    Surface,
+    fixed_distance,
+    free_part,
+)
 from lagsolve.problem.schema import ConstraintKind, Problem
 
 
@@ -123,6 +133,72 @@ def axles(problem: Problem, coordinates: list[Any]) -> list[Rod]:
             if all(_proportional(row, a) for row in rows):
                 out.append(Rod(Anchor(name2), Anchor(name1), None, constraint.name))
     return out
+
+
+def frames(problem: Problem, coordinates: list[Any], rods: list[Rod], drawn: list[Any]) -> list[Rod]:
+    """The frame that joins bodies the coordinates move as one (pairwise fixed distances, no rod between them):
+    the cart's axle between its two wheels, and from it to the chassis. In a group of three or more, the pair
+    the others' feet fall between at a fixed fraction is the spine (the axle), each other member joined to its
+    foot on it (a joint that moves with the frame); else each pair is joined. A body drawn turning about a member
+    (``drawn``: the bodies' drawings, a bar pivoted on a block) is joined to it already."""
+    members = [(p.name, tuple(p.position)) for p in problem.particles] + [(b.name, tuple(b.position))
+                                                                           for b in problem.bodies]
+    bodies = {b.name for b in problem.bodies}
+    joined = {frozenset((r.start.particle, r.end.particle)) for r in rods}
+    joined |= {frozenset((b.name, b.pivot.particle)) for b in drawn if b.pivot is not None}
+    moving = [(n, r) for n, r in members if any(c.free_symbols & set(coordinates) for c in r)]
+    if len(moving) > 8 or sum(sympy.count_ops(c) for _, r in moving for c in r) > SIZE_LIMIT:
+        return []
+    rigid: dict[frozenset, Any] = {}
+    for (n1, r1), (n2, r2) in combinations(moving, 2):
+        if len(r1) == len(r2) and frozenset((n1, n2)) not in joined and (n1 in bodies or n2 in bodies):
+            length = fixed_distance([a - b for a, b in zip(r1, r2, strict=True)], coordinates)
+            if length is not None:
+                rigid[frozenset((n1, n2))] = length
+    out: list[Rod] = []
+    for group in _groups(rigid, [n for n, _ in moving]):
+        position = dict(moving)
+        out += _spine(group, position, coordinates, rigid) or [
+            Rod(Anchor(a), Anchor(b), rigid[frozenset((a, b))], None) for a, b in combinations(group, 2)
+            if frozenset((a, b)) in rigid]
+    return out
+
+
+def _groups(pairs: dict[frozenset, Any], order: list[str]) -> list[list[str]]:
+    """The members each pairwise rigid group holds (every pair of the group in ``pairs``), in ``order``."""
+    out: list[list[str]] = []
+    for name in order:
+        for group in out:
+            if all(frozenset((name, m)) in pairs for m in group):
+                group.append(name)
+                break
+        else:
+            if any(name in pair for pair in pairs):
+                out.append([name])
+    return [g for g in out if len(g) > 1]
+
+
+def _spine(group: list[str], position: dict[str, tuple[Any, ...]], coordinates: list[Any],
+           rigid: dict[frozenset, Any]) -> list[Rod] | None:
+    """The spine of a rigid group of three or more (the pair every other member's foot lies between at a fixed
+    fraction) and the rods to it; None when no pair is one, or for two members."""
+    if len(group) < 3:
+        return None
+    for a, b in combinations(group, 2):
+        ra, rb = position[a], position[b]
+        along = [y - x for x, y in zip(ra, rb, strict=True)]
+        square = sympy.trigsimp(sympy.expand(sum((c * c for c in along), sympy.Integer(0))))
+        rods = [Rod(Anchor(a), Anchor(b), rigid[frozenset((a, b))], None)]
+        for c in (m for m in group if m not in (a, b)):
+            dot = sum(((z - x) * d for x, z, d in zip(ra, position[c], along, strict=True)), sympy.Integer(0))
+            k = sympy.simplify(sympy.trigsimp(sympy.expand(dot)) / square)
+            if k.free_symbols & set(coordinates) or not (k.is_number and 0 < k < 1):
+                break
+            foot = tuple(sympy.expand(x + k * d) for x, d in zip(ra, along, strict=True))
+            rods.append(Rod(Anchor(None, foot), Anchor(c), None, None))
+        else:
+            return rods
+    return None
 
 
 def _proportional(row: list[Any], a: list[Any]) -> bool:

@@ -9,7 +9,8 @@ record, :class:`Geometry`, lists every element (:meth:`Geometry.elements`):
   the particles in Cartesian coordinates; a distance the coordinates keep fixed (:math:`|\\mathbf r_i-\\mathbf
   a_i|` free of the coordinates, :math:`\\mathbf a_i` the part of :math:`\\mathbf r_i` without coordinates:
   the pivot of a pendulum in angles, which may be driven); an integrated velocity constraint that keeps two
-  members' offset fixed (the axle of a cart's wheel);
+  members' offset fixed (the axle of a cart's wheel); the frame of bodies the coordinates move as one (the
+  differential drive's axle between its wheels and the chassis at its midpoint, ``links.frames``);
 * **surfaces** — a constraint linear in a particle's Cartesian position with constant coefficients (a floor, a
   wall, an incline, possibly carried by another particle: the face of a wedge), a straight line a constraint
   leaves a particle on, the straight locus of a body's contact point (``at:``), and the **support** the
@@ -89,6 +90,7 @@ def geometry(problem: Problem) -> Geometry:
     rods += _implied_rods(problem, coordinates, variables, rods, held)
     rods += geometry_links.axles(problem, coordinates)
     bodies, contact_surfaces, contact_curves, rods = geometry_bodies.bodies(problem, coordinates, variables, rods)
+    rods += geometry_links.frames(problem, coordinates, rods, bodies)
     surfaces += [replace(s, solid=_solid(s, problem)) for s in contact_surfaces]
     curves += contact_curves
     markers = geometry_links.markers(problem)
