@@ -38,7 +38,8 @@ def _pixels(data: bytes) -> np.ndarray:
     return np.asarray(Image.open(io.BytesIO(data)).convert("RGB"), dtype=np.int16)
 
 
-@pytest.mark.parametrize("name", ["hole_table", "rough_wedge", "wedge_cylinder"])
+@pytest.mark.parametrize("name", ["hole_table", "rough_wedge", "wedge_cylinder", "bead", "incline_pulley",
+                                  "differential_drive"])
 def test_sketch_matches_its_snapshot(name: str) -> None:
     """The sketch at the start (shapes, arrows, legend, views) looks as reviewed: same size, and fewer than 0.4 %
     of the pixels differ visibly."""
@@ -76,3 +77,13 @@ def test_report_with_figures_has_no_overfull_box(tmp_path: Path) -> None:
     widths = [float(w) for w in re.findall(r"Overfull \\[hv]box \(([\d.]+)pt too", log)]
     assert all(w <= 1.0 for w in widths), widths
     assert len(re.findall(r"magnitude \$", tex)) == 1
+
+
+def test_a_lone_bead_is_sketched_on_its_whole_wire() -> None:
+    """A sketch at one sample zooms in on the system only where the system there has a size (a cart that rolls
+    away); a lone bead is a point there, so its sketch shows the stretch of wire the run covers (x from −1.5 to
+    1.5 on the parabola), not the bead and its arrow alone."""
+    run = simulate(ROOT / "problems" / "bead.yaml", samples=201)
+    figure = sketch_figure(run.motion, run.scene, run.name)
+    low, high = figure.axes[0].get_xlim()
+    assert low < -1.5 and high > 1.5

@@ -136,10 +136,6 @@ def _unit_warnings(problem: Problem) -> tuple[str, ...]:
 def _potential_figure(derivation: Derivation) -> dict | None:
     """The V_eff plot with its equilibria, for a problem that has an effective potential and numbers
     (simulation values and initial state) to draw it with; None otherwise."""
-    from lagsolve.numeric.potential import potential_curve
-    from lagsolve.render.plots import png_bytes
-    from lagsolve.render.potential_plot import potential_figure
-
     problem = derivation.problem
     spec = problem.simulation
     analysis = getattr(derivation, "analysis", None)
@@ -147,6 +143,10 @@ def _potential_figure(derivation: Derivation) -> dict | None:
         return None
     if problem.functions:  # drawing V_eff with declared functions would need their concrete forms
         return None
+    from lagsolve.numeric.potential import potential_curve  # matplotlib only when there is a curve to draw
+    from lagsolve.render.plots import png_bytes
+    from lagsolve.render.potential_plot import potential_figure
+
     try:
         curve = potential_curve(derivation, dict(spec.values), initial=dict(spec.initial))
     except (ValueError, KeyError, TypeError, ZeroDivisionError, StopIteration, NameError, OverflowError):

@@ -242,8 +242,9 @@ class Drawing:
 
     # --- layout ------------------------------------------------------------------------------------------
 
-    def _points(self, sample: int | None) -> np.ndarray:
-        """Every member, pivot, rod end and bounded shape in this view, at ``sample`` (None: the whole run)."""
+    def _points(self, sample: int | None, arrows: bool = True) -> np.ndarray:
+        """Every member, pivot, rod end and bounded shape in this view, at ``sample`` (None: the whole run), and
+        the arrows' heads unless ``arrows`` is False."""
         rows = slice(None) if sample is None else slice(sample, sample + 1)
         groups = [p[rows].reshape(-1, 2) for p in self.plane] + [v[rows].reshape(-1, 2) for _, v in self.markers]
         groups += [_cut(p[rows], self.i, self.j).reshape(-1, 2) for p in self.scene.pivots]
@@ -256,7 +257,7 @@ class Drawing:
             if shape.kind in BOUNDED:
                 points = shape.points if shape.points.ndim == 2 or sample is None else shape.points[sample]
                 groups.append(_cut(points, self.i, self.j).reshape(-1, 2))
-        if self.per_force > 0:  # the arrows' heads
+        if self.per_force > 0 and arrows:  # the arrows' heads
             for _, point, vector in self.forces:
                 groups.append((point[rows] + self.per_force * vector[rows]).reshape(-1, 2))
         points = np.vstack(groups) if groups else np.zeros((1, 2))
@@ -269,11 +270,11 @@ class Drawing:
     def _limits(self, sample: int | None) -> None:
         """Square limits around every member, pivot and bounded shape, with room for labels and arrows: over the
         whole run (the animation's axes stay put), or for a sketch at one sample, around that sample where the
-        run goes far beyond it (a cart that rolls away)."""
+        run goes far beyond it (a cart that rolls away; not a lone bead, whose system at one sample is a point)."""
         points = self._points(None)
         if sample is not None:
             here = self._points(sample)
-            size = float(np.ptp(here, axis=0).max())
+            size = float(np.ptp(self._points(sample, arrows=False), axis=0).max())
             if size > 1e-9 * (1 + float(np.abs(here).max())) and np.ptp(points, axis=0).max() > 4 * size:
                 points = here
         low, high = points.min(axis=0), points.max(axis=0)
