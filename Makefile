@@ -10,6 +10,7 @@ $(STAMP): pyproject.toml
 	test -d $(VENV) || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e '.[dev]'
+	$(BIN)/python -m lagsolve.render.template_cache
 	touch $(STAMP)
 
 run: $(STAMP)
@@ -38,6 +39,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/classics.py
 	$(BIN)/python bench/simulate.py
 	$(BIN)/python bench/scale.py
+	$(BIN)/python bench/startup.py --phases
 	$(BIN)/python bench/sweep.py
 
 docs: $(STAMP)

@@ -149,6 +149,7 @@ def test_the_sandbox_renders_the_packaged_templates_unchanged(bead: Derivation, 
 
     sandboxed = render(bead, fmt)
     monkeypatch.setattr(report, "ENVIRONMENT", jinja2.Environment)
+    assert report.environment("markdown").__class__ is jinja2.Environment  # not the sandbox kept from before
     assert render(bead, fmt) == sandboxed
 
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import base64
 import dataclasses
+import functools
 import json
 import typing
 from collections.abc import Callable
@@ -96,10 +97,21 @@ ENVIRONMENT: type[jinja2.Environment] = ImmutableSandboxedEnvironment
 
 def environment(kind: str, extra: Path | None = None) -> jinja2.Environment:
     """A sandboxed Jinja2 environment for ``kind`` ("markdown", "latex", "html" or "text", the terminal summary's);
-    LaTeX uses ``((* *))``-style delimiters."""
-    dirs = [str(d) for d in template_dirs(kind, extra) if d.is_dir()]
+    LaTeX uses ``((* *))``-style delimiters. One per kind and templates folder in a process, so that each template
+    is compiled once (Jinja2 reloads one whose file changed); compiled templates are read from the install's
+    bytecode cache where ``make`` built one (:mod:`lagsolve.render.template_cache`)."""
+    dirs = tuple(str(d) for d in template_dirs(kind, extra) if d.is_dir())
+    return _environment(ENVIRONMENT, kind, dirs)  # type: ignore[arg-type]  # a class is hashable
+
+
+@functools.lru_cache(maxsize=32)
+def _environment(sandbox: type[jinja2.Environment], kind: str, dirs: tuple[str, ...]) -> jinja2.Environment:
+    from lagsolve.render.template_cache import CACHE, InstalledCache
+
     options: dict[str, Any] = {
-        "loader": jinja2.FileSystemLoader(dirs),
+        "loader": jinja2.FileSystemLoader(list(dirs)),
+        # the code Jinja2 compiles differs by environment class (the sandbox's calls are checked): its own folder
+        "bytecode_cache": InstalledCache(CACHE / sandbox.__name__) if (CACHE / sandbox.__name__).is_dir() else None,
         "autoescape": kind == "html",
         "undefined": jinja2.StrictUndefined,
         "keep_trailing_newline": True,
@@ -109,7 +121,7 @@ def environment(kind: str, extra: Path | None = None) -> jinja2.Environment:
     if kind == "latex":
         options.update(block_start_string="((*", block_end_string="*))", variable_start_string="(((",
                        variable_end_string=")))", comment_start_string="((=", comment_end_string="=))")
-    env = ENVIRONMENT(**options)  # noqa: S701 - Markdown/TeX are escaped by filters, HTML autoescaped
+    env = sandbox(**options)  # noqa: S701 - Markdown/TeX are escaped by filters, HTML autoescaped
     env.filters.update(FILTERS)
     return env
 
