@@ -43,6 +43,7 @@ from lagsolve.mechanics.symbolic.algebra import ops
 from lagsolve.mechanics.symbolic.identities import proved_zero
 from lagsolve.mechanics.symbolic.linsolve import SIZE_LIMIT
 from lagsolve.mechanics.symbolic.simplify import (
+    LARGE_SYSTEM,
     compound_angles,
     measure,
     norm,
@@ -52,9 +53,6 @@ from lagsolve.mechanics.symbolic.simplify import (
     tidy_sum_light,
 )
 from lagsolve.problem.schema import Problem
-
-#: above this many coordinates the equation pieces get the light display simplification
-LARGE_SYSTEM = 4
 
 #: above this many operations the magnitude of a contact's force is not simplified
 CONTACT_LIMIT = 60

@@ -58,7 +58,7 @@ from lagsolve.mechanics.symbolic.identities import Zero, numerically_zero, prove
 from lagsolve.mechanics.symbolic.linsolve import SIZE_LIMIT, solve_structured
 from lagsolve.mechanics.symbolic.partials import partial
 from lagsolve.mechanics.symbolic.ringsolve import coupled
-from lagsolve.mechanics.symbolic.simplify import measure, smallest, tidy, tidy_sum
+from lagsolve.mechanics.symbolic.simplify import display_forms, measure, smallest, tidy, tidy_sum
 from lagsolve.problem.names import momentum_symbol
 
 if TYPE_CHECKING:
@@ -198,8 +198,9 @@ def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonia
     n = len(q)
     P = tuple(momentum_symbol(c) for c in q)
     zero = {v: sympy.Integer(0) for v in qd}
-    A = sympy.Matrix(n, n, lambda i, j: tidy(partial(L, qd[i], qd[j])))
-    b = sympy.Matrix([tidy(partial(L, v).xreplace(zero)) for v in qd])
+    show, _ = display_forms(n)  # a large system's n² entries are each rewritten once, not searched
+    A = sympy.Matrix(n, n, lambda i, j: show(partial(L, qd[i], qd[j])))
+    b = sympy.Matrix([show(partial(L, v).xreplace(zero)) for v in qd])
     L0 = L.xreplace(zero)
     w = sympy.Matrix(P) - b
     try:

@@ -149,3 +149,52 @@ def test_numeric_equilibria_show_one_point_of_a_continuum() -> None:
     assert sorted(float(w) for w in mode.squared_frequencies) == [0.0, 7.5]  # k (m1 + m2)/(m1 m2)
 
 
+
+
+DAMPED_CART = """
+name: A cart on a spring with a damped pendulum (written here, not shipped)
+parameters: {M: cart, m: bob, g: gravity, l: length, k: spring, b: damping}
+coordinates: [x, th]
+kinetic: (M + m)*x_dot**2/2 + m*l*x_dot*th_dot*cos(th) + m*l**2*th_dot**2/2
+potential: k*x**2/2 - m*g*l*cos(th)
+dissipation: b*th_dot**2/2
+simulation:
+  values: {M: 2.0, m: 0.5, g: 9.81, l: 0.7, k: 3.0, b: 0.2}
+  initial: {x: 0.1, th: 0.3}
+  t_end: 1.0
+"""
+
+
+@pytest.mark.parametrize("source", ["triple_pendulum", "double_pendulum", "coupled_pendulums", DAMPED_CART])
+def test_the_compiled_route_evaluates_what_sympy_evaluates(source: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """F(q, 0), its Jacobian, M and the damping at rest, compiled by SymEngine (the route a large chain takes), equal
+    SymPy's ``lambdify`` of the same matrices (the route a declared function takes) at 20 random points."""
+    from lagsolve.mechanics.analysis import numeric_equilibria as ne
+    from lagsolve.mechanics.equations.matrix_form import matrix_form
+
+    derivation = derived_file(source) if "\n" not in source else derived_text(source)
+    form = matrix_form(derivation.problem, display=False)
+    values = dict(derivation.problem.simulation.values)
+    fast = ne._lambdified(form, values)
+    monkeypatch.setattr(ne, "_engine_functions", lambda *args: None)
+    slow = ne._lambdified(form, values)
+    assert fast.angles == slow.angles
+    rng = np.random.default_rng(1)
+    for _ in range(20):
+        x = rng.uniform(-2, 2, len(fast.coordinates))
+        for name in ("static", "jacobian", "mass", "damping"):
+            a = np.asarray(getattr(fast, name)(x), dtype=float)
+            b = np.asarray(getattr(slow, name)(x), dtype=float).reshape(a.shape)
+            assert np.allclose(a, b, rtol=1e-12, atol=1e-12), name
+    if source == DAMPED_CART:
+        assert np.max(np.abs(fast.damping(np.zeros(2)))) > 0.1  # the damping is there, not dropped
+
+
+def test_a_declared_function_takes_sympys_route() -> None:
+    from lagsolve.mechanics.analysis import numeric_equilibria as ne
+    from lagsolve.mechanics.equations.matrix_form import matrix_form
+
+    form = matrix_form(derived_file("bead").problem, display=False)
+    terms = ne.lagrange_terms(form.model, (), form.generalized_forces, engine="symengine")
+    assert ne._engine_functions(terms.forcing, terms.mass_matrix, list(form.model.coordinates),
+                                list(form.model.velocities), {}) is None

@@ -258,6 +258,17 @@ def tidy_sum(expr: Any) -> Any:
     return smallest(candidates)
 
 
+#: a system of more coordinates than this is large: its many display forms are each rewritten once
+#: (:func:`tidy_sum_light`, :func:`display_forms`) instead of searched over candidates
+LARGE_SYSTEM = 4
+
+
+def display_forms(size: int) -> tuple[Any, Any]:
+    """(tidy, tidy_sum) for a system of ``size`` coordinates: the searches, or for a large system the one
+    rewriting of :func:`tidy_sum_light` for both."""
+    return (tidy, tidy_sum) if size <= LARGE_SYSTEM else (tidy_sum_light, tidy_sum_light)
+
+
 @functools.lru_cache(maxsize=4096)
 def tidy_sum_light(expr: Any) -> Any:
     """A cheap :func:`tidy_sum` for large systems: expanded, compound angles contracted, common factors out
