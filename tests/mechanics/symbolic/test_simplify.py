@@ -178,3 +178,51 @@ def test_tidy_gives_a_product_of_sines_and_cosines_back_as_it_is():
         assert tidy(expr) == expr
         assert _search(expr) == expr
     assert tidy(m * (sympy.sin(a) ** 2 + sympy.cos(a) ** 2)) == m
+
+
+def _chain_yaml(n: int) -> str:
+    positions = []
+    for i in range(1, n + 1):
+        xs = " + ".join(f"l*sin(th{k})" for k in range(1, i + 1))
+        ys = " - ".join(f"l*cos(th{k})" for k in range(1, i + 1))
+        positions.append(f"  p{i}: {{mass: m, position: [{xs}, -{ys}]}}")
+    return "\n".join([
+        f"name: {n}-link chain (written here)", "parameters: {m: mass, l: length, g: gravity}",
+        f"coordinates: [{', '.join(f'th{k}' for k in range(1, n + 1))}]", "particles:", *positions,
+        "gravity: [0, -g]"])
+
+
+def test_a_large_chain_reads_as_a_textbook_writes_it() -> None:
+    """A 9-link chain (more coordinates than LARGE_SYSTEM, so the light display simplification): the diagonal of
+    its equations is (n - k + 1) l² m θ̈ₖ (no sin² + cos² left), the couplings cos(θᵢ − θⱼ), the energy h has its
+    compound angles contracted too; every shown form equals the raw one at random points."""
+    import random
+
+    from lagsolve.mechanics.symbolic.simplify import LARGE_SYSTEM
+    from mechanics_support import derived_text
+
+    n = 9
+    assert n > LARGE_SYSTEM
+    d = derived_text(_chain_yaml(n))
+    sides = [lhs - rhs for lhs, rhs in d.display.equation_sides]  # the equations as the reports print them
+    shown = list(d.display.equations) + sides + [q.expression for q in d.analysis.conservation.quantities]
+    model = d.form.model
+    raw = 2 * list(d.form.lagrange.equations) + [model.kinetic + model.potential]
+    for expr in shown:
+        for node in sympy.preorder_traversal(expr):
+            if isinstance(node, sympy.Add):
+                squares = {(type(p.base), p.base.args[0]) for t in node.args for p in sympy.Mul.make_args(t)
+                           if p.is_Pow and p.exp == 2 and isinstance(p.base, sympy.sin | sympy.cos)}
+                assert not any((sympy.sin, a) in squares and (sympy.cos, a) in squares for _, a in squares), expr
+        products = [t for t in sympy.preorder_traversal(expr) if isinstance(t, sympy.Mul)
+                    and sum(isinstance(f, sympy.cos) for f in t.args) == 2]
+        assert not products, f"cos·cos left in {products[:1]}"
+    rng = random.Random(3)
+    symbols = sorted(set().union(*(e.free_symbols for e in raw)), key=str)
+    for _ in range(5):
+        point = {s: rng.uniform(-2, 2) for s in symbols}
+        for a, b in zip(shown, raw, strict=True):
+            assert abs(float((a - b).xreplace(point))) < 1e-9
+    first = sympy.expand(d.display.equations[0]).coeff(model.accelerations[0])
+    l_, m_ = sorted((s for s in first.free_symbols), key=str)
+    assert first == n * l_**2 * m_  # the chain's M₁₁ = n m l², as written by hand

@@ -36,7 +36,7 @@ from lagsolve.mechanics.equations.model import Model
 from lagsolve.mechanics.equations.surface import on_surface
 from lagsolve.mechanics.symbolic.identities import proved_zero
 from lagsolve.mechanics.symbolic.partials import partial
-from lagsolve.mechanics.symbolic.simplify import tidy, tidy_sum
+from lagsolve.mechanics.symbolic.simplify import display_forms, tidy
 from lagsolve.problem.names import momentum_name
 
 
@@ -287,4 +287,5 @@ def _jacobi_integral(system: MotionSystem, h: Any) -> Conserved:
                "workless": ", every constraint has b = 0 (workless)", "unconstrained": ""}[flags[2]]
     reason += "; h = T + V" if equals else "; h = T2 - T0 + V, not T + V (a constraint moves)"
     reason += unverified_caveat(system)
-    return Conserved("energy", "jacobi", tidy_sum(h), None, reason, equals, moving_t0, tuple(flags))
+    _, show_sum = display_forms(len(model.coordinates))  # a large system's h: one rewriting, angles contracted
+    return Conserved("energy", "jacobi", show_sum(h), None, reason, equals, moving_t0, tuple(flags))

@@ -275,7 +275,41 @@ def tidy_sum_light(expr: Any) -> Any:
     (one rewriting each instead of a search over candidates)."""
     if not isinstance(expr, sympy.Basic):
         return _number(expr)
-    return factor_terms(compound_angles(expand(expr)))
+    return factor_terms(compound_angles(unit_squares(expand(expr))))
+
+
+def unit_squares(expanded: Any) -> Any:
+    """``c sin²x + c cos²x`` → ``c`` pair by pair of terms in the expanded sum, a cheap :func:`pythagoras` (the
+    diagonal of a chain's mass matrix, ``(k+1) l² m (sin²θₖ + cos²θₖ)``); every other term as it is.
+
+    >>> import sympy
+    >>> x, c, d = sympy.symbols("x c d")
+    >>> unit_squares(c*sympy.sin(x)**2 + c*sympy.cos(x)**2 + d*sympy.sin(x)**2)
+    c + d*sin(x)**2
+    """
+    if not isinstance(expanded, sympy.Add) or not expanded.has(sympy.sin, sympy.cos):
+        return expanded
+    found: dict[tuple[Any, Any, Any], list[int]] = {}
+    terms = list(expanded.args)
+    for i, term in enumerate(terms):
+        for part in sympy.Mul.make_args(term):
+            if part.is_Pow and part.exp == 2 and isinstance(part.base, sympy.sin | sympy.cos):
+                rest = term / part
+                found.setdefault((type(part.base), part.base.args[0], rest), []).append(i)
+                break
+    used: set[int] = set()
+    extra: list[Any] = []
+    for (kind, angle, rest), where in found.items():
+        if kind is not sympy.sin:
+            continue
+        partners = [j for j in found.get((sympy.cos, angle, rest), []) if j not in used]
+        mine = [i for i in where if i not in used]
+        for i, j in zip(mine, partners, strict=False):
+            used.update((i, j))
+            extra.append(rest)
+    if not used:
+        return expanded
+    return sympy.Add(*[t for k, t in enumerate(terms) if k not in used], *extra)
 
 
 @functools.lru_cache(maxsize=8192, typed=True)
