@@ -42,6 +42,7 @@ from lagsolve.mechanics.stages import DEFAULT_BUDGET, STAGES, StageNote, Stages,
 from lagsolve.mechanics.symbolic.algebra import ops
 from lagsolve.mechanics.symbolic.identities import proved_zero
 from lagsolve.mechanics.symbolic.linsolve import SIZE_LIMIT
+from lagsolve.mechanics.symbolic.ringsolve import too_coupled
 from lagsolve.mechanics.symbolic.simplify import (
     LARGE_SYSTEM,
     compound_angles,
@@ -226,7 +227,9 @@ def later_stages(form: MatrixForm, *, analysis: bool = True) -> tuple[str, ...]:
 
 def _solve(lagrange: LagrangeTerms) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
     """The explicit accelerations and multipliers, solved from M and F with products of sines and cosines
-    contracted to functions of sums (``cos(θ1 − θ2)``), which keeps the solution in textbook form."""
+    contracted to functions of sums (``cos(θ1 − θ2)``), which keeps the solution in textbook form. A system
+    whose unknowns are coupled in a block too large to solve explicitly is declined first, from its pattern."""
+    too_coupled(lagrange.mass_matrix, lagrange.constraint_jacobian)
     contracted = dataclasses.replace(
         lagrange, mass_matrix=sympy.ImmutableMatrix(lagrange.mass_matrix.applyfunc(compound_angles)),
         forcing=sympy.ImmutableMatrix(lagrange.forcing.applyfunc(compound_angles)))

@@ -151,3 +151,22 @@ def test_blocks_follow_the_pattern_of_the_augmented_matrix() -> None:
     M = sympy.diag(a, b, a)
     K, _ = kkt(M, sympy.zeros(3, 1), sympy.Matrix([[1, 0, -1]]), sympy.zeros(1, 1))
     assert coupled(K) == [[0, 2, 3], [1]]
+
+
+def test_a_system_too_coupled_is_declined_from_its_pattern() -> None:
+    """too_coupled looks at the non-zero pattern only: a dense 11 × 11 M (eleven coupled accelerations) is declined
+    with the explicit solve's note, a 20 × 20 M of 2 × 2 blocks (ten pairs) and a 10 × 10 dense M with one
+    constraint on two of them (11 unknowns in one block) as the ring solve would judge them."""
+    from lagsolve.mechanics.stages import StageTooLarge
+    from lagsolve.mechanics.symbolic.ringsolve import MAX_BLOCK, too_coupled
+
+    x = sympy.symbols("x0:20")
+    dense = sympy.Matrix(11, 11, lambda i, j: sympy.cos(x[i] - x[j]))
+    with pytest.raises(StageTooLarge, match="11 unknowns .* are coupled"):
+        too_coupled(dense, sympy.zeros(0, 11))
+    blocks = sympy.Matrix(20, 20, lambda i, j: sympy.cos(x[i] - x[j]) if i // 2 == j // 2 else 0)
+    too_coupled(blocks, sympy.zeros(0, 20))  # ten blocks of two: fine
+    ten = sympy.Matrix(MAX_BLOCK, MAX_BLOCK, lambda i, j: 1 + x[i] * x[j])
+    too_coupled(ten, sympy.zeros(0, MAX_BLOCK))
+    with pytest.raises(StageTooLarge):
+        too_coupled(ten, sympy.Matrix([[1, -1] + [0] * (MAX_BLOCK - 2)]))

@@ -77,6 +77,24 @@ def coupled(K: sympy.Matrix) -> list[list[int]]:
     return sorted(groups.values(), key=lambda g: g[0])
 
 
+def check_blocks(groups: list[tuple[int, ...]] | list[list[int]]) -> None:
+    """Raise :class:`StageTooLarge` when a block of coupled unknowns (:func:`coupled`) is larger than
+    :data:`MAX_BLOCK`: no explicit solution is sought for it."""
+    largest = max((len(g) for g in groups), default=0)
+    if largest > MAX_BLOCK:
+        raise StageTooLarge(f"{largest} unknowns (accelerations and multipliers) are coupled, more than the "
+                            f"{MAX_BLOCK} an explicit solution is sought for; the matrix form M q̈ = F + Aᵀλ above is "
+                            "the result")
+
+
+def too_coupled(M: Any, A: Any) -> None:
+    """:func:`check_blocks` of the augmented system of ``M`` and ``A`` from their non-zero pattern alone, before
+    any work on the entries (a 20-link chain is declined at once, not after its 400 entries are rewritten)."""
+    M, A = sympy.Matrix(M), sympy.Matrix(A)
+    K, _ = kkt(M, sympy.zeros(M.rows, 1), A, sympy.zeros(A.rows, 1))
+    check_blocks(coupled(K))
+
+
 def solve_in_ring(M: Any, F: Any, A: Any, beta: Any, cap: int | None = MAX_TERMS) -> tuple[list[Any], list[Any]] | None:
     r"""(:math:`\ddot q`, :math:`\lambda`) of the augmented system, each entry cancelled as ``sympy.cancel``
     writes it; None when the entries are not polynomials over the rationals in symbols and function atoms
@@ -89,11 +107,8 @@ def solve_in_ring(M: Any, F: Any, A: Any, beta: Any, cap: int | None = MAX_TERMS
     K, rhs = kkt(M, F, A, beta)
     n = sympy.Matrix(M).rows
     groups = [tuple(g) for g in coupled(K)]
-    if cap is not None and max(len(g) for g in groups) > MAX_BLOCK:
-        largest = max(len(g) for g in groups)
-        raise StageTooLarge(f"{largest} unknowns (accelerations and multipliers) are coupled, more than the "
-                           f"{MAX_BLOCK} an explicit solution is sought for; the matrix form M q̈ = F + Aᵀλ above is "
-                           "the result")
+    if cap is not None:
+        check_blocks(groups)
     found = _ring_matrix(K.row_join(rhs))
     if found is None:
         return None
