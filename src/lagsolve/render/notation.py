@@ -11,6 +11,7 @@ environment in :mod:`lagsolve.render.report`.
 
 from __future__ import annotations
 
+import functools
 import re
 import textwrap
 import unicodedata
@@ -235,7 +236,12 @@ class Notation:
         self._mathml = MechanicsMathMLPrinter(rates)
 
     def latex(self, expr: Any) -> str:
-        return self._latex.doprint(expr)
+        """LaTeX of ``expr``, remembered per problem's coordinates: the Markdown and LaTeX reports (and the HTML
+        page's figures) print the same expressions, and a large system's take seconds each time."""
+        try:
+            return _latex_of(self.coordinates, expr)
+        except TypeError:  # not hashable
+            return self._latex.doprint(expr)
 
     def inline(self, expr: Any) -> str:
         """LaTeX for one line of figure text (matplotlib's mathtext): short fractions on the line (``k x^{2} / 2``)
@@ -264,6 +270,16 @@ class Notation:
     def mathml(self, expr: Any) -> str:
         """Presentation MathML (without the ``<math>`` element), as browsers render it natively."""
         return self._mathml.doprint(expr)
+
+
+@functools.lru_cache(maxsize=16)
+def _latex_printer(coordinates: tuple[str, ...]) -> Any:
+    return MechanicsLatexPrinter(frozenset(coordinates), {"mul_symbol": None})
+
+
+@functools.lru_cache(maxsize=8192, typed=True)
+def _latex_of(coordinates: tuple[str, ...], expr: Any) -> str:
+    return str(_latex_printer(coordinates).doprint(expr))
 
 
 def to_json(expr: Any) -> str:
