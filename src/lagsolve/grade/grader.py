@@ -63,6 +63,7 @@ from lagsolve.grade.evaluate import (
     proportional,
     relation,
 )
+from lagsolve.grade.frame import CARRIED, Frame, answers_in_frame, own_in_key
 from lagsolve.grade.key import Grading
 from lagsolve.grade.submission import LISTS, STEPS, Submission, names_for
 from lagsolve.mechanics.derivation import Derivation
@@ -232,8 +233,9 @@ class GradingKey:
         self._canonical: Evaluator | None = None
         self._released: ReleasedConstraints | None = None
         self._follows: dict[Any, dict[str, dict[str, Any]]] = {}
-        self._candidates: dict[tuple[str, Any], list[tuple[str, Any, str]]] = {}
+        self._candidates: dict[tuple[str, Any, Any], list[tuple[str, Any, str]]] = {}
         self._angles: set[str] | None = None
+        self._frames: dict[tuple, dict[str, dict[str, Any]]] = {}
 
     @property
     def angles(self) -> set[str]:
@@ -300,20 +302,32 @@ class GradingKey:
             self._follows[signature] = _follow_through(self.derivation, own)
         return self._follows[signature]
 
-    def candidates(self, step: str, reference: Any) -> list[tuple[str, Any, str]]:
-        if (step, reference) not in self._candidates:
-            self._candidates[(step, reference)] = _candidates(step, reference, self.derivation)
-        return self._candidates[(step, reference)]
+    def in_frame(self, frame: Frame) -> dict[str, dict[str, Any]]:
+        """The key's answers in a submission's coordinates (made once per distinct map)."""
+        signature = frame.signature()
+        if signature not in self._frames:
+            self._frames[signature] = answers_in_frame(self.answers, frame)
+        return self._frames[signature]
+
+    def candidates(self, step: str, reference: Any, frame: Frame | None = None) -> list[tuple[str, Any, str]]:
+        signature = (step, reference, frame.signature() if frame is not None else None)
+        if signature not in self._candidates:
+            self._candidates[signature] = _candidates(step, reference, self.derivation, frame)
+        return self._candidates[signature]
 
 
 class _Grader:
     def __init__(self, key: GradingKey, submission: Submission) -> None:
         self.context, self.submission = key, submission
         self.derivation, self.grading = key.derivation, key.grading
-        self.key = key.answers
         self.own = {name: step.entries for name, step in submission.steps.items() if step.issue is None}
-        self.follows = key.follow_through(self.own)
-        self.coordinates = key.coordinates
+        self.frame = frame = submission.frame
+        if frame is None:
+            self.key, self.coordinates = key.answers, key.coordinates
+            self.follows = key.follow_through(self.own)
+        else:
+            self.key, self.coordinates = key.in_frame(frame), list(frame.names)
+            self.follows = answers_in_frame(key.follow_through(own_in_key(self.own, frame)), frame)
 
     # -- grading
 
@@ -341,6 +355,9 @@ class _Grader:
             return StepGrade(step, UNREADABLE, None, 0.0, weight, str(read.issue))
         if step in NO_KEY and step not in self.key:
             return StepGrade(step, INCORRECT, None, 0.0, weight, f"the key gives no {NO_KEY[step]} to compare")
+        if self.frame is not None and step in CARRIED and step not in self.key:
+            return StepGrade(step, INCORRECT, None, 0.0, weight, "the key's answer to this step could not be "
+                             "carried into the submission's coordinates (coordinates_map)")
         entries: list[_Entry] = []
         if step in LISTS:
             entries = self.listed(step, read.entries)
@@ -389,6 +406,9 @@ class _Grader:
         coordinates = {q for point in key for q in point}
         lone = next(iter(coordinates)) if len(coordinates) == 1 else None
         angles = self.context.angles
+        if self.frame is not None:  # a coordinate of the student's that is a function of the key's angles only
+            angles = {name for name, f in self.frame.signature()
+                      if {str(q) for q in f.free_symbols & set(self.frame.q)} <= angles}
         given: list[dict[str, Any] | None] = []
         out: list[_Entry] = []
         for name, pairs in entries.items():
@@ -525,7 +545,7 @@ class _Grader:
                                  "were free to leave the constraint surface")
         if found.kind == FACTOR:
             return FACTOR_MISSING, f"off by a constant factor{_factor(found)}"
-        for mistake, candidate, detail in self.context.candidates(step, reference):
+        for mistake, candidate, detail in self.context.candidates(step, reference, self.frame):
             same = self.relation(value, candidate, step)
             if same.kind == SAME or (same.kind == OFFSET and step in SHIFTS):
                 return mistake or None, detail
@@ -564,7 +584,7 @@ class _Grader:
         own = self.follows.get("equations", {}).get(name)
         if own is not None and same(own):
             return _Entry(name, FOLLOWS, None, f"{_label(name)}follows from the submission's own Lagrangian")
-        for mistake, candidate, detail in self.context.candidates("equations", reference):
+        for mistake, candidate, detail in self.context.candidates("equations", reference, self.frame):
             if same(candidate):
                 return _Entry(name, INCORRECT, mistake, f"{_label(name)}{detail}")
         return _Entry(name, INCORRECT, None, f"{_label(name)}not the key's equation, even up to a constant factor")
@@ -579,8 +599,20 @@ class _Grader:
             factor = ratio(value, reference)
             if factor is not None and not (factor.free_symbols & variables) and factor != 0:
                 return _Entry(name, CORRECT)
+        if self.frame is not None and self.holds_on_surface(value):
+            return _Entry(name, CORRECT, None, f"{_label(name)}holds on the key's constraint surface (in the "
+                                               "submission's coordinates)")
         return _Entry(name, INCORRECT, None, f"{_label(name)}not the key's constraint ψ = "
                                              f"{sympy.sstr(terms.expression)} = 0 up to a constant factor")
+
+
+    def holds_on_surface(self, value: Any) -> bool:
+        """ψ (mapped) is zero at every shared state (on the key's constraint surface) and not zero everywhere."""
+        values = self.context.values
+        found = values.values(value)
+        if found is None or len(found) < MINIMUM_STATES or sympy.simplify(value) == 0:
+            return False
+        return all(isinstance(v, mpmath.mpf) and close(v, 0) for v in found)
 
 
 def _example(entries: list[_Entry], mistake: str | None, texts: dict[str, str]) -> str:
@@ -619,12 +651,15 @@ def _flip_multipliers(expr: Any, derivation: Derivation) -> Any:
     return expr.xreplace({c.multiplier: -c.multiplier for c in derivation.constraints})
 
 
-def _without_velocity_squared(expr: Any, velocities: Iterable[Any]) -> Any:
+def _without_velocity_squared(expr: Any, velocities: Iterable[Any], frame: Frame | None = None) -> Any:
     r"""``expr`` less its part quadratic in the velocities: with :math:`E(s) = E(s\dot q)`,
-    :math:`E - (E(2) - 2E(1) + E(0))/2` (exact for E of degree two in :math:`\dot q`)."""
+    :math:`E - (E(2) - 2E(1) + E(0))/2` (exact for E of degree two in :math:`\dot q`); with a ``frame``, in the
+    student's velocities (their accelerations held: :meth:`Frame.scaling`)."""
     velocities = tuple(velocities)
 
     def scaled(k: int) -> Any:
+        if frame is not None and frame.scalable:
+            return expr.xreplace(frame.scaling(k))
         return expr.xreplace({v: k * v for v in velocities})
 
     return expr - (scaled(2) - 2 * expr + scaled(0)) / 2
@@ -637,7 +672,8 @@ def _terms(expr: Any) -> tuple[Any, ...]:
     return ()
 
 
-def _candidates(step: str, reference: Any, derivation: Derivation) -> list[tuple[str, Any, str]]:
+def _candidates(step: str, reference: Any, derivation: Derivation, frame: Frame | None = None
+                ) -> list[tuple[str, Any, str]]:
     """(mistake, the key's answer with that mistake made, evidence) for ``step``, most specific first; a mistake
     "" is a known difference without a name (said in the evidence only)."""
     model = derivation.model
@@ -655,7 +691,7 @@ def _candidates(step: str, reference: Any, derivation: Derivation) -> list[tuple
         for term in _terms(reference):
             out.append((KINETIC_TERM, reference - term, f"the kinetic term {sympy.sstr(term)} is missing"))
     if step not in ("kinetic", "potential", "lagrangian", "constraints", "hamiltonian"):
-        without = _without_velocity_squared(reference, model.velocities)
+        without = _without_velocity_squared(reference, model.velocities, frame)
         if without != reference:
             out.append((VELOCITY_SQUARED, without,
                         "the terms quadratic in the velocities (centripetal, Coriolis) are missing"))

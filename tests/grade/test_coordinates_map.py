@@ -1,0 +1,185 @@
+# ruff: noqa: E501 - the answers are long formulas, one a line
+"""``coordinates_map:`` (issue 31): a submission in other coordinates is graded after the change of coordinates.
+
+Keys: the bead on a rotating hoop (θ, φ) answered in α = θ − π; the Cartesian pendulum (x, y) answered in polar
+coordinates (r, φ); the pendulum on a driven support (X, θ) answered in u = X − A cos(wt) (a map with t). Correct
+answers earn every point, a wrong step in the student's coordinates is still found and named, and a wrong L in the
+student's coordinates gives `follows` to the equations SymPy's LagrangesMethod derives from it (never lagsolve)."""
+
+from __future__ import annotations
+
+import json
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+import pytest
+import sympy
+from sympy.physics.mechanics import LagrangesMethod, dynamicsymbols
+
+from lagsolve.app.grading import grade_files
+from lagsolve.errors import SpecError
+from lagsolve.grade.grader import grade
+from lagsolve.grade.key import Grading
+from lagsolve.grade.submission import read_text
+from lagsolve.mechanics.derivation import derive
+from lagsolve.problem.load import load_problem
+
+ROOT = Path(__file__).resolve().parents[2]
+ALL = ("kinetic", "potential", "lagrangian", "constraints", "momenta", "generalized_forces", "equations",
+       "accelerations", "multipliers", "constraint_forces", "conserved", "effective_potential", "equilibria",
+       "frequencies", "hamiltonian")
+
+HOOP_MAP = {"alpha": "theta - pi"}
+HOOP = {
+    "kinetic": "m*R**2*(alpha_dot**2 + sin(alpha)**2*phi_dot**2)/2",
+    "potential": "m*g*R*cos(alpha)",
+    "lagrangian": "m*R**2*(alpha_dot**2 + sin(alpha)**2*phi_dot**2)/2 - m*g*R*cos(alpha)",
+    "constraints": {"drive": "phi = Omega*t"},
+    "momenta": {"alpha": "m*R**2*alpha_dot", "phi": "m*R**2*sin(alpha)**2*phi_dot"},
+    "generalized_forces": {"alpha": "m*R**2*sin(alpha)*cos(alpha)*phi_dot**2 + m*g*R*sin(alpha)", "phi": "0"},
+    "equations": {"alpha": "m*R**2*alpha_ddot - m*R**2*sin(alpha)*cos(alpha)*phi_dot**2 - m*g*R*sin(alpha)",
+                  "phi": "m*R**2*sin(alpha)**2*phi_ddot + 2*m*R**2*sin(alpha)*cos(alpha)*alpha_dot*phi_dot = lambda_drive"},
+    "accelerations": {"alpha": "sin(alpha)*(Omega**2*cos(alpha) + g/R)", "phi": "0"},
+    "multipliers": {"drive": "2*Omega*m*R**2*alpha_dot*sin(alpha)*cos(alpha)"},
+    "conserved": {"energy": "m*R**2*alpha_dot**2/2 - m*R**2*Omega**2*sin(alpha)**2/2 + m*g*R*cos(alpha)"},
+    "effective_potential": {"coordinate": "alpha", "expression": "m*g*R*cos(alpha) - m*R**2*Omega**2*sin(alpha)**2/2"},
+    "equilibria": ["0", "pi", "pi + acos(g/(R*Omega**2))", "pi - acos(g/(R*Omega**2))"],
+    "frequencies": ["g/R - Omega**2", "Omega**2 - g**2/(R**2*Omega**2)"],
+    "hamiltonian": "p_alpha**2/(2*m*R**2) + m*g*R*cos(alpha) - m*R**2*Omega**2*sin(alpha)**2/2",
+}
+
+POLAR_MAP = {"r": "sqrt(x**2 + y**2)", "phi": "atan2(x, -y)"}
+POLAR = {
+    "kinetic": "m*(r_dot**2 + r**2*phi_dot**2)/2",
+    "potential": "-m*g*r*cos(phi)",
+    "lagrangian": "m*(r_dot**2 + r**2*phi_dot**2)/2 + m*g*r*cos(phi)",
+    "constraints": {"rod": "r = l"},
+    "momenta": {"r": "m*r_dot", "phi": "m*r**2*phi_dot"},
+    "generalized_forces": {"r": "m*r*phi_dot**2 + m*g*cos(phi)", "phi": "-m*g*r*sin(phi)"},
+    "equations": {"r": "m*r_ddot - m*r*phi_dot**2 - m*g*cos(phi) = lambda_rod*r",
+                  "phi": "m*r**2*phi_ddot + 2*m*r*r_dot*phi_dot + m*g*r*sin(phi)"},
+    "accelerations": {"r": "0", "phi": "-g*sin(phi)/l"},
+    "multipliers": {"rod": "-m*(phi_dot**2 + g*cos(phi)/l)"},
+    "constraint_forces": {"rod": "m*l*Abs(phi_dot**2 + g*cos(phi)/l)"},
+}
+
+#: the support's displacement from its driven position, u = X − A cos(wt): the constraint is u = 0
+DRIVEN_MAP = {"u": "X - A*cos(w*t)"}
+DRIVEN = {
+    "constraints": {"drive": "u = 0"},
+    "momenta": {"u": "(M + m)*(u_dot - A*w*sin(w*t)) + m*l*theta_dot*cos(theta)",
+                "theta": "m*l**2*theta_dot + m*l*cos(theta)*(u_dot - A*w*sin(w*t))"},
+    "accelerations": {"u": "0", "theta": "(A*w**2*cos(w*t)*cos(theta) - g*sin(theta))/l"},
+    "multipliers": {"drive": "-A*w**2*cos(w*t)*(M + m*sin(theta)**2) - m*g*sin(theta)*cos(theta) - m*l*theta_dot**2*sin(theta)"},
+}
+
+
+@cache
+def key(name: str) -> tuple:
+    problem = load_problem(ROOT / "problems" / f"{name}.yaml")
+    return problem, derive(problem)
+
+
+def graded(name: str, mapping: dict[str, str], steps: dict[str, Any]) -> dict[str, Any]:
+    problem, derivation = key(name)
+    text = json.dumps({"student": "s", "coordinates_map": mapping, "steps": steps})
+    result = grade(derivation, Grading({s: 1.0 for s in ALL}), read_text(text, problem, "s.yaml"))
+    return {s.step: s for s in result.steps if s.step in steps}
+
+
+@pytest.mark.parametrize(("name", "mapping", "steps"), [("bead_on_rotating_hoop", HOOP_MAP, HOOP),
+                                                        ("pendulum_cartesian", POLAR_MAP, POLAR),
+                                                        ("moving_support", DRIVEN_MAP, DRIVEN)],
+                         ids=["shifted-angle", "polar", "with-time"])
+def test_correct_answers_in_other_coordinates_earn_every_point(name: str, mapping: dict, steps: dict) -> None:
+    result = graded(name, mapping, steps)
+    assert set(result) == set(steps)
+    lost = {s: (g.status, g.message) for s, g in result.items() if g.points != g.max_points}
+    assert not lost
+
+
+@pytest.mark.parametrize(("name", "mapping", "steps", "step", "change", "mistake"), [
+    ("bead_on_rotating_hoop", HOOP_MAP, HOOP, "accelerations",
+     {"alpha": "-sin(alpha)*(Omega**2*cos(alpha) + g/R)", "phi": "0"}, "sign_error"),
+    ("bead_on_rotating_hoop", HOOP_MAP, HOOP, "potential", "-m*g*R*cos(alpha)", "wrong_potential_sign"),
+    ("bead_on_rotating_hoop", HOOP_MAP, HOOP, "kinetic", "m*R**2*alpha_dot**2/2", "missing_kinetic_term"),
+    ("pendulum_cartesian", POLAR_MAP, POLAR, "momenta", {"r": "m*r_dot", "phi": "2*m*r**2*phi_dot"}, "missing_factor"),
+    ("pendulum_cartesian", POLAR_MAP, POLAR, "equations",
+     {"r": "m*r_ddot - m*g*cos(phi) = lambda_rod*r", "phi": "m*r**2*phi_ddot + m*g*r*sin(phi)"},
+     "missing_velocity_squared_terms"),
+    ("bead_on_rotating_hoop", HOOP_MAP, HOOP, "equilibria", ["0", "pi", "acos(g/(R*Omega**2))"], None),
+])
+def test_a_wrong_step_in_other_coordinates_is_found(name: str, mapping: dict, steps: dict, step: str, change: Any,
+                                                    mistake: str | None) -> None:
+    result = graded(name, mapping, {**steps, step: change})
+    assert result[step].status == "incorrect", result[step].message
+    assert result[step].mistake == mistake, result[step].message
+    assert result[step].points < result[step].max_points
+
+
+def _lagranges_method_equations(potential_sign: int) -> dict[str, str]:
+    """The hoop's equations in (α, φ) by SymPy's LagrangesMethod from L = T − s·m g R cos α (SymPy writes
+    E + λ a = 0, lagsolve E = λ a: λ_sympy = −λ)."""
+    t = dynamicsymbols._t
+    alpha, phi = dynamicsymbols("alpha phi")
+    m, R, g, Omega = sympy.symbols("m R g Omega")
+    L = m * R**2 * (alpha.diff(t) ** 2 + sympy.sin(alpha) ** 2 * phi.diff(t) ** 2) / 2 \
+        - potential_sign * m * g * R * sympy.cos(alpha)
+    method = LagrangesMethod(L, [alpha, phi], hol_coneqs=[phi - Omega * t])
+    equations = method.form_lagranges_equations()
+    lam = sympy.Symbol("lambda_drive")
+    names = {}
+    for q, name in ((alpha, "alpha"), (phi, "phi")):
+        names.update({q.diff(t, 2): sympy.Symbol(f"{name}_ddot"), q.diff(t): sympy.Symbol(f"{name}_dot"),
+                      q: sympy.Symbol(name)})
+    out = {}
+    for name, e in zip(("alpha", "phi"), equations, strict=True):
+        e = e.subs(method.lam_vec[0], -lam)
+        for old, new in names.items():  # second derivatives first
+            e = e.subs(old, new)
+        out[name] = sympy.sstr(e)
+    return out
+
+
+def test_follow_through_in_other_coordinates_against_lagranges_method() -> None:
+    """V with the wrong sign (in α): the equations LagrangesMethod derives from the student's L follow."""
+    assert _lagranges_method_equations(1)  # the right L gives the key's equations: checked below
+    right = graded("bead_on_rotating_hoop", HOOP_MAP, {"equations": _lagranges_method_equations(1)})
+    assert right["equations"].status == "correct", right["equations"].message
+    wrong_v = "-m*g*R*cos(alpha)"
+    steps = {"potential": wrong_v, "kinetic": HOOP["kinetic"], "equations": _lagranges_method_equations(-1),
+             "accelerations": {"alpha": "sin(alpha)*(Omega**2*cos(alpha) - g/R)", "phi": "0"}}
+    result = graded("bead_on_rotating_hoop", HOOP_MAP, steps)
+    assert result["potential"].mistake == "wrong_potential_sign"
+    assert result["equations"].status == "follows", result["equations"].message
+    assert result["accelerations"].status == "follows", result["accelerations"].message
+
+
+@pytest.mark.parametrize(("mapping", "words"), [
+    ({"alpha": "theta_dot"}, "velocities"),
+    ({"alpha": "theta + phi", "beta": "2*theta + 2*phi"}, "singular"),
+    ({"alpha": "theta", "beta": "theta"}, "3 coordinates"),
+    ({"m": "theta"}, "already a name"),
+    ({"alpha": "__import__('os')"}, ""),
+    ({"alpha": "Omega*t"}, "none of the key's coordinates"),
+    ({"alpha": "theta - q"}, ""),
+    ("theta - pi", "expected a mapping"),
+])
+def test_a_bad_map_is_a_per_submission_error(mapping: Any, words: str) -> None:
+    problem, _ = key("bead_on_rotating_hoop")
+    text = json.dumps({"student": "s", "coordinates_map": mapping, "steps": {"potential": "0"}})
+    with pytest.raises(SpecError) as raised:
+        read_text(text, problem, "s.yaml")
+    assert words in str(raised.value)
+
+
+def test_a_bad_map_leaves_the_class_graded(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("student: bad\ncoordinates_map: {alpha: theta_dot}\nsteps: {potential: '0'}\n")
+    good = tmp_path / "good.yaml"
+    good.write_text(f"student: good\ncoordinates_map: {{alpha: theta - pi}}\nsteps: {{potential: '{HOOP['potential']}'}}\n")
+    grades = grade_files(ROOT / "problems" / "bead_on_rotating_hoop.yaml", [bad, good])
+    assert grades.grades[0].error and "coordinates_map" in grades.grades[0].error
+    [potential] = [s for s in grades.grades[1].steps if s.step == "potential"]
+    assert potential.status == "correct"
