@@ -24,7 +24,6 @@ follows. Nothing is printed here.
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Iterable
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -35,13 +34,10 @@ import sympy
 from lagsolve.check.compare import STATES, Comparer
 from lagsolve.check.diagnose import ReleasedConstraints, close
 from lagsolve.enums import TextEnum
-from lagsolve.errors import DerivationError
 from lagsolve.grade.analysis_steps import (
     angle_coordinates,
     frequency_mistake,
-    hamiltonian_candidates,
     key_lists,
-    legendre,
     ratio,
     same_at_states,
     same_symbolic,
@@ -63,15 +59,23 @@ from lagsolve.grade.evaluate import (
     proportional,
     relation,
 )
+from lagsolve.grade.follow import follow_through
 from lagsolve.grade.frame import CARRIED, Frame, answers_in_frame, own_in_key
 from lagsolve.grade.key import Grading
+from lagsolve.grade.mistakes import (
+    ABS,
+    DROPPED,
+    FACTOR_MISSING,
+    LAMBDA,
+    MISTAKES,
+    POTENTIAL_SIGN,
+    SIGN,
+    candidates,
+    flip_multipliers,
+)
 from lagsolve.grade.submission import LISTS, STEPS, Submission, names_for
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.equations.constraints import velocity_form
-from lagsolve.mechanics.equations.lagrange import LagrangeTerms, lagrange_terms
-from lagsolve.mechanics.equations.model import Model
-from lagsolve.mechanics.equations.reactions import force_scale
-from lagsolve.mechanics.symbolic.linsolve import solve_linear
 from lagsolve.mechanics.symbolic.simplify import reproducible
 from lagsolve.problem.names import momentum_name
 
@@ -88,20 +92,11 @@ class GradeStatus(TextEnum):
 
 CORRECT, INCORRECT, FOLLOWS = GradeStatus.CORRECT, GradeStatus.INCORRECT, GradeStatus.FOLLOWS
 MISSING, UNREADABLE = GradeStatus.MISSING, GradeStatus.UNREADABLE
-
-#: the mistake names of the contract (those this version can find are marked in docs/grading.md)
-MISTAKES = ("sign_error", "missing_factor", "lambda_sign_convention", "missing_velocity_squared_terms",
-            "missing_moving_constraint_term", "dropped_constraint", "wrong_potential_sign", "missing_kinetic_term",
-            "wrong_dimension", "missing_abs")
-SIGN, FACTOR_MISSING, LAMBDA = "sign_error", "missing_factor", "lambda_sign_convention"
-VELOCITY_SQUARED, DROPPED = "missing_velocity_squared_terms", "dropped_constraint"
-POTENTIAL_SIGN = "wrong_potential_sign"
-KINETIC_TERM, ABS = "missing_kinetic_term", "missing_abs"
+__all__ = ["MISTAKES", "ClassGrades", "GradeStatus", "GradingKey", "StepGrade", "SubmissionGrade", "grade",
+           "key_answers", "unreadable_grade"]
 
 #: steps whose answers may differ from the key's by a constant
 SHIFTS = ("potential", "lagrangian", "conserved", "effective_potential", "hamiltonian")
-#: most terms tried one at a time in a diagnosis (a larger answer gets only the whole-answer candidates)
-MAX_TERMS = 24
 #: steps graded only when the key's derivation has the result, and what it is called
 NO_KEY = {"effective_potential": "effective potential", "hamiltonian": "Hamiltonian",
           "equilibria": "equilibria in closed form", "frequencies": "frequencies of small oscillations"}
@@ -299,7 +294,7 @@ class GradingKey:
         signature = tuple((step, tuple(sorted(own.get(step, {}).items(), key=lambda kv: kv[0])))
                           for step in ("kinetic", "potential", "lagrangian", "equations", "multipliers"))
         if signature not in self._follows:
-            self._follows[signature] = _follow_through(self.derivation, own)
+            self._follows[signature] = follow_through(self.derivation, own)
         return self._follows[signature]
 
     def in_frame(self, frame: Frame) -> dict[str, dict[str, Any]]:
@@ -312,7 +307,7 @@ class GradingKey:
     def candidates(self, step: str, reference: Any, frame: Frame | None = None) -> list[tuple[str, Any, str]]:
         signature = (step, reference, frame.signature() if frame is not None else None)
         if signature not in self._candidates:
-            self._candidates[signature] = _candidates(step, reference, self.derivation, frame)
+            self._candidates[signature] = candidates(step, reference, self.derivation, frame)
         return self._candidates[signature]
 
 
@@ -575,7 +570,7 @@ class _Grader:
         reference = self.key["equations"][name]
         if same(reference):
             return _Entry(name, CORRECT)
-        if same(_flip_multipliers(reference, self.derivation)):
+        if same(flip_multipliers(reference, self.derivation)):
             if self.grading.lambda_sign == "either":
                 return _Entry(name, CORRECT, None, f"{_label(name)}correct in the opposite sign convention of λ "
                                                    "(accepted)")
@@ -642,141 +637,3 @@ def _factor(found: Relation) -> str:
     if not close(mpmath.mpf(guess.numerator) / guess.denominator, ratios[0]):
         return ""
     return f" (it is {sympy.sstr(sympy.Rational(guess.numerator, guess.denominator))} times the key's)"
-
-
-# -- the answers a mistake would give -------------------------------------------------------------------
-
-
-def _flip_multipliers(expr: Any, derivation: Derivation) -> Any:
-    return expr.xreplace({c.multiplier: -c.multiplier for c in derivation.constraints})
-
-
-def _without_velocity_squared(expr: Any, velocities: Iterable[Any], frame: Frame | None = None) -> Any:
-    r"""``expr`` less its part quadratic in the velocities: with :math:`E(s) = E(s\dot q)`,
-    :math:`E - (E(2) - 2E(1) + E(0))/2` (exact for E of degree two in :math:`\dot q`); with a ``frame``, in the
-    student's velocities (their accelerations held: :meth:`Frame.scaling`)."""
-    velocities = tuple(velocities)
-
-    def scaled(k: int) -> Any:
-        if frame is not None and frame.scalable:
-            return expr.xreplace(frame.scaling(k))
-        return expr.xreplace({v: k * v for v in velocities})
-
-    return expr - (scaled(2) - 2 * expr + scaled(0)) / 2
-
-
-def _terms(expr: Any) -> tuple[Any, ...]:
-    with contextlib.suppress(TypeError, ValueError):
-        terms = sympy.Add.make_args(sympy.expand(expr))
-        return terms if 1 < len(terms) <= MAX_TERMS else ()
-    return ()
-
-
-def _candidates(step: str, reference: Any, derivation: Derivation, frame: Frame | None = None
-                ) -> list[tuple[str, Any, str]]:
-    """(mistake, the key's answer with that mistake made, evidence) for ``step``, most specific first; a mistake
-    "" is a known difference without a name (said in the evidence only)."""
-    model = derivation.model
-    out: list[tuple[str, Any, str]] = []
-    if step == "lagrangian":
-        out.append((POTENTIAL_SIGN, model.kinetic + model.potential, "it is T + V: the potential has the wrong sign"))
-        for k in (2, sympy.Rational(1, 2)):
-            out.append((FACTOR_MISSING, k * model.kinetic - model.potential,
-                        f"the kinetic energy is {k} times the key's"))
-        for term in _terms(model.kinetic):
-            out.append((KINETIC_TERM, model.lagrangian - term, f"the kinetic term {sympy.sstr(term)} is missing"))
-    if step == "hamiltonian":
-        out.extend(hamiltonian_candidates(derivation))
-    if step == "kinetic":
-        for term in _terms(reference):
-            out.append((KINETIC_TERM, reference - term, f"the kinetic term {sympy.sstr(term)} is missing"))
-    if step not in ("kinetic", "potential", "lagrangian", "constraints", "hamiltonian"):
-        without = _without_velocity_squared(reference, model.velocities, frame)
-        if without != reference:
-            out.append((VELOCITY_SQUARED, without,
-                        "the terms quadratic in the velocities (centripetal, Coriolis) are missing"))
-    signs = POTENTIAL_SIGN if step == "potential" else SIGN
-    for term in _terms(reference):
-        out.append((signs, reference - 2 * term, f"the term {sympy.sstr(term)} has the wrong sign"))
-    return out
-
-
-# -- follow-through: what the submission's own steps give -----------------------------------------------
-
-
-def _follow_through(derivation: Derivation, own: dict[str, dict[str, Any]]) -> dict[str, dict[str, Any]]:
-    """The answers that follow from the submission's own Lagrangian and equations, step by step."""
-    model = derivation.model
-    names = [q.name for q in derivation.problem.coordinates]
-    out: dict[str, dict[str, Any]] = {}
-    kinetic = own.get("kinetic", {}).get("")
-    potential = own.get("potential", {}).get("")
-    if kinetic is not None or potential is not None:
-        out["lagrangian"] = {"": (model.kinetic if kinetic is None else kinetic)
-                             - (model.potential if potential is None else potential)}
-    lagrangian = own.get("lagrangian", {}).get("", out.get("lagrangian", {}).get(""))
-    terms: LagrangeTerms | None = None
-    if lagrangian is not None:
-        form = derivation.form
-        forces = form.generalized_forces if form is not None else tuple(0 for _ in names)
-        student = Model(model.time, model.coordinates, model.velocities, model.accelerations,
-                        sympy.Integer(0), sympy.Integer(0), lagrangian)
-        with contextlib.suppress(TypeError, ValueError, AttributeError, NotImplementedError):
-            terms = lagrange_terms(student, tuple(_constraint_terms(derivation)), tuple(forces))
-    if lagrangian is not None:
-        with contextlib.suppress(TypeError, ValueError, AttributeError, NotImplementedError, ZeroDivisionError):
-            own_h = legendre(derivation, lagrangian)
-            if own_h is not None:
-                out["hamiltonian"] = {"": own_h}
-    if terms is not None:
-        out["momenta"] = dict(zip(names, terms.momenta, strict=True))
-        out["generalized_forces"] = dict(zip(names, terms.gradients, strict=True))
-        out["equations"] = dict(zip(names, terms.equations, strict=True))
-    equations = [own.get("equations", {}).get(q, (terms.equations[i] if terms is not None else None))
-                 for i, q in enumerate(names)]
-    if "equations" in own or terms is not None:
-        solved = _solve(derivation, equations)
-        if solved is not None:
-            accelerations, multipliers = solved
-            out["accelerations"] = dict(zip(names, accelerations, strict=True))
-            constraints = [c.name for c in derivation.constraints]
-            out["multipliers"] = dict(zip(constraints, multipliers, strict=True))
-    lam = own.get("multipliers") or out.get("multipliers")
-    if lam and derivation.form is not None:
-        magnitudes = {}
-        for c in derivation.constraints:
-            scale = force_scale(derivation.form.reactions[c.name])
-            if c.name in lam and scale is not sympy.nan:
-                magnitudes[c.name] = sympy.Abs(lam[c.name]) * scale
-        out["constraint_forces"] = magnitudes
-    return out
-
-
-def _constraint_terms(derivation: Derivation) -> tuple[Any, ...]:
-    form = derivation.form
-    return form.constraints if form is not None else derivation.constraints
-
-
-def _solve(derivation: Derivation, equations: list[Any]) -> tuple[list[Any], list[Any]] | None:
-    r"""q̈ and λ from the submission's equations (linear in them) and the key's constraints, A q̈ = β."""
-    if any(e is None for e in equations):
-        return None
-    model = derivation.model
-    constraints = _constraint_terms(derivation)
-    unknowns = [*model.accelerations, *(c.multiplier for c in constraints)]
-    rows = list(equations)
-    for c in constraints:
-        rows.append(sum((a * qdd for a, qdd in zip(c.coefficients, model.accelerations, strict=True)),
-                        sympy.Integer(0)) - c.acceleration_rhs)
-    zero = {u: 0 for u in unknowns}
-    try:
-        matrix = sympy.Matrix([[sympy.diff(r, u) for u in unknowns] for r in rows])
-        if any(entry.has(*unknowns) for entry in matrix):
-            return None  # not linear in the accelerations and multipliers
-        rhs = sympy.Matrix([-r.xreplace(zero) for r in rows])
-        solution = list(solve_linear(matrix, rhs))
-    except (ValueError, ZeroDivisionError, TypeError, DerivationError):
-        return None
-    n = len(model.accelerations)
-    return solution[:n], solution[n:]
-

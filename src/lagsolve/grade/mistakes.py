@@ -1,0 +1,79 @@
+"""The named mistakes of ``lagsolve grade`` (the contract's names) and the answers a mistake would give: the key's
+answer changed in one known way (:func:`candidates`), each with a sentence of evidence."""
+
+from __future__ import annotations
+
+import contextlib
+from collections.abc import Iterable
+from typing import Any
+
+import sympy
+
+from lagsolve.grade.analysis_steps import hamiltonian_candidates
+from lagsolve.grade.frame import Frame
+from lagsolve.mechanics.derivation import Derivation
+
+#: the mistake names of the contract (those this version can find are marked in docs/grading.md)
+MISTAKES = ("sign_error", "missing_factor", "lambda_sign_convention", "missing_velocity_squared_terms",
+            "missing_moving_constraint_term", "dropped_constraint", "wrong_potential_sign", "missing_kinetic_term",
+            "wrong_dimension", "missing_abs")
+SIGN, FACTOR_MISSING, LAMBDA = "sign_error", "missing_factor", "lambda_sign_convention"
+VELOCITY_SQUARED, DROPPED = "missing_velocity_squared_terms", "dropped_constraint"
+POTENTIAL_SIGN = "wrong_potential_sign"
+KINETIC_TERM, ABS = "missing_kinetic_term", "missing_abs"
+
+#: most terms tried one at a time in a diagnosis (a larger answer gets only the whole-answer candidates)
+MAX_TERMS = 24
+
+def flip_multipliers(expr: Any, derivation: Derivation) -> Any:
+    return expr.xreplace({c.multiplier: -c.multiplier for c in derivation.constraints})
+
+
+def without_velocity_squared(expr: Any, velocities: Iterable[Any], frame: Frame | None = None) -> Any:
+    r"""``expr`` less its part quadratic in the velocities: with :math:`E(s) = E(s\dot q)`,
+    :math:`E - (E(2) - 2E(1) + E(0))/2` (exact for E of degree two in :math:`\dot q`); with a ``frame``, in the
+    student's velocities (their accelerations held: :meth:`Frame.scaling`)."""
+    velocities = tuple(velocities)
+
+    def scaled(k: int) -> Any:
+        if frame is not None and frame.scalable:
+            return expr.xreplace(frame.scaling(k))
+        return expr.xreplace({v: k * v for v in velocities})
+
+    return expr - (scaled(2) - 2 * expr + scaled(0)) / 2
+
+
+def terms(expr: Any) -> tuple[Any, ...]:
+    with contextlib.suppress(TypeError, ValueError):
+        terms = sympy.Add.make_args(sympy.expand(expr))
+        return terms if 1 < len(terms) <= MAX_TERMS else ()
+    return ()
+
+
+def candidates(step: str, reference: Any, derivation: Derivation, frame: Frame | None = None
+                ) -> list[tuple[str, Any, str]]:
+    """(mistake, the key's answer with that mistake made, evidence) for ``step``, most specific first; a mistake
+    "" is a known difference without a name (said in the evidence only)."""
+    model = derivation.model
+    out: list[tuple[str, Any, str]] = []
+    if step == "lagrangian":
+        out.append((POTENTIAL_SIGN, model.kinetic + model.potential, "it is T + V: the potential has the wrong sign"))
+        for k in (2, sympy.Rational(1, 2)):
+            out.append((FACTOR_MISSING, k * model.kinetic - model.potential,
+                        f"the kinetic energy is {k} times the key's"))
+        for term in terms(model.kinetic):
+            out.append((KINETIC_TERM, model.lagrangian - term, f"the kinetic term {sympy.sstr(term)} is missing"))
+    if step == "hamiltonian":
+        out.extend(hamiltonian_candidates(derivation))
+    if step == "kinetic":
+        for term in terms(reference):
+            out.append((KINETIC_TERM, reference - term, f"the kinetic term {sympy.sstr(term)} is missing"))
+    if step not in ("kinetic", "potential", "lagrangian", "constraints", "hamiltonian"):
+        without = without_velocity_squared(reference, model.velocities, frame)
+        if without != reference:
+            out.append((VELOCITY_SQUARED, without,
+                        "the terms quadratic in the velocities (centripetal, Coriolis) are missing"))
+    signs = POTENTIAL_SIGN if step == "potential" else SIGN
+    for term in terms(reference):
+        out.append((signs, reference - 2 * term, f"the term {sympy.sstr(term)} has the wrong sign"))
+    return out
