@@ -70,8 +70,18 @@ def constraint_terms(derivation: Derivation) -> tuple[Any, ...]:
     return form.constraints if form is not None else derivation.constraints
 
 
-def solve(derivation: Derivation, equations: list[Any]) -> tuple[list[Any], list[Any]] | None:
-    r"""q̈ and λ from the submission's equations (linear in them) and the key's constraints, A q̈ = β."""
+def still_rhs(c: Any, model: Model) -> Any:
+    r"""β of a constraint as if it did not move: :math:`-\sum_{jk} \partial a_j/\partial q_k \dot q_k \dot q_j`
+    (its offset b = ∂ψ/∂t and every explicit t-derivative dropped)."""
+    return -sum((sympy.diff(a, q) * qd_k * qd_j
+                 for a, qd_j in zip(c.coefficients, model.velocities, strict=True)
+                 for q, qd_k in zip(model.coordinates, model.velocities, strict=True)), sympy.Integer(0))
+
+
+def solve(derivation: Derivation, equations: list[Any], *, still: bool = False
+          ) -> tuple[list[Any], list[Any]] | None:
+    r"""q̈ and λ from the submission's equations (linear in them) and the key's constraints, A q̈ = β (with
+    ``still``, each constraint's β as if it did not move: :func:`still_rhs`)."""
     if any(e is None for e in equations):
         return None
     model = derivation.model
@@ -79,8 +89,9 @@ def solve(derivation: Derivation, equations: list[Any]) -> tuple[list[Any], list
     unknowns = [*model.accelerations, *(c.multiplier for c in constraints)]
     rows = list(equations)
     for c in constraints:
+        rhs = still_rhs(c, model) if still else c.acceleration_rhs
         rows.append(sum((a * qdd for a, qdd in zip(c.coefficients, model.accelerations, strict=True)),
-                        sympy.Integer(0)) - c.acceleration_rhs)
+                        sympy.Integer(0)) - rhs)
     zero = {u: 0 for u in unknowns}
     try:
         matrix = sympy.Matrix([[sympy.diff(r, u) for u in unknowns] for r in rows])

@@ -38,12 +38,14 @@ from lagsolve.grade.analysis_steps import (
     angle_coordinates,
     frequency_mistake,
     key_lists,
+    monomial,
     ratio,
     same_at_states,
     same_symbolic,
     shown_point,
     whole_turns,
 )
+from lagsolve.grade.dimensions import INHOMOGENEOUS, Dimensions
 from lagsolve.grade.evaluate import (
     DIFFERS,
     FACTOR,
@@ -64,14 +66,20 @@ from lagsolve.grade.frame import CARRIED, Frame, answers_in_frame, own_in_key
 from lagsolve.grade.key import Grading
 from lagsolve.grade.mistakes import (
     ABS,
+    DIMENSION,
     DROPPED,
     FACTOR_MISSING,
     LAMBDA,
     MISTAKES,
+    MOVING,
     POTENTIAL_SIGN,
     SIGN,
     candidates,
     flip_multipliers,
+    moving,
+    moving_answers,
+    moving_evidence,
+    still_constraint,
 )
 from lagsolve.grade.submission import LISTS, STEPS, Submission, names_for
 from lagsolve.mechanics.derivation import Derivation
@@ -231,6 +239,8 @@ class GradingKey:
         self._candidates: dict[tuple[str, Any, Any], list[tuple[str, Any, str]]] = {}
         self._angles: set[str] | None = None
         self._frames: dict[tuple, dict[str, dict[str, Any]]] = {}
+        self._moving: dict[Any, dict[str, dict[str, Any]]] = {}
+        self.dimensions = Dimensions(derivation.problem)
 
     @property
     def angles(self) -> set[str]:
@@ -296,6 +306,16 @@ class GradingKey:
         if signature not in self._follows:
             self._follows[signature] = follow_through(self.derivation, own)
         return self._follows[signature]
+
+    def moving(self, frame: Frame | None) -> dict[str, dict[str, Any]]:
+        """The answers with the moving constraints taken as still (:func:`~.mistakes.moving_answers`)."""
+        signature = frame.signature() if frame is not None else None
+        if signature not in self._moving:
+            if None not in self._moving:
+                self._moving[None] = moving_answers(self.derivation)
+            if frame is not None:
+                self._moving[signature] = answers_in_frame(self._moving[None], frame)
+        return self._moving[signature]
 
     def in_frame(self, frame: Frame) -> dict[str, dict[str, Any]]:
         """The key's answers in a submission's coordinates (made once per distinct map)."""
@@ -538,8 +558,17 @@ class _Grader:
             if released is not None:
                 return DROPPED, (f"it is the acceleration with {released} released (λ = 0), as if the motion "
                                  "were free to leave the constraint surface")
-        if found.kind == FACTOR:
-            return FACTOR_MISSING, f"off by a constant factor{_factor(found)}"
+        dimension = self.context.dimensions.differs(value, reference) if step != "hamiltonian" else ""
+        if found.kind == FACTOR and not dimension.startswith(INHOMOGENEOUS):
+            model = self.derivation.model
+            moving_symbols = {model.time, *model.coordinates, *model.velocities}
+            return FACTOR_MISSING, (f"off by a constant factor{_factor(found, value, reference, moving_symbols)}"
+                                    + (f"; {dimension}" if dimension else ""))
+        if dimension:
+            return DIMENSION, dimension
+        still = self.context.moving(self.frame).get(step, {}).get(name)
+        if still is not None and self.relation(value, still, step).kind == SAME:
+            return MOVING, moving_evidence(self.derivation)
         for mistake, candidate, detail in self.context.candidates(step, reference, self.frame):
             same = self.relation(value, candidate, step)
             if same.kind == SAME or (same.kind == OFFSET and step in SHIFTS):
@@ -594,6 +623,13 @@ class _Grader:
             factor = ratio(value, reference)
             if factor is not None and not (factor.free_symbols & variables) and factor != 0:
                 return _Entry(name, CORRECT)
+        if terms.name in {c.name for c in moving(derivation)}:
+            for form in still_constraint(terms, model.time, model):
+                factor = ratio(value, form)
+                if factor is not None and not (factor.free_symbols & variables) and factor != 0:
+                    return _Entry(name, INCORRECT, MOVING, f"{_label(name)}written as if the constraint did not move:"
+                                  f" ∂ψ/∂t = {sympy.sstr(terms.offset)} is missing (ψ = "
+                                  f"{sympy.sstr(terms.expression)} = 0)")
         if self.frame is not None and self.holds_on_surface(value):
             return _Entry(name, CORRECT, None, f"{_label(name)}holds on the key's constraint surface (in the "
                                                "submission's coordinates)")
@@ -628,10 +664,16 @@ def _label(name: str) -> str:
     return f"{name}: " if name else ""
 
 
-def _factor(found: Relation) -> str:
-    """`` (it is k times the key's)`` when the ratio is one small rational number at every state."""
+def _factor(found: Relation, value: Any = None, reference: Any = None, variables: frozenset | set = frozenset()
+            ) -> str:
+    """`` (it is k times the key's)`` when the ratio is one small rational number at every state, or a product of
+    powers of the parameters (found by cancelling ``value / reference``)."""
     ratios = [r[1][0] / r[2][0] for r in found.rows if isinstance(r[1][0], mpmath.mpf) and abs(r[2][0]) > 1e-20]
     if not ratios or not all(close(v, ratios[0]) for v in ratios):
+        factor = ratio(value, reference) if value is not None and reference is not None else None
+        if factor is not None and monomial(factor) and sympy.count_ops(factor) <= 12 \
+                and not factor.free_symbols & variables:
+            return f" (it is {sympy.sstr(factor)} times the key's)"
         return " (a factor that depends on the parameters)"
     guess = Fraction(float(ratios[0])).limit_denominator(1000)
     if not close(mpmath.mpf(guess.numerator) / guess.denominator, ratios[0]):

@@ -10,8 +10,10 @@ from typing import Any
 import sympy
 
 from lagsolve.grade.analysis_steps import hamiltonian_candidates
+from lagsolve.grade.follow import constraint_terms, solve
 from lagsolve.grade.frame import Frame
 from lagsolve.mechanics.derivation import Derivation
+from lagsolve.mechanics.equations.reactions import force_scale
 
 #: the mistake names of the contract (those this version can find are marked in docs/grading.md)
 MISTAKES = ("sign_error", "missing_factor", "lambda_sign_convention", "missing_velocity_squared_terms",
@@ -21,6 +23,7 @@ SIGN, FACTOR_MISSING, LAMBDA = "sign_error", "missing_factor", "lambda_sign_conv
 VELOCITY_SQUARED, DROPPED = "missing_velocity_squared_terms", "dropped_constraint"
 POTENTIAL_SIGN = "wrong_potential_sign"
 KINETIC_TERM, ABS = "missing_kinetic_term", "missing_abs"
+MOVING, DIMENSION = "missing_moving_constraint_term", "wrong_dimension"
 
 #: most terms tried one at a time in a diagnosis (a larger answer gets only the whole-answer candidates)
 MAX_TERMS = 24
@@ -77,3 +80,53 @@ def candidates(step: str, reference: Any, derivation: Derivation, frame: Frame |
     for term in terms(reference):
         out.append((signs, reference - 2 * term, f"the term {sympy.sstr(term)} has the wrong sign"))
     return out
+
+
+# -- a moving constraint taken as still (its ∂ψ/∂t missing) ---------------------------------------------
+
+
+def moving(derivation: Derivation) -> list[Any]:
+    """The key's constraints that move: an offset b = ∂ψ/∂t, or coefficients with an explicit t."""
+    time = derivation.model.time
+    return [c for c in constraint_terms(derivation)
+            if c.offset != 0 or any(sympy.sympify(a).has(time) for a in c.coefficients)]
+
+
+def still_constraint(c: Any, time: Any, model: Any) -> tuple[Any, ...]:
+    """ψ less its terms with t, and the velocity form a·q̇ without b: the constraint written as if it did not move
+    (the forms that are 0 are left out)."""
+    psi = sympy.Add(*(term for term in sympy.Add.make_args(sympy.expand(c.expression)) if not term.has(time)))
+    velocity = sum((a * qd for a, qd in zip(c.coefficients, model.velocities, strict=True)), sympy.Integer(0))
+    return tuple(form for form in (psi, velocity) if form != 0)
+
+
+def moving_answers(derivation: Derivation) -> dict[str, dict[str, Any]]:
+    """q̈, λ and |F| of constraint from the key's equations with every moving constraint taken as still (its
+    ∂²ψ/∂t² and ∂ȧ/∂t dropped from β); {} when no constraint moves or the solve fails."""
+    if not moving(derivation) or derivation.lagrange is None:
+        return {}
+    with contextlib.suppress(TypeError, ValueError, AttributeError, ZeroDivisionError):
+        solved = solve(derivation, list(derivation.lagrange.equations), still=True)
+        if solved is None:
+            return {}
+        names = [q.name for q in derivation.problem.coordinates]
+        accelerations, multipliers = solved
+        lam = {c.name: m for c, m in zip(constraint_terms(derivation), multipliers, strict=True)}
+        out: dict[str, dict[str, Any]] = {"accelerations": dict(zip(names, accelerations, strict=True)),
+                                          "multipliers": lam}
+        if derivation.form is not None:
+            forces = {}
+            for c in derivation.constraints:
+                scale = force_scale(derivation.form.reactions[c.name])
+                if scale is not sympy.nan:
+                    forces[c.name] = sympy.Abs(lam[c.name]) * scale
+            out["constraint_forces"] = forces
+        return out
+    return {}
+
+
+def moving_evidence(derivation: Derivation) -> str:
+    """Which constraints move, with their ∂ψ/∂t: the evidence of :data:`MOVING`."""
+    parts = [f"{c.name} (∂ψ/∂t = {sympy.sstr(c.offset)})" for c in moving(derivation)]
+    return ("it is the answer with the moving constraint taken as still: the terms from ∂ψ/∂t of "
+            + ", ".join(parts) + " are missing")
