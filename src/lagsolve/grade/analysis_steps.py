@@ -72,10 +72,16 @@ def key_lists(derivation: Derivation) -> tuple[list[dict[str, Any]], list[Any]]:
     numerically, or known only by its condition, makes the key's list unusable (empty). An equilibrium whose ω²
     are those of an earlier one (a symmetric pair, ±θ₀) adds none."""
     analysis = derivation.analysis
-    points: list[dict[str, Any]] = []
-    groups: list[list[Any]] = []
     potential = analysis.effective_potential if analysis is not None else None
     linear = analysis.linearization if analysis is not None else None
+    return lists_of(potential, linear)
+
+
+def lists_of(potential: Any, linear: Any) -> tuple[list[dict[str, Any]], list[Any]]:
+    """:func:`key_lists` from an effective potential (or None) and a linearization (or None), the key's or those
+    of a student's own Lagrangian."""
+    points: list[dict[str, Any]] = []
+    groups: list[list[Any]] = []
     if potential is not None and potential.equilibria:
         name = str(potential.coordinate)
         for eq in potential.equilibria:

@@ -4,12 +4,14 @@ momenta, ∂L/∂q and equations; their equations their q̈ and λ; their λ the
 from __future__ import annotations
 
 import contextlib
+from collections.abc import Collection
 from typing import Any
 
 import sympy
 
 from lagsolve.errors import DerivationError
 from lagsolve.grade.analysis_steps import legendre
+from lagsolve.grade.follow_analysis import own_normal_forces
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.equations.lagrange import LagrangeTerms, lagrange_terms
 from lagsolve.mechanics.equations.model import Model
@@ -17,8 +19,11 @@ from lagsolve.mechanics.equations.reactions import force_scale
 from lagsolve.mechanics.symbolic.linsolve import solve_linear
 
 
-def follow_through(derivation: Derivation, own: dict[str, dict[str, Any]]) -> dict[str, dict[str, Any]]:
-    """The answers that follow from the submission's own Lagrangian and equations, step by step."""
+def follow_through(derivation: Derivation, own: dict[str, dict[str, Any]], steps: Collection[str] = ()
+                   ) -> dict[str, dict[str, Any]]:
+    """The answers that follow from the submission's own Lagrangian and equations, step by step (the normal forces
+    from their λ only when ``steps``, the graded ones, has ``normal_force``; the analysis steps:
+    :mod:`.follow_analysis`)."""
     model = derivation.model
     names = [q.name for q in derivation.problem.coordinates]
     out: dict[str, dict[str, Any]] = {}
@@ -62,6 +67,8 @@ def follow_through(derivation: Derivation, own: dict[str, dict[str, Any]]) -> di
             if c.name in lam and scale is not sympy.nan:
                 magnitudes[c.name] = sympy.Abs(lam[c.name]) * scale
         out["constraint_forces"] = magnitudes
+        if "normal_force" in steps:
+            out["normal_force"] = own_normal_forces(derivation, lam)
     return out
 
 

@@ -62,6 +62,7 @@ from lagsolve.grade.evaluate import (
     relation,
 )
 from lagsolve.grade.follow import follow_through
+from lagsolve.grade.follow_analysis import own_analysis
 from lagsolve.grade.frame import CARRIED, Frame, answers_in_frame, own_in_key
 from lagsolve.grade.key import Grading
 from lagsolve.grade.mistakes import (
@@ -240,6 +241,7 @@ class GradingKey:
         self._angles: set[str] | None = None
         self._frames: dict[tuple, dict[str, dict[str, Any]]] = {}
         self._moving: dict[Any, dict[str, dict[str, Any]]] = {}
+        self._analyses: dict[Any, dict[str, dict[str, Any]]] = {}
         self.dimensions = Dimensions(derivation.problem)
 
     @property
@@ -304,8 +306,14 @@ class GradingKey:
         signature = tuple((step, tuple(sorted(own.get(step, {}).items(), key=lambda kv: kv[0])))
                           for step in ("kinetic", "potential", "lagrangian", "equations", "multipliers"))
         if signature not in self._follows:
-            self._follows[signature] = follow_through(self.derivation, own)
+            self._follows[signature] = follow_through(self.derivation, own, set(self.grading.weights))
         return self._follows[signature]
+
+    def own_analysis(self, lagrangian: Any) -> dict[str, dict[str, Any]]:
+        """What lagsolve's analysis gives from a student's own L (V_eff, equilibria, ω²), once per distinct L."""
+        if lagrangian not in self._analyses:
+            self._analyses[lagrangian] = own_analysis(self.derivation, lagrangian)
+        return self._analyses[lagrangian]
 
     def moving(self, frame: Frame | None) -> dict[str, dict[str, Any]]:
         """The answers with the moving constraints taken as still (:func:`~.mistakes.moving_answers`)."""
@@ -339,10 +347,27 @@ class _Grader:
         self.frame = frame = submission.frame
         if frame is None:
             self.key, self.coordinates = key.answers, key.coordinates
-            self.follows = key.follow_through(self.own)
+            self.raw_follows = key.follow_through(self.own)
+            self.follows = self.raw_follows
         else:
             self.key, self.coordinates = key.in_frame(frame), list(frame.names)
-            self.follows = answers_in_frame(key.follow_through(own_in_key(self.own, frame)), frame)
+            self.raw_follows = key.follow_through(own_in_key(self.own, frame))
+            self.follows = answers_in_frame(self.raw_follows, frame)
+        self._analysis: dict[str, dict[str, Any]] | None = None
+
+    def analysis_follows(self) -> dict[str, dict[str, Any]]:
+        """V_eff, equilibria and ω² from the student's own L (their L, else their T − V), in their coordinates."""
+        if self._analysis is None:
+            lagrangian = self.own.get("lagrangian", {}).get("", self.raw_follows.get("lagrangian", {}).get(""))
+            found = self.context.own_analysis(lagrangian) if lagrangian is not None else {}
+            self._analysis = found if self.frame is None else answers_in_frame(found, self.frame)
+        return self._analysis
+
+    def own_answer(self, step: str, name: str) -> Any:
+        """What follows from the student's own earlier steps for one entry (None when nothing does)."""
+        if step in ("effective_potential", "equilibria", "frequencies"):
+            return self.analysis_follows().get(step, {}).get(name)
+        return self.follows.get(step, {}).get(name)
 
     # -- grading
 
@@ -376,6 +401,13 @@ class _Grader:
         entries: list[_Entry] = []
         if step in LISTS:
             entries = self.listed(step, read.entries)
+            own = self.analysis_follows().get(step) if any(e.status != CORRECT for e in entries) else None
+            if own:
+                mine = self.listed(step, read.entries, list(own.values()))
+                if all(e.status == CORRECT for e in mine):
+                    entries = [_Entry(e.name, FOLLOWS, None, "") for e in mine]
+                    entries[0] = _Entry(entries[0].name, FOLLOWS, None, f"the {step} of the submission's own "
+                                        "Lagrangian (its potential and inertia), not the key's")
         else:
             for name in self.expected_entries(step) or list(read.entries):
                 if name not in read.entries:
@@ -410,14 +442,15 @@ class _Grader:
         values = self.context.values
         return same_at_states(values.values(value), values.values(reference), angle=angle)
 
-    def listed(self, step: str, entries: dict[str, Any]) -> list[_Entry]:
-        """One entry per item of the key's list (matched, or missing) and one per extra item of the student's."""
+    def listed(self, step: str, entries: dict[str, Any], reference: list[Any] | None = None) -> list[_Entry]:
+        """One entry per item of the key's list (or ``reference``, what follows from the student's own L), matched
+        or missing, and one per extra item of the student's."""
+        key = list(self.key[step].values()) if reference is None else reference
         if step == "equilibria":
-            return self.equilibria(entries)
-        return self.frequencies(entries)
+            return self.equilibria(entries, key)
+        return self.frequencies(entries, key)
 
-    def equilibria(self, entries: dict[str, Any]) -> list[_Entry]:
-        key = list(self.key["equilibria"].values())
+    def equilibria(self, entries: dict[str, Any], key: list[Any]) -> list[_Entry]:
         coordinates = {q for point in key for q in point}
         lone = next(iter(coordinates)) if len(coordinates) == 1 else None
         angles = self.context.angles
@@ -458,8 +491,7 @@ class _Grader:
                                  f" (the key's equilibria give {', '.join(sorted(coordinates))})")))
         return out
 
-    def frequencies(self, entries: dict[str, Any]) -> list[_Entry]:
-        key = list(self.key["frequencies"].values())
+    def frequencies(self, entries: dict[str, Any], key: list[Any]) -> list[_Entry]:
         either = self.grading.frequency_form == "either"
         given = list(entries.items())
 
@@ -521,11 +553,14 @@ class _Grader:
         convention = step == "multipliers" and found.kind == OPPOSITE
         if convention and self.grading.lambda_sign == "either":
             return _Entry(name, CORRECT, None, f"{_label(name)}correct in the opposite sign convention of λ (accepted)")
-        own = self.follows.get(step, {}).get(name)
+        own = self.own_answer(step, name)
         if own is not None:
             followed = self.relation(value, own, step)
             if followed.kind == SAME or (followed.kind == OFFSET and step in SHIFTS):
                 return _Entry(name, FOLLOWS, None, f"{_label(name)}follows from the submission's own earlier steps")
+        if step == "conserved" and self.conserved_along_own(value):
+            return _Entry(name, FOLLOWS, None, f"{_label(name)}conserved along the submission's own equations of "
+                                               "motion")
         mistake, detail = self.diagnose(step, name, found, value, reference)
         return _Entry(name, INCORRECT, mistake, f"{_label(name)}{detail}")
 
@@ -537,7 +572,32 @@ class _Grader:
             real = [v for v in rate or () if isinstance(v, mpmath.mpf)]
             if len(real) >= MINIMUM_STATES and all(close(v, 0) for v in real):
                 return _Entry(name, CORRECT, None, f"{_label(name)}conserved along the key's equations of motion")
+        if self.conserved_along_own(value):
+            return _Entry(name, FOLLOWS, None, f"{_label(name)}conserved along the submission's own equations of "
+                                               "motion")
         return _Entry(name, INCORRECT, None, f"{_label(name)}not conserved along the key's equations of motion")
+
+    def conserved_along_own(self, value: Any) -> bool:
+        """``value`` is not constant at the shared states but its rate along the student's own q̈ (from their
+        equations, or their L's, with the key's constraints) is zero there."""
+        own = self.raw_follows.get("accelerations")
+        model = self.derivation.model
+        if not own or any(q not in own for q in self.context.coordinates):
+            return False
+        values = self.context.values
+        with contextlib.suppress(TypeError, ValueError, AttributeError):
+            at = values.values(value) or ()
+            groups: dict[int, list[Any]] = {}
+            for state, v in zip(values.states, at, strict=True):
+                if isinstance(v, mpmath.mpf):
+                    groups.setdefault(state.group, []).append(v)
+            if all(all(close(v, vs[0]) for v in vs) for vs in groups.values()):
+                return False  # constant at each value of the parameters: conserved by any equations
+            qdd = {a: own[q] for a, q in zip(model.accelerations, self.context.coordinates, strict=True)}
+            rate = model.time_derivative(value, second_order=True).xreplace(qdd)
+            found = [v for v in values.values(rate) or () if isinstance(v, mpmath.mpf)]
+            return len(found) >= MINIMUM_STATES and all(close(v, 0) for v in found)
+        return False
 
     def diagnose(self, step: str, name: str, found: Relation, value: Any, reference: Any) -> tuple[str | None, str]:
         """The mistake and a sentence of evidence: how the values relate first, then the candidates."""
