@@ -33,17 +33,11 @@ import sympy
 
 from lagsolve.check.compare import STATES, Comparer
 from lagsolve.check.diagnose import ReleasedConstraints, close
-from lagsolve.enums import TextEnum
 from lagsolve.grade.analysis_steps import (
     angle_coordinates,
-    frequency_mistake,
     key_lists,
     monomial,
     ratio,
-    same_at_states,
-    same_symbolic,
-    shown_point,
-    whole_turns,
 )
 from lagsolve.grade.dimensions import INHOMOGENEOUS, Dimensions
 from lagsolve.grade.evaluate import (
@@ -65,6 +59,7 @@ from lagsolve.grade.follow import follow_through
 from lagsolve.grade.follow_analysis import own_analysis
 from lagsolve.grade.frame import CARRIED, Frame, answers_in_frame, own_in_key
 from lagsolve.grade.key import Grading
+from lagsolve.grade.lists import ListSteps
 from lagsolve.grade.mistakes import (
     ABS,
     DIMENSION,
@@ -82,25 +77,25 @@ from lagsolve.grade.mistakes import (
     moving_evidence,
     still_constraint,
 )
+from lagsolve.grade.numeric_lists import simulation_values
+from lagsolve.grade.status import (
+    CORRECT,
+    FOLLOWS,
+    INCORRECT,
+    MISSING,
+    UNREADABLE,
+    GradeStatus,
+)
+from lagsolve.grade.status import Entry as _Entry
+from lagsolve.grade.status import (
+    label as _label,
+)
 from lagsolve.grade.submission import LISTS, STEPS, Submission, names_for
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.equations.constraints import velocity_form
 from lagsolve.mechanics.symbolic.simplify import reproducible
 from lagsolve.problem.names import momentum_name
 
-
-class GradeStatus(TextEnum):
-    """A step's status (the contract's five)."""
-
-    CORRECT = "correct"
-    INCORRECT = "incorrect"
-    FOLLOWS = "follows"
-    MISSING = "missing"
-    UNREADABLE = "unreadable"
-
-
-CORRECT, INCORRECT, FOLLOWS = GradeStatus.CORRECT, GradeStatus.INCORRECT, GradeStatus.FOLLOWS
-MISSING, UNREADABLE = GradeStatus.MISSING, GradeStatus.UNREADABLE
 __all__ = ["MISTAKES", "ClassGrades", "GradeStatus", "GradingKey", "StepGrade", "SubmissionGrade", "grade",
            "key_answers", "unreadable_grade"]
 
@@ -108,7 +103,7 @@ __all__ = ["MISTAKES", "ClassGrades", "GradeStatus", "GradingKey", "StepGrade", 
 SHIFTS = ("potential", "lagrangian", "conserved", "effective_potential", "hamiltonian")
 #: steps graded only when the key's derivation has the result, and what it is called
 NO_KEY = {"effective_potential": "effective potential", "hamiltonian": "Hamiltonian",
-          "equilibria": "equilibria in closed form", "frequencies": "frequencies of small oscillations"}
+          "equilibria": "equilibria", "frequencies": "frequencies of small oscillations"}
 
 
 @dataclass(frozen=True)
@@ -156,16 +151,6 @@ class ClassGrades:
     def unreadable(self) -> int:
         """How many submission files could not be read at all."""
         return sum(1 for g in self.grades if g.error)
-
-
-@dataclass(frozen=True)
-class _Entry:
-    """The verdict on one entry of a step."""
-
-    name: str
-    status: GradeStatus
-    mistake: str | None = None
-    message: str = ""
 
 
 def unreadable_grade(student: str, source: str, message: str, grading: Grading) -> SubmissionGrade:
@@ -243,6 +228,7 @@ class GradingKey:
         self._moving: dict[Any, dict[str, dict[str, Any]]] = {}
         self._analyses: dict[Any, dict[str, dict[str, Any]]] = {}
         self.dimensions = Dimensions(derivation.problem)
+        self.simulation = simulation_values(derivation.problem)
 
     @property
     def angles(self) -> set[str]:
@@ -339,7 +325,7 @@ class GradingKey:
         return self._candidates[signature]
 
 
-class _Grader:
+class _Grader(ListSteps):
     def __init__(self, key: GradingKey, submission: Submission) -> None:
         self.context, self.submission = key, submission
         self.derivation, self.grading = key.derivation, key.grading
@@ -430,113 +416,6 @@ class _Grader:
     def relation(self, value: Any, reference: Any, step: str = "") -> Relation:
         values = self.context.canonical if step == "hamiltonian" else self.context.values
         return relation(values.values(value), values.values(reference), values.states)
-
-    # -- equilibria and frequencies: lists compared as a set, a multiset
-
-    def same_value(self, value: Any, reference: Any, *, angle: bool = False) -> bool:
-        """A value of the parameters (and conserved momenta) equal to the key's: symbolically (an angle up to
-        whole turns), else at every shared state where the key's value is a number (complex ones too: an
-        equilibrium that exists only for some parameters), at least :data:`LIST_STATES` of them."""
-        if same_symbolic(value, reference) or (angle and whole_turns(value - reference)):
-            return True
-        values = self.context.values
-        return same_at_states(values.values(value), values.values(reference), angle=angle)
-
-    def listed(self, step: str, entries: dict[str, Any], reference: list[Any] | None = None) -> list[_Entry]:
-        """One entry per item of the key's list (or ``reference``, what follows from the student's own L), matched
-        or missing, and one per extra item of the student's."""
-        key = list(self.key[step].values()) if reference is None else reference
-        if step == "equilibria":
-            return self.equilibria(entries, key)
-        return self.frequencies(entries, key)
-
-    def equilibria(self, entries: dict[str, Any], key: list[Any]) -> list[_Entry]:
-        coordinates = {q for point in key for q in point}
-        lone = next(iter(coordinates)) if len(coordinates) == 1 else None
-        angles = self.context.angles
-        if self.frame is not None:  # a coordinate of the student's that is a function of the key's angles only
-            angles = {name for name, f in self.frame.signature()
-                      if {str(q) for q in f.free_symbols & set(self.frame.q)} <= angles}
-        given: list[dict[str, Any] | None] = []
-        out: list[_Entry] = []
-        for name, pairs in entries.items():
-            point = {(lone or "") if q == "" else q: v for q, v in pairs}
-            if "" in point:
-                out.append(_Entry(name, INCORRECT, None, f"equilibrium {name}: a bare value, but the key's "
-                                  "equilibria have several coordinates: write each as a mapping coordinate: value"))
-                given.append(None)
-                continue
-            given.append(point)
-
-        def same(point: dict[str, Any] | None, reference: dict[str, Any]) -> bool:
-            return point is not None and set(point) == set(reference) and all(
-                self.same_value(point[q], reference[q], angle=q in angles) for q in reference)
-
-        used: set[int] = set()
-        for reference in key:
-            found = next((i for i, p in enumerate(given) if i not in used and same(p, reference)), None)
-            if found is None:
-                shown = shown_point(reference)
-                out.append(_Entry(shown, INCORRECT, None, f"the equilibrium {shown} is missing"))
-            else:
-                used.add(found)
-                out.append(_Entry(shown_point(reference), CORRECT))
-        for i, extra in enumerate(given):
-            if i in used or extra is None:
-                continue
-            if any(same(extra, reference) for reference in key):
-                continue  # the same point again (an angle written another way): no more, no less credit
-            out.append(_Entry(str(i + 1), INCORRECT, None, f"{shown_point(extra)} is not an equilibrium of the key's"
-                              + ("" if set(extra) == coordinates else
-                                 f" (the key's equilibria give {', '.join(sorted(coordinates))})")))
-        return out
-
-    def frequencies(self, entries: dict[str, Any], key: list[Any]) -> list[_Entry]:
-        either = self.grading.frequency_form == "either"
-        given = list(entries.items())
-
-        def how(value: Any, reference: Any) -> str:
-            if self.same_value(value, reference):
-                return "squared"
-            if self.same_value(value**2, reference):
-                return "omega"
-            return ""
-
-        out: list[_Entry] = []
-        used: set[int] = set()
-        unmatched: list[Any] = []
-        for reference in key:
-            found = None
-            for i, (_, value) in enumerate(given):
-                if i in used:
-                    continue
-                kind = how(value, reference)
-                if kind:
-                    found = (i, kind)
-                    break
-            label = f"ω² = {sympy.sstr(reference)}"
-            if found is None:
-                if reference == 0:
-                    continue  # the zero ω² of a free motion (a continuum of equilibria) may be left out
-                unmatched.append(reference)
-                out.append(_Entry(label, INCORRECT, None, f"the squared frequency {sympy.sstr(reference)} is missing"))
-                continue
-            used.add(found[0])
-            if found[1] == "omega" and not either:
-                out.append(_Entry(label, INCORRECT, None, f"{given[found[0]][0]}: this is ω; the key asks for ω² "
-                                  f"({sympy.sstr(reference)})"))
-            else:
-                out.append(_Entry(label, CORRECT))
-        extras = [(i, value) for i, (_, value) in enumerate(given) if i not in used]
-        for i, value in extras:
-            if any(how(value, reference) for reference in key):
-                continue  # the same frequency again (about a symmetric equilibrium)
-            mistake, detail = None, "is not a squared frequency (nor a frequency) of the key's"
-            if len(unmatched) == 1 and len(extras) == 1:
-                mistake, detail = frequency_mistake(value, unmatched[0], detail)
-            out.append(_Entry(given[i][0], INCORRECT, mistake, f"{given[i][0]}: {sympy.sstr(value)} {detail}"))
-        return out
-
 
     def entry(self, step: str, name: str, value: Any) -> _Entry:
         if step in ("equations", "constraints"):
@@ -718,10 +597,6 @@ def _opposite_up_to_constant(found: Relation) -> bool:
     """E + D is constant at the states of each group (and E is not D up to a constant)."""
     rows = [(state, [-e], d) for state, (e,), d in found.rows if isinstance(e, mpmath.mpf)]
     return len(rows) == len(found.rows) and constant_in_groups(rows, additive=True)
-
-
-def _label(name: str) -> str:
-    return f"{name}: " if name else ""
 
 
 def _factor(found: Relation, value: Any = None, reference: Any = None, variables: frozenset | set = frozenset()
