@@ -190,3 +190,21 @@ def legendre(derivation: Derivation, lagrangian: Any) -> Any:
     b = sympy.Matrix([sympy.diff(L, v).xreplace(zero) for v in qd])
     w = sympy.Matrix(h.momentum_symbols) - b
     return (w.T * A.LUsolve(w))[0, 0] / 2 - L.xreplace(zero)
+
+
+def reduction_constants(derivation: Derivation) -> dict[Any, Any]:
+    """Each integration constant of the key's minimal coordinates (θ0 of θ = θ0, φ0 of φ = Ωt + φ0) as its
+    coordinate gives it at a state (θ0 = θ, φ0 = φ − Ωt): the key's H is written with them, a state has the
+    coordinates."""
+    analysis = derivation.analysis
+    if analysis is None or analysis.reduced is None:
+        return {}
+    reduced = analysis.reduced
+    out: dict[Any, Any] = {}
+    for q, position in reduced.substitution.positions.items():
+        for constant in set(reduced.constants) & position.free_symbols:
+            with contextlib.suppress(TypeError, ValueError, NotImplementedError):
+                solved = sympy.solve(sympy.Eq(position, q), constant)
+                if len(solved) == 1:
+                    out[constant] = solved[0]
+    return out

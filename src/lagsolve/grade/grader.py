@@ -35,6 +35,7 @@ from lagsolve.check.compare import STATES, Comparer
 from lagsolve.check.diagnose import ReleasedConstraints, close
 from lagsolve.grade.analysis_steps import (
     angle_coordinates,
+    reduction_constants,
     key_lists,
     monomial,
     ratio,
@@ -260,7 +261,12 @@ class GradingKey:
             derivation = self.derivation
             names = names_for(derivation.problem)
             momenta = [names.symbols[momentum_name(q.name)] for q in derivation.problem.coordinates]
-            self._canonical = Evaluator(derivation, momenta, self.seed, self.comparer.prepare, varying=True)
+            constants = reduction_constants(derivation)
+
+            def prepare(expr: Any) -> Any:
+                return self.comparer.prepare(expr.xreplace(constants))
+
+            self._canonical = Evaluator(derivation, momenta, self.seed, prepare, varying=True)
         return self._canonical
 
     @property
@@ -458,12 +464,15 @@ class _Grader(ListSteps):
 
     def conserved_along_own(self, value: Any) -> bool:
         """``value`` is not constant at the shared states but its rate along the student's own q̈ (from their
-        equations, or their L's, with the key's constraints) is zero there."""
+        equations, or their L's, with the key's constraints), which are not the key's, is zero there."""
         own = self.raw_follows.get("accelerations")
         model = self.derivation.model
         if not own or any(q not in own for q in self.context.coordinates):
             return False
         values = self.context.values
+        key = self.context.answers.get("accelerations", {})
+        if all(q in key and self.relation(own[q], key[q]).kind == SAME for q in self.context.coordinates):
+            return False  # no earlier mistake: what the key's motion conserves is graded against the key
         with contextlib.suppress(TypeError, ValueError, AttributeError):
             at = values.values(value) or ()
             groups: dict[int, list[Any]] = {}
