@@ -35,10 +35,10 @@ from lagsolve.check.compare import STATES, Comparer
 from lagsolve.check.diagnose import ReleasedConstraints, close
 from lagsolve.grade.analysis_steps import (
     angle_coordinates,
-    reduction_constants,
     key_lists,
     monomial,
     ratio,
+    reduction_constants,
 )
 from lagsolve.grade.dimensions import INHOMOGENEOUS, Dimensions
 from lagsolve.grade.evaluate import (
