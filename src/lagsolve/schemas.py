@@ -21,7 +21,7 @@ KINDS = ("input", "output", "grades")
 GRADE_STEPS = ("kinetic", "potential", "lagrangian", "constraints", "momenta", "generalized_forces", "equations",
                "accelerations", "multipliers", "constraint_forces", "normal_force", "conserved", "effective_potential",
                "equilibria", "frequencies", "hamiltonian")
-GRADE_STATUSES = ("correct", "incorrect", "follows", "missing", "unreadable")
+GRADE_STATUSES = ("correct", "incorrect", "follows", "missing", "unreadable", "ungraded")
 GRADE_MISTAKES = ("sign_error", "missing_factor", "lambda_sign_convention", "missing_velocity_squared_terms",
                   "missing_moving_constraint_term", "dropped_constraint", "wrong_potential_sign",
                   "missing_kinetic_term", "wrong_dimension", "missing_abs")

@@ -84,6 +84,7 @@ from lagsolve.grade.status import (
     FOLLOWS,
     INCORRECT,
     MISSING,
+    UNGRADED,
     UNREADABLE,
     GradeStatus,
 )
@@ -94,6 +95,7 @@ from lagsolve.grade.status import (
 from lagsolve.grade.submission import LISTS, STEPS, Submission, names_for
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.equations.constraints import velocity_form
+from lagsolve.mechanics.stages import StageTimeout, cpu_limit
 from lagsolve.mechanics.symbolic.simplify import reproducible
 from lagsolve.problem.names import momentum_name
 
@@ -336,20 +338,49 @@ class _Grader(ListSteps):
         self.context, self.submission = key, submission
         self.derivation, self.grading = key.derivation, key.grading
         self.own = {name: step.entries for name, step in submission.steps.items() if step.issue is None}
-        self.frame = frame = submission.frame
-        if frame is None:
-            self.key, self.coordinates = key.answers, key.coordinates
-            self.raw_follows = key.follow_through(self.own)
-            self.follows = self.raw_follows
-        else:
-            self.key, self.coordinates = key.in_frame(frame), list(frame.names)
-            self.raw_follows = key.follow_through(own_in_key(self.own, frame))
-            self.follows = answers_in_frame(self.raw_follows, frame)
+        self.frame = submission.frame
+        self.coordinates = key.coordinates if self.frame is None else list(self.frame.names)
+        self._key: dict[str, dict[str, Any]] | None = None
+        self._follows: tuple[dict[str, dict[str, Any]], dict[str, dict[str, Any]]] | None = None
         self._analysis: dict[str, dict[str, Any]] | None = None
+        self.lost: list[str] = []  # what used up its budget and is left out (follow-through)
+
+    @property
+    def key(self) -> dict[str, dict[str, Any]]:
+        """The key's answers, in the submission's coordinates."""
+        if self._key is None:
+            self._key = self.context.answers if self.frame is None else self.context.in_frame(self.frame)
+        return self._key
+
+    @property
+    def raw_follows(self) -> dict[str, dict[str, Any]]:
+        """What follows from the submission's own steps, in the key's coordinates (made on first use, under the
+        step's budget: when that runs out here, nothing follows and the later steps are graded without it)."""
+        return self._own()[0]
+
+    @property
+    def follows(self) -> dict[str, dict[str, Any]]:
+        """:attr:`raw_follows` in the submission's coordinates."""
+        return self._own()[1]
+
+    def _own(self) -> tuple[dict[str, dict[str, Any]], dict[str, dict[str, Any]]]:
+        if self._follows is None:
+            self._follows = ({}, {})  # if the budget runs out inside, follow-through is given up
+            self.lost.append("follow-through")
+            context, frame = self.context, self.frame
+            if frame is None:
+                raw = context.follow_through(self.own)
+                self._follows = (raw, raw)
+            else:
+                raw = context.follow_through(own_in_key(self.own, frame))
+                self._follows = (raw, answers_in_frame(raw, frame))
+            self.lost.remove("follow-through")
+        return self._follows
 
     def analysis_follows(self) -> dict[str, dict[str, Any]]:
         """V_eff, equilibria and ω² from the student's own L (their L, else their T − V), in their coordinates."""
         if self._analysis is None:
+            self._analysis = {}  # given up if the budget runs out inside
             lagrangian = self.own.get("lagrangian", {}).get("", self.raw_follows.get("lagrangian", {}).get(""))
             found = self.context.own_analysis(lagrangian) if lagrangian is not None else {}
             self._analysis = found if self.frame is None else answers_in_frame(found, self.frame)
@@ -365,8 +396,15 @@ class _Grader(ListSteps):
 
     def run(self) -> SubmissionGrade:
         grades = []
+        budget = self.grading.step_budget
         for step, weight in _weighted(self.grading):
-            grades.append(self.step(step, weight))
+            try:
+                with cpu_limit(budget):
+                    grades.append(self.step(step, weight))
+            except StageTimeout:
+                grades.append(StepGrade(step, UNGRADED, None, 0.0, weight, f"not graded: comparing this step used up "
+                                        f"its {budget:g} s CPU budget (an answer too large to compare); grade it by "
+                                        "hand"))
         return SubmissionGrade(self.submission.student, self.submission.source, tuple(grades))
 
     def expected_entries(self, step: str) -> list[str]:

@@ -24,7 +24,11 @@ class ListSteps:
     context: Any
     grading: Any
     frame: Any
-    key: dict[str, dict[str, Any]]
+
+    @property
+    def key(self) -> dict[str, dict[str, Any]]:
+        """The key's answers (the grader's)."""
+        raise NotImplementedError
 
     # -- equilibria and frequencies: lists compared as a set, a multiset
 

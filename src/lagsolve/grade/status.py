@@ -1,4 +1,4 @@
-"""The statuses of a graded step (the contract's five) and the verdict on one entry of a step."""
+"""The statuses of a graded step (the contract's five, and ``ungraded``) and the verdict on one entry of a step."""
 
 from __future__ import annotations
 
@@ -8,17 +8,19 @@ from lagsolve.enums import TextEnum
 
 
 class GradeStatus(TextEnum):
-    """A step's status (the contract's five)."""
+    """A step's status: the contract's five, and ``ungraded`` (the comparison used up its CPU budget: 0 points
+    until an instructor grades the step by hand)."""
 
     CORRECT = "correct"
     INCORRECT = "incorrect"
     FOLLOWS = "follows"
     MISSING = "missing"
     UNREADABLE = "unreadable"
+    UNGRADED = "ungraded"
 
 
 CORRECT, INCORRECT, FOLLOWS = GradeStatus.CORRECT, GradeStatus.INCORRECT, GradeStatus.FOLLOWS
-MISSING, UNREADABLE = GradeStatus.MISSING, GradeStatus.UNREADABLE
+MISSING, UNREADABLE, UNGRADED = GradeStatus.MISSING, GradeStatus.UNREADABLE, GradeStatus.UNGRADED
 
 
 @dataclass(frozen=True)

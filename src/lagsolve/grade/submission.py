@@ -19,6 +19,7 @@ import sympy
 
 from lagsolve.errors import ExpressionError, Issue, SpecError
 from lagsolve.grade.frame import Frame, MapError, build_frame
+from lagsolve.mechanics.stages import StageTimeout, cpu_limit
 from lagsolve.problem import expr as gateway
 from lagsolve.problem.names import momentum_name, momentum_symbol
 from lagsolve.problem.readers.base import line_of
@@ -42,6 +43,8 @@ LISTS = ("equilibria", "frequencies")
 #: most items in a list step
 MAX_ITEMS = 32
 MAX_NAME = 200
+#: CPU seconds to make a coordinates_map's chain rule (its Jacobian and inverse)
+MAP_BUDGET = 10.0
 
 
 @dataclass(frozen=True)
@@ -188,9 +191,13 @@ class _Reader:
                 raise SpecError([self.issue(where, error.message, error.hint)]) from None
         qs = tuple(q.symbol for q in problem.coordinates)
         try:
-            self.frame = build_frame(parsed, dict(problem.symbols), problem.time, qs,
-                                     tuple(q.velocity for q in problem.coordinates),
-                                     tuple(q.acceleration for q in problem.coordinates))
+            with cpu_limit(MAP_BUDGET):
+                self.frame = build_frame(parsed, dict(problem.symbols), problem.time, qs,
+                                         tuple(q.velocity for q in problem.coordinates),
+                                         tuple(q.acceleration for q in problem.coordinates))
+        except StageTimeout:
+            raise SpecError([self.issue(path, f"the map is too large to use (its Jacobian was not inverted within "
+                                              f"{MAP_BUDGET:g} s of CPU)", example)]) from None
         except MapError as error:
             raise SpecError([self.issue(path, str(error), example)]) from None
         except (TypeError, ValueError, ZeroDivisionError, NotImplementedError):
