@@ -544,14 +544,12 @@ class _Grader(ListSteps):
             if released is not None:
                 return DROPPED, (f"it is the acceleration with {released} released (λ = 0), as if the motion "
                                  "were free to leave the constraint surface")
-        dimension = self.context.dimensions.differs(value, reference) if step != "hamiltonian" else ""
+        dimension = self.dimension(step, value, reference)
         if found.kind == FACTOR and not dimension.startswith(INHOMOGENEOUS):
             model = self.derivation.model
             moving_symbols = {model.time, *model.coordinates, *model.velocities}
             return FACTOR_MISSING, (f"off by a constant factor{_factor(found, value, reference, moving_symbols)}"
                                     + (f"; {dimension}" if dimension else ""))
-        if dimension:
-            return DIMENSION, dimension
         still = self.context.moving(self.frame).get(step, {}).get(name)
         if still is not None and self.relation(value, still, step).kind == SAME:
             return MOVING, moving_evidence(self.derivation)
@@ -559,9 +557,20 @@ class _Grader(ListSteps):
             same = self.relation(value, candidate, step)
             if same.kind == SAME or (same.kind == OFFSET and step in SHIFTS):
                 return mistake or None, detail
+        if dimension:
+            return DIMENSION, dimension
         if step == "hamiltonian" and value.has(*self.derivation.model.velocities):
             return None, "written with velocities: H is a function of the coordinates and the momenta p_q"
         return None, self.differs(found)
+
+    def dimension(self, step: str, value: Any, reference: Any) -> str:
+        """The evidence of a wrong dimension ("" when none is found): not for H (its momenta have no units here);
+        in a step known up to a constant, a bare number added is that constant, not a term of another dimension."""
+        if step == "hamiltonian":
+            return ""
+        if step in SHIFTS and value.is_Add:
+            value = sympy.Add(*(t for t in value.args if not t.is_number))
+        return self.context.dimensions.differs(value, reference)
 
     def differs(self, found: Relation) -> str:
         if found.kind == UNDECIDED:
