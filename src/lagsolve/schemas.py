@@ -172,6 +172,8 @@ def _running() -> dict[str, Any]:
         "lambda_sign": {"enum": ["strict", "either"]},
         "frequency_form": {"enum": ["either", "squared"],
                            "description": "the frequencies step: ω or ω² (either) or ω² only (squared)"},
+        "step_budget": {"type": "number", "minimum": 0.1, "maximum": 3600,
+                        "description": "CPU seconds to grade one step of one submission (then it is ungraded)"},
     }),
     }
 

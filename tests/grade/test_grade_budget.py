@@ -19,7 +19,7 @@ from lagsolve.grade.submission import read_text
 from lagsolve.mechanics.derivation import derive
 from lagsolve.problem.load import load_problem
 from lagsolve.render.grades import RENDER, summary_markdown
-from lagsolve.schemas import grades_schema
+from lagsolve.schemas import grades_schema, input_schema
 
 ROOT = Path(__file__).resolve().parents[2]
 KEY = ROOT / "problems" / "hole_table.yaml"
@@ -67,6 +67,16 @@ def test_the_summary_has_no_ungraded_column_when_nothing_is(tmp_path: Path) -> N
     fine = tmp_path / "fine.yaml"
     fine.write_text(json.dumps({"student": "fine", "steps": {"potential": "m2*g*z"}}))
     assert "ungraded" not in summary_markdown(grade_files(KEY, [fine]))
+
+
+def test_step_budget_is_in_the_input_schema() -> None:
+    jsonschema = pytest.importorskip("jsonschema")
+    from ruamel.yaml import YAML
+
+    data = YAML(typ="safe", pure=True).load(KEY.read_text() + "\ngrading: {step_budget: 2.5, frequency_form: squared}\n")
+    jsonschema.Draft202012Validator(input_schema()).validate(data)
+    data["grading"]["step_budget"] = 0
+    assert list(jsonschema.Draft202012Validator(input_schema()).iter_errors(data))
 
 
 @pytest.mark.parametrize("value", ["0", "-1", "true", "'fast'", "1e9"])
