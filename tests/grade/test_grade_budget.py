@@ -73,7 +73,8 @@ def test_step_budget_is_in_the_input_schema() -> None:
     jsonschema = pytest.importorskip("jsonschema")
     from ruamel.yaml import YAML
 
-    data = YAML(typ="safe", pure=True).load(KEY.read_text() + "\ngrading: {step_budget: 2.5, frequency_form: squared}\n")
+    text = KEY.read_text() + "\ngrading: {step_budget: 2.5, frequency_form: squared}\n"
+    data = YAML(typ="safe", pure=True).load(text)
     jsonschema.Draft202012Validator(input_schema()).validate(data)
     data["grading"]["step_budget"] = 0
     assert list(jsonschema.Draft202012Validator(input_schema()).iter_errors(data))
