@@ -74,6 +74,19 @@ DRIVEN = {
     "multipliers": {"drive": "-A*w**2*cos(w*t)*(M + m*sin(theta)**2) - m*g*sin(theta)*cos(theta) - m*l*theta_dot**2*sin(theta)"},
 }
 
+#: the Kepler problem seen from axes turning at the rate k (a parameter of the key, used as a rate): β = θ − k t;
+#: K = H − k p_β, the generating function's rate (by hand: L' = m(ṙ² + r²(β̇ + k)²)/2 + k/r)
+ROTATING_MAP = {"beta": "theta - k*t"}
+ROTATING = {
+    "kinetic": "m*(r_dot**2 + r**2*(beta_dot + k)**2)/2",
+    "momenta": {"r": "m*r_dot", "beta": "m*r**2*(beta_dot + k)"},
+    "generalized_forces": {"r": "m*r*(beta_dot + k)**2 - k/r**2", "beta": "0"},
+    "equations": {"r": "m*r_ddot - m*r*(beta_dot + k)**2 + k/r**2", "beta": "m*r**2*beta_ddot + 2*m*r*r_dot*(beta_dot + k)"},
+    "accelerations": {"r": "r*(beta_dot + k)**2 - k/(m*r**2)", "beta": "-2*r_dot*(beta_dot + k)/r"},
+    "hamiltonian": "p_r**2/(2*m) + p_beta**2/(2*m*r**2) - k*p_beta - k/r",
+    "conserved": {"p_theta": "m*r**2*(beta_dot + k)"},
+}
+
 
 @cache
 def key(name: str) -> tuple:
@@ -90,8 +103,9 @@ def graded(name: str, mapping: dict[str, str], steps: dict[str, Any]) -> dict[st
 
 @pytest.mark.parametrize(("name", "mapping", "steps"), [("bead_on_rotating_hoop", HOOP_MAP, HOOP),
                                                         ("pendulum_cartesian", POLAR_MAP, POLAR),
-                                                        ("moving_support", DRIVEN_MAP, DRIVEN)],
-                         ids=["shifted-angle", "polar", "with-time"])
+                                                        ("moving_support", DRIVEN_MAP, DRIVEN),
+                                                        ("central_force", ROTATING_MAP, ROTATING)],
+                         ids=["shifted-angle", "polar", "with-time", "rotating-axes"])
 def test_correct_answers_in_other_coordinates_earn_every_point(name: str, mapping: dict, steps: dict) -> None:
     result = graded(name, mapping, steps)
     assert set(result) == set(steps)
@@ -109,6 +123,9 @@ def test_correct_answers_in_other_coordinates_earn_every_point(name: str, mappin
      {"r": "m*r_ddot - m*g*cos(phi) = lambda_rod*r", "phi": "m*r**2*phi_ddot + m*g*r*sin(phi)"},
      "missing_velocity_squared_terms"),
     ("bead_on_rotating_hoop", HOOP_MAP, HOOP, "equilibria", ["0", "pi", "acos(g/(R*Omega**2))"], None),
+    ("central_force", ROTATING_MAP, ROTATING, "hamiltonian", "p_r**2/(2*m) + p_beta**2/(2*m*r**2) - k/r", None),
+    ("central_force", ROTATING_MAP, ROTATING, "accelerations",
+     {"r": "r*beta_dot**2 - k/(m*r**2)", "beta": "-2*r_dot*beta_dot/r"}, None),
 ])
 def test_a_wrong_step_in_other_coordinates_is_found(name: str, mapping: dict, steps: dict, step: str, change: Any,
                                                     mistake: str | None) -> None:
@@ -183,3 +200,33 @@ def test_a_bad_map_leaves_the_class_graded(tmp_path: Path) -> None:
     assert grades.grades[0].error and "coordinates_map" in grades.grades[0].error
     [potential] = [s for s in grades.grades[1].steps if s.step == "potential"]
     assert potential.status == "correct"
+
+
+def test_a_map_with_time_against_the_lagrangian_written_in_it() -> None:
+    """u = X − A cos(wt): L' = L(X = u + A cos wt, Ẋ = u̇ − A w sin wt) differentiated here with SymPy; its ∂L'/∂q',
+    Lagrange's equations (the drive u = 0 with the key's ψ = u: E_u = λ) and H in the minimal coordinate θ are
+    the key's after the change of coordinates, a map with t included."""
+    t, m, M, l, g, A, w = sympy.symbols("t m M l g A w")
+    u, th, ud, thd, udd, thdd, lam = sympy.symbols("u theta u_dot theta_dot u_ddot theta_ddot lambda_drive")
+    Xd = ud - A * w * sympy.sin(w * t)
+    T = M * Xd**2 / 2 + m * ((Xd + l * sympy.cos(th) * thd) ** 2 + (l * sympy.sin(th) * thd) ** 2) / 2
+    L = T + m * g * l * sympy.cos(th)
+    coordinates = ((u, ud, udd), (th, thd, thdd))
+
+    def rate(e: sympy.Expr) -> sympy.Expr:
+        return sympy.diff(e, t) + sum(sympy.diff(e, q) * qd + sympy.diff(e, qd) * qdd for q, qd, qdd in coordinates)
+
+    forces = {str(q): sympy.diff(L, q) for q, _, _ in coordinates}
+    equations = {str(q): rate(sympy.diff(L, qd)) - sympy.diff(L, q) for q, qd, _ in coordinates}
+    equations["u"] -= lam
+    # H in the minimal coordinate θ (the drive fixes u = 0): H = p_θ θ̇ − L(u = 0, u̇ = 0), θ̇ from p_θ
+    pth = sympy.Symbol("p_theta")
+    reduced = L.subs({u: 0, ud: 0})
+    [velocity] = sympy.solve(sympy.diff(reduced, thd) - pth, thd)
+    H = sympy.simplify((pth * thd - reduced).subs(thd, velocity))
+    steps = {"generalized_forces": {k: sympy.sstr(v) for k, v in forces.items()},
+             "equations": {k: sympy.sstr(v) for k, v in equations.items()}, "hamiltonian": sympy.sstr(H)}
+    result = graded("moving_support", DRIVEN_MAP, steps)
+    for step in steps:
+        assert result[step].status == "correct", (step, result[step].message)
+

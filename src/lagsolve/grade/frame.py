@@ -96,8 +96,11 @@ class Frame:
         return expr.xreplace(self.substitution)
 
     def hamiltonian(self, expr: Any) -> Any:
-        """The student's K(q', p') as the key's H: K − Σ_s p'_s ∂f_s/∂t, mapped."""
-        shift = sum((p * sympy.diff(f, self.time) for p, f in zip(self.momenta, self.expressions, strict=True)),
+        """The student's K(q', p') as the key's H: K − Σ_s p'_s ∂f_s/∂t, mapped; the sum over the coordinates whose
+        momentum K has (H is written in the minimal coordinates: a coordinate its constraint fixes has none)."""
+        used = expr.free_symbols
+        shift = sum((p * sympy.diff(f, self.time) for c, p, f in zip(self.coordinates, self.momenta, self.expressions,
+                                                                     strict=True) if c.momentum in used),
                     sympy.Integer(0))
         return self.entry(expr) - shift
 
