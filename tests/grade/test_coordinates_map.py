@@ -206,11 +206,11 @@ def test_a_map_with_time_against_the_lagrangian_written_in_it() -> None:
     """u = X − A cos(wt): L' = L(X = u + A cos wt, Ẋ = u̇ − A w sin wt) differentiated here with SymPy; its ∂L'/∂q',
     Lagrange's equations (the drive u = 0 with the key's ψ = u: E_u = λ) and H in the minimal coordinate θ are
     the key's after the change of coordinates, a map with t included."""
-    t, m, M, l, g, A, w = sympy.symbols("t m M l g A w")
+    t, m, M, rod, g, A, w = sympy.symbols("t m M l g A w")
     u, th, ud, thd, udd, thdd, lam = sympy.symbols("u theta u_dot theta_dot u_ddot theta_ddot lambda_drive")
     Xd = ud - A * w * sympy.sin(w * t)
-    T = M * Xd**2 / 2 + m * ((Xd + l * sympy.cos(th) * thd) ** 2 + (l * sympy.sin(th) * thd) ** 2) / 2
-    L = T + m * g * l * sympy.cos(th)
+    T = M * Xd**2 / 2 + m * ((Xd + rod * sympy.cos(th) * thd) ** 2 + (rod * sympy.sin(th) * thd) ** 2) / 2
+    L = T + m * g * rod * sympy.cos(th)
     coordinates = ((u, ud, udd), (th, thd, thdd))
 
     def rate(e: sympy.Expr) -> sympy.Expr:
