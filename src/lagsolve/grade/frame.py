@@ -51,8 +51,8 @@ def student_coordinate(name: str, existing: Any = None) -> StudentCoordinate:
 class Frame:
     """The map q' = f(q, t) between a submission's coordinates and the key's.
 
-    ``coordinates`` are the student's, in the order: the map's, then the key's kept ones; ``key`` is the key's
-    (time, coordinates, velocities, accelerations, momentum symbols)."""
+    ``coordinates`` are the student's, in the key's order (each at the place of the first key coordinate it
+    uses); ``q``, ``qd``, ``qdd``, ``p`` the key's coordinates, velocities, accelerations and momentum symbols."""
 
     def __init__(self, coordinates: tuple[StudentCoordinate, ...], expressions: tuple[Any, ...], time: Any,
                  key_coordinates: tuple[Any, ...], key_velocities: tuple[Any, ...],
@@ -194,7 +194,12 @@ def build_frame(spec: dict[str, Any], key_symbols: dict[str, Any], time: Any, ke
         if q not in used and q.name not in spec:
             coordinates.append(student_coordinate(q.name, q))
             expressions.append(q)
-    return Frame(tuple(coordinates), tuple(expressions), time, key_coordinates, key_velocities, key_accelerations)
+    # in the key's order: each at the place of the first key coordinate it uses (ties in the map's order)
+    place = {q: i for i, q in enumerate(key_coordinates)}
+    order = sorted(range(len(coordinates)), key=lambda i: (min(place[q] for q in expressions[i].free_symbols
+                                                               if q in place), i))
+    return Frame(tuple(coordinates[i] for i in order), tuple(expressions[i] for i in order), time, key_coordinates,
+                 key_velocities, key_accelerations)
 
 
 #: per-coordinate steps carried into the student's coordinates; the other steps keep the key's answers
