@@ -158,7 +158,7 @@ SEEDS: dict[str, dict[str, Any]] = {
              {"follows": ("lagrangian", "frequencies", "hamiltonian")}),
             ("frequencies", "sign_error", {"frequencies": [f"-3*m2*g/((m1 + m2)*({R0_CUBED})**(1/3))"]}),
             ("hamiltonian", "wrong_potential_sign", {"hamiltonian": "p_r**2/(2*(m1 + m2)) + p_theta**2/(2*m1*r**2) - m2*g*r"}),
-            ("equilibria", None, {"equilibria": [f"({R0_CUBED})**(1/3)", "l"]}),
+            ("frequencies", "missing_factor", {"frequencies": [f"3*g/((m1 + m2)*({R0_CUBED})**(1/3))"]}),
             ("potential", "wrong_potential_sign", {"potential": "-m2*g*z"}),
             ("kinetic", "missing_kinetic_term", {"kinetic": "m1*r_dot**2/2 + m2*z_dot**2/2"}),
             ("generalized_forces", "sign_error", {"generalized_forces": {"r": "-m1*r*theta_dot**2", "theta": "0", "z": "-m2*g"}}),
