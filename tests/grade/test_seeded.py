@@ -85,14 +85,21 @@ SEEDS: dict[str, dict[str, Any]] = {
                           "y": "2*m*y_ddot + m*l*(theta_ddot*cos(theta) - theta_dot**2*sin(theta)) = lambda_skate*cos(theta)",
                           "theta": "m*l**2*theta_ddot + m*l*(y_ddot*cos(theta) - x_ddot*sin(theta))"},
             "multipliers": {"skate": "m*theta_dot*(x_dot*cos(theta) + y_dot*sin(theta))"},
+            "accelerations": {"x": "theta_dot*(l*theta_dot*cos(theta)/2 - sin(theta)*(x_dot*cos(theta) + y_dot*sin(theta)))",
+                              "y": "theta_dot*(l*theta_dot*sin(theta)/2 + cos(theta)*(x_dot*cos(theta) + y_dot*sin(theta)))",
+                              "theta": "-theta_dot*(x_dot*cos(theta) + y_dot*sin(theta))/l"},
             "conserved": {"energy": "m*(x_dot**2 + y_dot**2) + m*l**2*theta_dot**2/2 + m*l*theta_dot*(y_dot*cos(theta) - x_dot*sin(theta))"},
         },
-        "weights": {"kinetic": 1, "potential": 1, "momenta": 1, "equations": 2, "multipliers": 1, "conserved": 1},
+        "weights": {"kinetic": 1, "potential": 1, "momenta": 1, "equations": 2, "accelerations": 2, "multipliers": 1,
+                    "conserved": 1},
         "mapped": ({"psi": "theta + pi/2"}, {
             "kinetic": "m*(x_dot**2 + y_dot**2) + m*l**2*psi_dot**2/2 + m*l*psi_dot*(y_dot*sin(psi) + x_dot*cos(psi))",
             "momenta": {"x": "2*m*x_dot + m*l*psi_dot*cos(psi)", "y": "2*m*y_dot + m*l*psi_dot*sin(psi)",
                         "psi": "m*l**2*psi_dot + m*l*(y_dot*sin(psi) + x_dot*cos(psi))"},
             "multipliers": {"skate": "m*psi_dot*(x_dot*sin(psi) - y_dot*cos(psi))"},
+            "accelerations": {"x": "psi_dot*(l*psi_dot*sin(psi)/2 + cos(psi)*(x_dot*sin(psi) - y_dot*cos(psi)))",
+                              "y": "psi_dot*(-l*psi_dot*cos(psi)/2 + sin(psi)*(x_dot*sin(psi) - y_dot*cos(psi)))",
+                              "psi": "-psi_dot*(x_dot*sin(psi) - y_dot*cos(psi))/l"},
         }),
         "mistakes": [
             ("conserved", "missing_factor", {"conserved": {"energy": "2*m*(x_dot**2 + y_dot**2) + m*l**2*theta_dot**2 + 2*m*l*theta_dot*(y_dot*cos(theta) - x_dot*sin(theta))"}}),
@@ -379,7 +386,7 @@ def _numeric_equal(a: Any, b: Any, symbols: list[Any], *, up_to_sign: bool = Fal
     return True
 
 
-@pytest.mark.parametrize("name", ["hole_table"])
+@pytest.mark.parametrize("name", ["hole_table", "knife_edge"])
 def test_seeded_answers_agree_with_lagranges_method(keys: dict[str, tuple], name: str) -> None:
     problem = keys[name][0]
     parsed = read_text(json.dumps({"steps": SEEDS[name]["steps"]}), problem, "s.yaml")
