@@ -1,24 +1,28 @@
 r"""Grade one submission step by step against the key's derivation (``lagsolve grade``).
 
-Each entry of a step (a coordinate's momentum, a constraint's multiplier, ...) is judged in this order:
+A submission in other coordinates (``coordinates_map:``) is read into the key's coordinates and the key's answers
+are carried into the student's (:mod:`.frame`). Each entry of a step (a coordinate's momentum, a constraint's
+multiplier, ...) is then judged in this order:
 
 1. **correct** — equivalent to the key's answer as ``lagsolve check`` judges it
    (:class:`lagsolve.check.compare.Comparer`: on the constraint surface, at random consistent states; up to
    a constant in the potential, the Lagrangian, V_eff and conserved quantities). An equation
    (``equations``, ``constraints``) is correct up to a constant factor; equations are compared as functions
    of the coordinates, velocities, accelerations and multipliers (the last two drawn at random too).
-2. **follows** — not the key's answer, but what follows from the student's own earlier steps: their
-   Lagrangian (their T − V when they give no L) gives their momenta, ∂L/∂q and equations
-   (:func:`lagsolve.mechanics.equations.lagrange.lagrange_terms`, with the key's constraints and applied forces); their
-   equations, with the key's constraints at acceleration level, give their q̈ and λ; their λ gives their
-   forces of constraint (|λ|·|u|, :func:`lagsolve.mechanics.equations.reactions.force_scale`).
-3. **incorrect** — with a named mistake when one explains the difference: check's own diagnoses
-   (opposite sign, constant factor, λ convention, a constraint released, a magnitude without ``Abs``), then
-   the key's answer changed in one known way (:func:`_candidates`): the potential's sign, one term's sign,
-   the velocity-squared terms dropped, one kinetic term dropped, λ's sign in an equation.
+2. **follows** — not the key's answer, but what follows from the student's own earlier steps (:mod:`.follow`,
+   :mod:`.follow_analysis`): their Lagrangian (their T − V when they give no L) gives their momenta, ∂L/∂q,
+   equations and H, and through lagsolve's analysis their V_eff, equilibria and ω²; their equations, with the
+   key's constraints at acceleration level, give their q̈ (along which their conserved quantities are checked)
+   and λ; their λ gives their forces of constraint and normal forces.
+3. **incorrect** — with a named mistake when one explains the difference (:mod:`.mistakes`): check's own
+   diagnoses (opposite sign, constant factor, λ convention, a constraint released, a magnitude without
+   ``Abs``), a moving constraint taken as still, then the key's answer changed in one known way (the
+   potential's sign, one term's sign, the velocity-squared terms dropped, one kinetic term dropped, λ's sign in
+   an equation), then a wrong dimension (:mod:`.dimensions`).
 
 A step's points are its weight shared among its entries: full for correct, ``follow_through`` times it for
-follows. Nothing is printed here.
+follows. Each step is graded under a CPU budget (``step_budget``): one that uses it up is ``ungraded``.
+Nothing is printed here.
 """
 
 from __future__ import annotations
