@@ -124,6 +124,7 @@ def test_correct_answers_in_other_coordinates_earn_every_point(name: str, mappin
      "missing_velocity_squared_terms"),
     ("bead_on_rotating_hoop", HOOP_MAP, HOOP, "equilibria", ["0", "pi", "acos(g/(R*Omega**2))"], None),
     ("central_force", ROTATING_MAP, ROTATING, "hamiltonian", "p_r**2/(2*m) + p_beta**2/(2*m*r**2) - k/r", None),
+    ("central_force", {"rho": "r/2", "beta": "theta + 1"}, {}, "kinetic", "2*m*rho_dot**2", "missing_kinetic_term"),
     ("central_force", ROTATING_MAP, ROTATING, "accelerations",
      {"r": "r*beta_dot**2 - k/(m*r**2)", "beta": "-2*r_dot*beta_dot/r"}, None),
 ])
@@ -133,6 +134,8 @@ def test_a_wrong_step_in_other_coordinates_is_found(name: str, mapping: dict, st
     assert result[step].status == "incorrect", result[step].message
     assert result[step].mistake == mistake, result[step].message
     assert result[step].points < result[step].max_points
+    if mistake == "missing_kinetic_term" and name == "central_force":  # named with the student's variables
+        assert "2*beta_dot**2*m*rho**2 (in the submission's coordinates) is missing" in result[step].message
 
 
 def _lagranges_method_equations(potential_sign: int) -> dict[str, str]:

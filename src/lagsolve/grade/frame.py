@@ -25,6 +25,9 @@ import sympy
 
 from lagsolve.problem.names import momentum_symbol
 
+#: CPU seconds to invert a map in closed form (for the terms of the key's T in the student's coordinates)
+INVERT_BUDGET = 2.0
+
 
 class MapError(ValueError):
     """The map is not a change of coordinates (the message says why)."""
@@ -74,6 +77,7 @@ class Frame:
         self.momenta = tuple(sum((self.p[k] * self.inverse[k, s] for k in range(len(self.q))), sympy.Integer(0))
                              for s in range(len(coordinates)))
         self.depends_on_time = any(f.has(time) for f in expressions)
+        self._inverse: dict[Any, Any] | None = None
         self.substitution: dict[Any, Any] = {}
         for c, f, v, a, p in zip(coordinates, expressions, self.velocities, self.accelerations, self.momenta,
                                  strict=True):
@@ -159,6 +163,37 @@ class Frame:
         out: dict[Any, Any] = {v: k * v for v in self.qd}
         out.update({a: a + (k**2 - 1) * quadratic[i] for i, a in enumerate(self.qdd)})
         return out
+
+    def in_student(self, expr: Any) -> Any:
+        """``expr`` (in the key's coordinates and velocities) written in the student's, when the map can be inverted
+        in closed form within :data:`INVERT_BUDGET` s of CPU (one solution, checked at a point); else None."""
+        if self._inverse is None:
+            self._inverse = self._invert() or {}
+        return expr.xreplace(self._inverse) if self._inverse else None
+
+    def _invert(self) -> dict[Any, Any] | None:
+        from lagsolve.mechanics.stages import StageTimeout, cpu_limit
+
+        kept = {c.symbol for c, f in zip(self.coordinates, self.expressions, strict=True) if f == c.symbol}
+        equations = [f - c.symbol for c, f in zip(self.coordinates, self.expressions, strict=True)
+                     if c.symbol not in kept]
+        unknowns = [q for q in self.q if q not in kept]
+        try:
+            with cpu_limit(INVERT_BUDGET):
+                solutions = sympy.solve(equations, unknowns, dict=True)
+        except StageTimeout:
+            return None
+        except (TypeError, ValueError, NotImplementedError, AttributeError, sympy.PolynomialError):
+            return None
+        if len(solutions) != 1 or set(solutions[0]) != set(unknowns):
+            return None
+        positions = {**solutions[0], **{q: q for q in kept}}
+        velocities = {}
+        for q, qd in zip(self.q, self.qd, strict=True):
+            g = positions[q]
+            velocities[qd] = sympy.diff(g, self.time) + sum((sympy.diff(g, c.symbol) * c.velocity
+                                                             for c in self.coordinates), sympy.Integer(0))
+        return {**positions, **velocities}
 
     def signature(self) -> tuple:
         return tuple(zip(self.names, self.expressions, strict=True))

@@ -59,6 +59,8 @@ def candidates(step: str, reference: Any, derivation: Derivation, frame: Frame |
     "" is a known difference without a name (said in the evidence only)."""
     model = derivation.model
     out: list[tuple[str, Any, str]] = []
+    if step in ("kinetic", "lagrangian") and frame is not None:
+        out.extend(student_terms(step, model.kinetic, reference, frame))  # named in the student's variables first
     if step == "lagrangian":
         out.append((POTENTIAL_SIGN, model.kinetic + model.potential, "it is T + V: the potential has the wrong sign"))
         for k in (2, sympy.Rational(1, 2)):
@@ -130,3 +132,16 @@ def moving_evidence(derivation: Derivation) -> str:
     parts = [f"{c.name} (∂ψ/∂t = {sympy.sstr(c.offset)})" for c in moving(derivation)]
     return ("it is the answer with the moving constraint taken as still: the terms from ∂ψ/∂t of "
             + ", ".join(parts) + " are missing")
+
+
+def student_terms(step: str, kinetic: Any, reference: Any, frame: Frame) -> list[tuple[str, Any, str]]:
+    """In a submission's own coordinates: the key's answer less one term of the key's T written in them (the
+    terms of T differ between coordinates: r²φ̇² is no term of ẋ² + ẏ²); none when the map cannot be inverted."""
+    own = frame.in_student(kinetic)
+    if own is None:
+        return []
+    out = []
+    for term in terms(own):
+        out.append((KINETIC_TERM, reference - frame.entry(term), f"the kinetic term {sympy.sstr(term)} (in the "
+                                                                 "submission's coordinates) is missing"))
+    return out
