@@ -99,3 +99,21 @@ def test_an_equilibrium_known_by_its_condition_is_graded_numerically() -> None:
     off = graded("one", {"equilibria": [repr(root + 1e-3)]})
     assert off["equilibria"].status == "incorrect"
     assert "is not an equilibrium of the key's" in off["equilibria"].message
+
+
+def test_follow_through_to_numeric_equilibria() -> None:
+    """The torsion springs' potential doubled (k (θ − a)² for k (θ − a)²/2): the student's own equilibrium and ω²,
+    found here with SciPy for that potential, follow (lagsolve finds them numerically, as for the key)."""
+    v = VALUES
+    wrong = "k*(theta1 - a)**2 + k*(theta2 - a)**2 + k*(theta1 - theta2)**2/4 - m*g*l*(cos(theta1) + cos(theta2))"
+    root = brentq(lambda th: v["m"] * v["g"] * v["l"] * math.sin(th) + 2 * v["k"] * (th - v["a"]), -1.0, 2.0,
+                  xtol=1e-14)
+    diagonal = v["m"] * v["g"] * v["l"] * math.cos(root) + 2 * v["k"] + v["k"] / 2
+    K = np.array([[diagonal, -v["k"] / 2], [-v["k"] / 2, diagonal]])
+    squares = sorted(float(w) for w in np.linalg.eigvalsh(K / (v["m"] * v["l"] ** 2)))
+    steps = {"potential": wrong, "equilibria": [{"theta1": repr(root), "theta2": repr(root)}],
+             "frequencies": [repr(w) for w in squares]}
+    result = graded("two", steps)
+    assert result["potential"].status == "incorrect"
+    for step in ("equilibria", "frequencies"):
+        assert result[step].status == "follows", (step, result[step].message)

@@ -13,13 +13,16 @@ import sympy
 
 from lagsolve.errors import DerivationError
 from lagsolve.grade.analysis_steps import lists_of
+from lagsolve.mechanics.analysis.analyse import NUMERIC_FALLBACK_CAP
 from lagsolve.mechanics.analysis.conserved import MotionSystem
 from lagsolve.mechanics.analysis.equilibria import effective_potential
 from lagsolve.mechanics.analysis.linearize import linearize
+from lagsolve.mechanics.analysis.numeric_equilibria import numeric_linearization
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.equations.lagrange import lagrange_terms
 from lagsolve.mechanics.equations.model import Model
 from lagsolve.mechanics.solution.normal import normal_forces
+from lagsolve.mechanics.stages import StageSkipped, StageTimeout, cpu_limit
 
 #: what may go wrong in lagsolve's analysis of a student's L (it is then left out: no follow-through)
 FAILURES = (TypeError, ValueError, AttributeError, ZeroDivisionError, NotImplementedError, KeyError, IndexError,
@@ -64,7 +67,12 @@ def _own_analysis(derivation: Derivation, lagrangian: Any) -> dict[str, dict[str
     else:
         problem = derivation.problem
         values = dict(problem.simulation.values) if problem.simulation is not None else None
-        linear, _ = linearize(own, analysis.conservation.cyclic, False, values)
+        simulation = problem.simulation if not problem.functions else None
+        linear = _symbolic(own, analysis.conservation.cyclic, values, capped=simulation is not None)
+        if linear is None and simulation is not None:
+            # the key's own route when no closed form is found: numerically at the simulation values
+            with contextlib.suppress(*FAILURES, StageSkipped):
+                linear = numeric_linearization(own, dict(simulation.values), dict(simulation.initial))
         if linear is None:
             return {}
     points, squares = lists_of(potential, linear)
@@ -73,6 +81,20 @@ def _own_analysis(derivation: Derivation, lagrangian: Any) -> dict[str, dict[str
     if squares:
         out["frequencies"] = {str(i + 1): w for i, w in enumerate(squares)}
     return out
+
+
+def _symbolic(own: MotionSystem, cyclic: tuple[Any, ...], values: dict[str, float] | None, *, capped: bool
+              ) -> Any:
+    """The closed-form equilibria and modes of the student's system; when ``capped`` (a numeric search can follow,
+    as for the key), given up after the key's own cap (:data:`~lagsolve.mechanics.analysis.analyse.
+    NUMERIC_FALLBACK_CAP` s of CPU)."""
+    if not capped:
+        return linearize(own, cyclic, False, values)[0]
+    try:
+        with cpu_limit(NUMERIC_FALLBACK_CAP):
+            return linearize(own, cyclic, False, values)[0]
+    except StageTimeout:
+        return None
 
 
 def own_normal_forces(derivation: Derivation, multipliers: dict[str, Any]) -> dict[str, Any]:
