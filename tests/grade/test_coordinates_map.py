@@ -233,3 +233,14 @@ def test_a_map_with_time_against_the_lagrangian_written_in_it() -> None:
     for step in steps:
         assert result[step].status == "correct", (step, result[step].message)
 
+
+
+def test_a_students_own_equilibria_known_by_a_condition_in_their_coordinates() -> None:
+    """A potential whose equilibria have no closed form (their V_eff' = 0 is only a condition), in α = θ − π: the
+    list step is graded (incorrect), not a crash; a bead key (its equilibria f'(x) = 0, a condition) in u = x + 1."""
+    result = graded("bead_on_rotating_hoop", HOOP_MAP, {"kinetic": HOOP["kinetic"], "potential": "alpha",
+                                                        "equilibria": ["0"]})
+    assert result["equilibria"].status == "incorrect"
+    bead = graded("bead", {"u": "x + 1"}, {"equilibria": ["1"], "potential": "m*g*f(u - 1)"})
+    assert bead["potential"].status == "correct"
+    assert bead["equilibria"].status == "incorrect", bead["equilibria"].message

@@ -26,7 +26,7 @@ from lagsolve.mechanics.stages import StageSkipped, StageTimeout, cpu_limit
 
 #: what may go wrong in lagsolve's analysis of a student's L (it is then left out: no follow-through)
 FAILURES = (TypeError, ValueError, AttributeError, ZeroDivisionError, NotImplementedError, KeyError, IndexError,
-            DerivationError, sympy.PolynomialError)
+            RecursionError, OverflowError, DerivationError, sympy.PolynomialError)
 
 
 def own_analysis(derivation: Derivation, lagrangian: Any) -> dict[str, dict[str, Any]]:

@@ -23,6 +23,7 @@ from typing import Any
 
 import sympy
 
+from lagsolve.grade.numeric_lists import Condition
 from lagsolve.problem.names import momentum_symbol
 
 #: CPU seconds to invert a map in closed form (for the terms of the key's T in the student's coordinates)
@@ -144,6 +145,9 @@ class Frame:
         None for a map with t."""
         if self.depends_on_time:
             return None
+        conditions = [v for v in point.values() if isinstance(v, Condition)]
+        if conditions:
+            return self.condition(conditions[0]) if len(point) == 1 else None
         given = {q: point[q.name] for q in self.q if q.name in point}
         out = {}
         for name, f in zip(self.names, self.expressions, strict=True):
@@ -164,12 +168,28 @@ class Frame:
         out.update({a: a + (k**2 - 1) * quadratic[i] for i, a in enumerate(self.qdd)})
         return out
 
+    def condition(self, condition: Condition) -> dict[str, Any] | None:
+        """An equilibrium known by its condition, written in the one student coordinate it then depends on (the map
+        inverted in closed form); None otherwise."""
+        residual = self.in_student(condition.residual)
+        if residual is None:
+            return None
+        own = [c for c in self.coordinates if c.symbol in residual.free_symbols]
+        if len(own) != 1:
+            return None
+        return {own[0].name: Condition(own[0].symbol, residual)}
+
     def in_student(self, expr: Any) -> Any:
         """``expr`` (in the key's coordinates and velocities) written in the student's, when the map can be inverted
         in closed form within :data:`INVERT_BUDGET` s of CPU (one solution, checked at a point); else None."""
         if self._inverse is None:
             self._inverse = self._invert() or {}
-        return expr.xreplace(self._inverse) if self._inverse else None
+        if not self._inverse:
+            return None
+        try:
+            return expr.xreplace(self._inverse)
+        except (TypeError, ValueError, AttributeError):  # a derivative with respect to a replaced coordinate
+            return None
 
     def _invert(self) -> dict[Any, Any] | None:
         from lagsolve.mechanics.stages import StageTimeout, cpu_limit

@@ -61,7 +61,7 @@ from lagsolve.grade.evaluate import (
     relation,
 )
 from lagsolve.grade.follow import follow_through
-from lagsolve.grade.follow_analysis import own_analysis
+from lagsolve.grade.follow_analysis import FAILURES, own_analysis
 from lagsolve.grade.frame import CARRIED, Frame, answers_in_frame, own_in_key
 from lagsolve.grade.key import Grading
 from lagsolve.grade.lists import ListSteps
@@ -409,6 +409,9 @@ class _Grader(ListSteps):
                 grades.append(StepGrade(step, UNGRADED, None, 0.0, weight, f"not graded: comparing this step used up "
                                         f"its {budget:g} s CPU budget (an answer too large to compare); grade it by "
                                         "hand"))
+            except FAILURES as error:  # an answer SymPy cannot handle: this step, not the class
+                grades.append(StepGrade(step, UNGRADED, None, 0.0, weight, "not graded: the answer could not be "
+                                        f"compared ({type(error).__name__}); grade it by hand"))
         return SubmissionGrade(self.submission.student, self.submission.source, tuple(grades))
 
     def expected_entries(self, step: str) -> list[str]:
