@@ -244,3 +244,16 @@ def test_a_students_own_equilibria_known_by_a_condition_in_their_coordinates() -
     bead = graded("bead", {"u": "x + 1"}, {"equilibria": ["1"], "potential": "m*g*f(u - 1)"})
     assert bead["potential"].status == "correct"
     assert bead["equilibria"].status == "incorrect", bead["equilibria"].message
+
+
+def test_a_derivative_with_respect_to_a_mapped_coordinate_is_unreadable_not_a_crash() -> None:
+    problem, derivation = key("bead")
+    text = json.dumps({"coordinates_map": {"u": "x + 1"},
+                       "steps": {"kinetic": "m*u_dot**2*(1 + Derivative(f(u), u)**2)/2",
+                                 "hamiltonian": "p_u**2/(2*m*(1 + Derivative(f(u), u)**2))"}})
+    submission = read_text(text, problem, "s.yaml")
+    for step in ("kinetic", "hamiltonian"):
+        issue = submission.steps[step].issue
+        assert issue is not None and "cannot be written in the key's coordinates" in issue.message
+    result = grade(derivation, Grading({"kinetic": 1.0, "hamiltonian": 1.0}), submission)
+    assert {str(s.status) for s in result.steps} == {"unreadable"}

@@ -219,8 +219,9 @@ class _Reader:
         if name in SCALAR:
             parsed = self.expression(value, path, self.plain)
             if self.frame is not None and name == "hamiltonian":
+                self.mapped(parsed, path)  # refused like the others when it cannot be written in the key's
                 return {"": self.frame.hamiltonian(parsed)}
-            return {"": self.mapped(parsed)}
+            return {"": self.mapped(parsed, path)}
         if name in LISTS:
             return self.items(name, value, path)
         if name == "effective_potential":
@@ -233,7 +234,8 @@ class _Reader:
                                              f"the coordinates are: {', '.join(coordinates)}"))
             if "expression" not in spec:
                 raise _Unreadable(self.issue(path, "no 'expression'", "write the effective potential as 'expression'"))
-            return {coordinate: self.mapped(self.expression(spec["expression"], (*path, "expression"), self.plain))}
+            where = (*path, "expression")
+            return {coordinate: self.mapped(self.expression(spec["expression"], where, self.plain), where)}
         spec = self.mapping(value, path, "{name: expression, ...}")
         known: tuple[str, ...] = ()
         what = "names"
@@ -250,7 +252,7 @@ class _Reader:
         for key, text in spec.items():
             if not isinstance(key, str) or not key or len(key) > MAX_NAME:
                 raise _Unreadable(self.issue(path, f"{key!r} is not a name", "write names as plain words"))
-            out[key] = self.mapped(self.expression(text, (*path, key), names, equation=name in EQUATIONS))
+            out[key] = self.mapped(self.expression(text, (*path, key), names, equation=name in EQUATIONS), (*path, key))
         return out
 
     def items(self, name: str, value: Any, path: tuple) -> dict[str, Any]:
@@ -280,9 +282,16 @@ class _Reader:
             out[str(i + 1)] = tuple((q, self.expression(item[q], (*where, q), self.plain)) for q in item)
         return out
 
-    def mapped(self, expr: Any) -> Any:
+    def mapped(self, expr: Any, path: tuple) -> Any:
         """``expr`` in the key's coordinates (the student's put in through the map)."""
-        return expr if self.frame is None else self.frame.entry(expr)
+        if self.frame is None:
+            return expr
+        try:
+            return self.frame.entry(expr)
+        except (TypeError, ValueError, AttributeError):
+            raise _Unreadable(self.issue(path, "cannot be written in the key's coordinates (a derivative with respect "
+                                               "to one of your coordinates that the map replaces)",
+                                         "write that derivative with the key's coordinate")) from None
 
     def mapping(self, value: Any, path: tuple, example: str) -> dict[str, Any]:
         if not isinstance(value, dict):
