@@ -21,7 +21,7 @@ KINDS = ("input", "output", "grades")
 GRADE_STEPS = ("kinetic", "potential", "lagrangian", "constraints", "momenta", "generalized_forces", "equations",
                "accelerations", "multipliers", "constraint_forces", "normal_force", "conserved", "effective_potential",
                "equilibria", "frequencies", "hamiltonian")
-GRADE_STATUSES = ("correct", "incorrect", "follows", "missing", "unreadable")
+GRADE_STATUSES = ("correct", "incorrect", "follows", "missing", "unreadable", "ungraded")
 GRADE_MISTAKES = ("sign_error", "missing_factor", "lambda_sign_convention", "missing_velocity_squared_terms",
                   "missing_moving_constraint_term", "dropped_constraint", "wrong_potential_sign",
                   "missing_kinetic_term", "wrong_dimension", "missing_abs")
@@ -172,6 +172,8 @@ def _running() -> dict[str, Any]:
         "lambda_sign": {"enum": ["strict", "either"]},
         "frequency_form": {"enum": ["either", "squared"],
                            "description": "the frequencies step: ω or ω² (either) or ω² only (squared)"},
+        "step_budget": {"type": "number", "minimum": 0.1, "maximum": 3600,
+                        "description": "CPU seconds to grade one step of one submission (then it is ungraded)"},
     }),
     }
 

@@ -140,7 +140,8 @@ def test_follow_through_multipliers_from_own_equations(key: tuple) -> None:
 
 
 def test_wrong_without_a_known_cause_is_incorrect_and_unnamed(key: tuple) -> None:
-    grades = graded(key, steps(accelerations={"x": f"{F1}**3*x_dot", "y": ACC_Y}))
+    # of the right dimension (an acceleration): F1**3*x_dot, a velocity, is now named wrong_dimension
+    grades = graded(key, steps(accelerations={"x": f"{F1}**3*g", "y": ACC_Y}))
     assert grades["accelerations"].status == "incorrect"
     assert grades["accelerations"].mistake is None
     assert grades["accelerations"].points == 1.0  # y is right: half the step

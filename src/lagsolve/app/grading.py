@@ -25,6 +25,7 @@ def grade_files(key: str | Path, submissions: Sequence[str | Path], *, budget: f
     SpecError
         The key is not a valid problem file, or its ``grading:`` section is malformed.
     """
+    from lagsolve.grade.follow_analysis import FAILURES
     from lagsolve.grade.grader import ClassGrades, GradingKey, grade, unreadable_grade
     from lagsolve.grade.key import read_grading
     from lagsolve.grade.submission import read_submission
@@ -42,6 +43,10 @@ def grade_files(key: str | Path, submissions: Sequence[str | Path], *, budget: f
             submission = read_submission(path, problem, normals)
         except SpecError as error:
             grades.append(unreadable_grade(Path(path).stem, str(path), str(error.issues[0]), grading))
+            continue
+        except FAILURES as error:  # text the gateway let through but SymPy cannot take: this file, not the class
+            message = f"{path}: the submission could not be read ({type(error).__name__}); check its expressions"
+            grades.append(unreadable_grade(Path(path).stem, str(path), message, grading))
             continue
         grades.append(grade(derivation, grading, submission, seed=seed, key=context))
     return ClassGrades(problem.name, str(key), tuple(grades))

@@ -12,6 +12,7 @@ import mpmath
 import sympy
 
 from lagsolve.check.diagnose import close
+from lagsolve.grade.numeric_lists import Condition
 from lagsolve.mechanics.derivation import Derivation
 
 SIGN, FACTOR_MISSING, POTENTIAL_SIGN = "sign_error", "missing_factor", "wrong_potential_sign"
@@ -68,27 +69,33 @@ def frequency_mistake(value: Any, reference: Any, detail: str) -> tuple[str | No
 def key_lists(derivation: Derivation) -> tuple[list[dict[str, Any]], list[Any]]:
     """The key's equilibria (each a mapping coordinate → value) and the ω² of small oscillations about those not
     known to be unstable (stable, or stable under a condition on the parameters), from the effective potential
-    when there is one, else from the normal modes. Only equilibria in closed form count: a point found
-    numerically, or known only by its condition, makes the key's list unusable (empty). An equilibrium whose ω²
-    are those of an earlier one (a symmetric pair, ±θ₀) adds none."""
+    when there is one, else from the normal modes. A point found numerically (at the simulation values) is kept
+    as its numbers; one known only by its condition as a :class:`~.numeric_lists.Condition` (no ω²). An
+    equilibrium whose ω² are those of an earlier one (a symmetric pair, ±θ₀) adds none."""
     analysis = derivation.analysis
-    points: list[dict[str, Any]] = []
-    groups: list[list[Any]] = []
     potential = analysis.effective_potential if analysis is not None else None
     linear = analysis.linearization if analysis is not None else None
+    return lists_of(potential, linear)
+
+
+def lists_of(potential: Any, linear: Any) -> tuple[list[dict[str, Any]], list[Any]]:
+    """:func:`key_lists` from an effective potential (or None) and a linearization (or None), the key's or those
+    of a student's own Lagrangian."""
+    points: list[dict[str, Any]] = []
+    groups: list[list[Any]] = []
     if potential is not None and potential.equilibria:
         name = str(potential.coordinate)
         for eq in potential.equilibria:
             if eq.value is None:
-                return [], []
+                if eq.condition is None or not isinstance(eq.condition, sympy.Eq):
+                    return [], []
+                points.append({name: Condition(potential.coordinate, eq.condition.lhs - eq.condition.rhs)})
+                continue
             points.append({name: eq.value})
             if eq.stable is not False and eq.frequency_squared is not None:
                 groups.append([eq.frequency_squared])
     elif linear is not None and linear.modes:
         for mode in linear.modes:
-            values = [v for _, v in mode.point]
-            if any(isinstance(v, sympy.Basic) and v.atoms(sympy.Float) for v in values):
-                return [], []
             points.append({str(q): v for q, v in mode.point})
             if mode.stable is not False and mode.squared_frequencies is not None:
                 groups.append(list(mode.squared_frequencies))
@@ -183,3 +190,21 @@ def legendre(derivation: Derivation, lagrangian: Any) -> Any:
     b = sympy.Matrix([sympy.diff(L, v).xreplace(zero) for v in qd])
     w = sympy.Matrix(h.momentum_symbols) - b
     return (w.T * A.LUsolve(w))[0, 0] / 2 - L.xreplace(zero)
+
+
+def reduction_constants(derivation: Derivation) -> dict[Any, Any]:
+    """Each integration constant of the key's minimal coordinates (θ0 of θ = θ0, φ0 of φ = Ωt + φ0) as its
+    coordinate gives it at a state (θ0 = θ, φ0 = φ − Ωt): the key's H is written with them, a state has the
+    coordinates."""
+    analysis = derivation.analysis
+    if analysis is None or analysis.reduced is None:
+        return {}
+    reduced = analysis.reduced
+    out: dict[Any, Any] = {}
+    for q, position in reduced.substitution.positions.items():
+        for constant in set(reduced.constants) & position.free_symbols:
+            with contextlib.suppress(TypeError, ValueError, NotImplementedError):
+                solved = sympy.solve(sympy.Eq(position, q), constant)
+                if len(solved) == 1:
+                    out[constant] = solved[0]
+    return out

@@ -1,30 +1,33 @@
 r"""Grade one submission step by step against the key's derivation (``lagsolve grade``).
 
-Each entry of a step (a coordinate's momentum, a constraint's multiplier, ...) is judged in this order:
+A submission in other coordinates (``coordinates_map:``) is read into the key's coordinates and the key's answers
+are carried into the student's (:mod:`.frame`). Each entry of a step (a coordinate's momentum, a constraint's
+multiplier, ...) is then judged in this order:
 
 1. **correct** — equivalent to the key's answer as ``lagsolve check`` judges it
    (:class:`lagsolve.check.compare.Comparer`: on the constraint surface, at random consistent states; up to
    a constant in the potential, the Lagrangian, V_eff and conserved quantities). An equation
    (``equations``, ``constraints``) is correct up to a constant factor; equations are compared as functions
    of the coordinates, velocities, accelerations and multipliers (the last two drawn at random too).
-2. **follows** — not the key's answer, but what follows from the student's own earlier steps: their
-   Lagrangian (their T − V when they give no L) gives their momenta, ∂L/∂q and equations
-   (:func:`lagsolve.mechanics.equations.lagrange.lagrange_terms`, with the key's constraints and applied forces); their
-   equations, with the key's constraints at acceleration level, give their q̈ and λ; their λ gives their
-   forces of constraint (|λ|·|u|, :func:`lagsolve.mechanics.equations.reactions.force_scale`).
-3. **incorrect** — with a named mistake when one explains the difference: check's own diagnoses
-   (opposite sign, constant factor, λ convention, a constraint released, a magnitude without ``Abs``), then
-   the key's answer changed in one known way (:func:`_candidates`): the potential's sign, one term's sign,
-   the velocity-squared terms dropped, one kinetic term dropped, λ's sign in an equation.
+2. **follows** — not the key's answer, but what follows from the student's own earlier steps (:mod:`.follow`,
+   :mod:`.follow_analysis`): their Lagrangian (their T − V when they give no L) gives their momenta, ∂L/∂q,
+   equations and H, and through lagsolve's analysis their V_eff, equilibria and ω²; their equations, with the
+   key's constraints at acceleration level, give their q̈ (along which their conserved quantities are checked)
+   and λ; their λ gives their forces of constraint and normal forces.
+3. **incorrect** — with a named mistake when one explains the difference (:mod:`.mistakes`): check's own
+   diagnoses (opposite sign, constant factor, λ convention, a constraint released, a magnitude without
+   ``Abs``), a moving constraint taken as still, then the key's answer changed in one known way (the
+   potential's sign, one term's sign, the velocity-squared terms dropped, one kinetic term dropped, λ's sign in
+   an equation), then a wrong dimension (:mod:`.dimensions`).
 
 A step's points are its weight shared among its entries: full for correct, ``follow_through`` times it for
-follows. Nothing is printed here.
+follows. Each step is graded under a CPU budget (``step_budget``): one that uses it up is ``ungraded``.
+Nothing is printed here.
 """
 
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Iterable
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -34,20 +37,14 @@ import sympy
 
 from lagsolve.check.compare import STATES, Comparer
 from lagsolve.check.diagnose import ReleasedConstraints, close
-from lagsolve.enums import TextEnum
-from lagsolve.errors import DerivationError
 from lagsolve.grade.analysis_steps import (
     angle_coordinates,
-    frequency_mistake,
-    hamiltonian_candidates,
     key_lists,
-    legendre,
+    monomial,
     ratio,
-    same_at_states,
-    same_symbolic,
-    shown_point,
-    whole_turns,
+    reduction_constants,
 )
+from lagsolve.grade.dimensions import INHOMOGENEOUS, Dimensions
 from lagsolve.grade.evaluate import (
     DIFFERS,
     FACTOR,
@@ -63,47 +60,57 @@ from lagsolve.grade.evaluate import (
     proportional,
     relation,
 )
+from lagsolve.grade.follow import follow_through
+from lagsolve.grade.follow_analysis import FAILURES, own_analysis
+from lagsolve.grade.frame import CARRIED, Frame, answers_in_frame, own_in_key
 from lagsolve.grade.key import Grading
+from lagsolve.grade.lists import ListSteps
+from lagsolve.grade.mistakes import (
+    ABS,
+    DIMENSION,
+    DROPPED,
+    FACTOR_MISSING,
+    LAMBDA,
+    MISTAKES,
+    MOVING,
+    POTENTIAL_SIGN,
+    SIGN,
+    candidates,
+    flip_multipliers,
+    moving,
+    moving_answers,
+    moving_evidence,
+    still_constraint,
+)
+from lagsolve.grade.numeric_lists import simulation_values
+from lagsolve.grade.status import (
+    CORRECT,
+    FOLLOWS,
+    INCORRECT,
+    MISSING,
+    UNGRADED,
+    UNREADABLE,
+    GradeStatus,
+)
+from lagsolve.grade.status import Entry as _Entry
+from lagsolve.grade.status import (
+    label as _label,
+)
 from lagsolve.grade.submission import LISTS, STEPS, Submission, names_for
 from lagsolve.mechanics.derivation import Derivation
 from lagsolve.mechanics.equations.constraints import velocity_form
-from lagsolve.mechanics.equations.lagrange import LagrangeTerms, lagrange_terms
-from lagsolve.mechanics.equations.model import Model
-from lagsolve.mechanics.equations.reactions import force_scale
-from lagsolve.mechanics.symbolic.linsolve import solve_linear
+from lagsolve.mechanics.stages import StageTimeout, cpu_limit
 from lagsolve.mechanics.symbolic.simplify import reproducible
 from lagsolve.problem.names import momentum_name
 
-
-class GradeStatus(TextEnum):
-    """A step's status (the contract's five)."""
-
-    CORRECT = "correct"
-    INCORRECT = "incorrect"
-    FOLLOWS = "follows"
-    MISSING = "missing"
-    UNREADABLE = "unreadable"
-
-
-CORRECT, INCORRECT, FOLLOWS = GradeStatus.CORRECT, GradeStatus.INCORRECT, GradeStatus.FOLLOWS
-MISSING, UNREADABLE = GradeStatus.MISSING, GradeStatus.UNREADABLE
-
-#: the mistake names of the contract (those this version can find are marked in docs/grading.md)
-MISTAKES = ("sign_error", "missing_factor", "lambda_sign_convention", "missing_velocity_squared_terms",
-            "missing_moving_constraint_term", "dropped_constraint", "wrong_potential_sign", "missing_kinetic_term",
-            "wrong_dimension", "missing_abs")
-SIGN, FACTOR_MISSING, LAMBDA = "sign_error", "missing_factor", "lambda_sign_convention"
-VELOCITY_SQUARED, DROPPED = "missing_velocity_squared_terms", "dropped_constraint"
-POTENTIAL_SIGN = "wrong_potential_sign"
-KINETIC_TERM, ABS = "missing_kinetic_term", "missing_abs"
+__all__ = ["MISTAKES", "ClassGrades", "GradeStatus", "GradingKey", "StepGrade", "SubmissionGrade", "grade",
+           "key_answers", "unreadable_grade"]
 
 #: steps whose answers may differ from the key's by a constant
 SHIFTS = ("potential", "lagrangian", "conserved", "effective_potential", "hamiltonian")
-#: most terms tried one at a time in a diagnosis (a larger answer gets only the whole-answer candidates)
-MAX_TERMS = 24
 #: steps graded only when the key's derivation has the result, and what it is called
 NO_KEY = {"effective_potential": "effective potential", "hamiltonian": "Hamiltonian",
-          "equilibria": "equilibria in closed form", "frequencies": "frequencies of small oscillations"}
+          "equilibria": "equilibria", "frequencies": "frequencies of small oscillations"}
 
 
 @dataclass(frozen=True)
@@ -151,16 +158,6 @@ class ClassGrades:
     def unreadable(self) -> int:
         """How many submission files could not be read at all."""
         return sum(1 for g in self.grades if g.error)
-
-
-@dataclass(frozen=True)
-class _Entry:
-    """The verdict on one entry of a step."""
-
-    name: str
-    status: GradeStatus
-    mistake: str | None = None
-    message: str = ""
 
 
 def unreadable_grade(student: str, source: str, message: str, grading: Grading) -> SubmissionGrade:
@@ -232,8 +229,13 @@ class GradingKey:
         self._canonical: Evaluator | None = None
         self._released: ReleasedConstraints | None = None
         self._follows: dict[Any, dict[str, dict[str, Any]]] = {}
-        self._candidates: dict[tuple[str, Any], list[tuple[str, Any, str]]] = {}
+        self._candidates: dict[tuple[str, Any, Any], list[tuple[str, Any, str]]] = {}
         self._angles: set[str] | None = None
+        self._frames: dict[tuple, dict[str, dict[str, Any]]] = {}
+        self._moving: dict[Any, dict[str, dict[str, Any]]] = {}
+        self._analyses: dict[Any, dict[str, dict[str, Any]]] = {}
+        self.dimensions = Dimensions(derivation.problem)
+        self.simulation = simulation_values(derivation.problem)
 
     @property
     def angles(self) -> set[str]:
@@ -265,7 +267,12 @@ class GradingKey:
             derivation = self.derivation
             names = names_for(derivation.problem)
             momenta = [names.symbols[momentum_name(q.name)] for q in derivation.problem.coordinates]
-            self._canonical = Evaluator(derivation, momenta, self.seed, self.comparer.prepare, varying=True)
+            constants = reduction_constants(derivation)
+
+            def prepare(expr: Any) -> Any:
+                return self.comparer.prepare(expr.xreplace(constants))
+
+            self._canonical = Evaluator(derivation, momenta, self.seed, prepare, varying=True)
         return self._canonical
 
     @property
@@ -297,30 +304,114 @@ class GradingKey:
         signature = tuple((step, tuple(sorted(own.get(step, {}).items(), key=lambda kv: kv[0])))
                           for step in ("kinetic", "potential", "lagrangian", "equations", "multipliers"))
         if signature not in self._follows:
-            self._follows[signature] = _follow_through(self.derivation, own)
+            self._follows[signature] = follow_through(self.derivation, own, set(self.grading.weights))
         return self._follows[signature]
 
-    def candidates(self, step: str, reference: Any) -> list[tuple[str, Any, str]]:
-        if (step, reference) not in self._candidates:
-            self._candidates[(step, reference)] = _candidates(step, reference, self.derivation)
-        return self._candidates[(step, reference)]
+    def own_analysis(self, lagrangian: Any) -> dict[str, dict[str, Any]]:
+        """What lagsolve's analysis gives from a student's own L (V_eff, equilibria, ω²), once per distinct L."""
+        if lagrangian not in self._analyses:
+            self._analyses[lagrangian] = own_analysis(self.derivation, lagrangian)
+        return self._analyses[lagrangian]
+
+    def moving(self, frame: Frame | None) -> dict[str, dict[str, Any]]:
+        """The answers with the moving constraints taken as still (:func:`~.mistakes.moving_answers`)."""
+        signature = frame.signature() if frame is not None else None
+        if signature not in self._moving:
+            if None not in self._moving:
+                self._moving[None] = moving_answers(self.derivation)
+            if frame is not None:
+                self._moving[signature] = answers_in_frame(self._moving[None], frame)
+        return self._moving[signature]
+
+    def in_frame(self, frame: Frame) -> dict[str, dict[str, Any]]:
+        """The key's answers in a submission's coordinates (made once per distinct map)."""
+        signature = frame.signature()
+        if signature not in self._frames:
+            self._frames[signature] = answers_in_frame(self.answers, frame)
+        return self._frames[signature]
+
+    def candidates(self, step: str, reference: Any, frame: Frame | None = None) -> list[tuple[str, Any, str]]:
+        signature = (step, reference, frame.signature() if frame is not None else None)
+        if signature not in self._candidates:
+            self._candidates[signature] = candidates(step, reference, self.derivation, frame)
+        return self._candidates[signature]
 
 
-class _Grader:
+class _Grader(ListSteps):
     def __init__(self, key: GradingKey, submission: Submission) -> None:
         self.context, self.submission = key, submission
         self.derivation, self.grading = key.derivation, key.grading
-        self.key = key.answers
         self.own = {name: step.entries for name, step in submission.steps.items() if step.issue is None}
-        self.follows = key.follow_through(self.own)
-        self.coordinates = key.coordinates
+        self.frame = submission.frame
+        self.coordinates = key.coordinates if self.frame is None else list(self.frame.names)
+        self._key: dict[str, dict[str, Any]] | None = None
+        self._follows: tuple[dict[str, dict[str, Any]], dict[str, dict[str, Any]]] | None = None
+        self._analysis: dict[str, dict[str, Any]] | None = None
+        self.lost: list[str] = []  # what used up its budget and is left out (follow-through)
+
+    @property
+    def key(self) -> dict[str, dict[str, Any]]:
+        """The key's answers, in the submission's coordinates."""
+        if self._key is None:
+            self._key = self.context.answers if self.frame is None else self.context.in_frame(self.frame)
+        return self._key
+
+    @property
+    def raw_follows(self) -> dict[str, dict[str, Any]]:
+        """What follows from the submission's own steps, in the key's coordinates (made on first use, under the
+        step's budget: when that runs out here, nothing follows and the later steps are graded without it)."""
+        return self._own()[0]
+
+    @property
+    def follows(self) -> dict[str, dict[str, Any]]:
+        """:attr:`raw_follows` in the submission's coordinates."""
+        return self._own()[1]
+
+    def _own(self) -> tuple[dict[str, dict[str, Any]], dict[str, dict[str, Any]]]:
+        if self._follows is None:
+            self._follows = ({}, {})  # if the budget runs out inside, follow-through is given up
+            self.lost.append("follow-through")
+            context, frame = self.context, self.frame
+            if frame is None:
+                raw = context.follow_through(self.own)
+                self._follows = (raw, raw)
+            else:
+                raw = context.follow_through(own_in_key(self.own, frame))
+                self._follows = (raw, answers_in_frame(raw, frame))
+            self.lost.remove("follow-through")
+        return self._follows
+
+    def analysis_follows(self) -> dict[str, dict[str, Any]]:
+        """V_eff, equilibria and ω² from the student's own L (their L, else their T − V), in their coordinates."""
+        if self._analysis is None:
+            self._analysis = {}  # given up if the budget runs out inside
+            lagrangian = self.own.get("lagrangian", {}).get("", self.raw_follows.get("lagrangian", {}).get(""))
+            found = self.context.own_analysis(lagrangian) if lagrangian is not None else {}
+            self._analysis = found if self.frame is None else answers_in_frame(found, self.frame)
+        return self._analysis
+
+    def own_answer(self, step: str, name: str) -> Any:
+        """What follows from the student's own earlier steps for one entry (None when nothing does)."""
+        if step in ("effective_potential", "equilibria", "frequencies"):
+            return self.analysis_follows().get(step, {}).get(name)
+        return self.follows.get(step, {}).get(name)
 
     # -- grading
 
     def run(self) -> SubmissionGrade:
         grades = []
+        budget = self.grading.step_budget
         for step, weight in _weighted(self.grading):
-            grades.append(self.step(step, weight))
+            try:
+                with cpu_limit(budget):
+                    grades.append(self.step(step, weight))
+            except StageTimeout:
+                grades.append(StepGrade(step, UNGRADED, None, 0.0, weight, f"not graded: comparing this step used up "
+                                        f"its {budget:g} s CPU budget (an answer too large to compare); grade it by "
+                                        "hand"))
+            except FAILURES as error:  # an answer SymPy cannot handle: this step, not the class
+                grades.append(StepGrade(step, UNGRADED, None, 0.0, weight, "not graded: the answer could not be "
+                                        f"compared ({type(error).__name__}); grade it by hand"))
         return SubmissionGrade(self.submission.student, self.submission.source, tuple(grades))
 
     def expected_entries(self, step: str) -> list[str]:
@@ -341,9 +432,19 @@ class _Grader:
             return StepGrade(step, UNREADABLE, None, 0.0, weight, str(read.issue))
         if step in NO_KEY and step not in self.key:
             return StepGrade(step, INCORRECT, None, 0.0, weight, f"the key gives no {NO_KEY[step]} to compare")
+        if self.frame is not None and step in CARRIED and step not in self.key:
+            return StepGrade(step, INCORRECT, None, 0.0, weight, "the key's answer to this step could not be "
+                             "carried into the submission's coordinates (coordinates_map)")
         entries: list[_Entry] = []
         if step in LISTS:
             entries = self.listed(step, read.entries)
+            own = self.analysis_follows().get(step) if any(e.status != CORRECT for e in entries) else None
+            if own:
+                mine = self.listed(step, read.entries, list(own.values()))
+                if all(e.status == CORRECT for e in mine):
+                    entries = [_Entry(e.name, FOLLOWS, None, "") for e in mine]
+                    entries[0] = _Entry(entries[0].name, FOLLOWS, None, f"the {step} of the submission's own "
+                                        "Lagrangian (its potential and inertia), not the key's")
         else:
             for name in self.expected_entries(step) or list(read.entries):
                 if name not in read.entries:
@@ -367,110 +468,6 @@ class _Grader:
         values = self.context.canonical if step == "hamiltonian" else self.context.values
         return relation(values.values(value), values.values(reference), values.states)
 
-    # -- equilibria and frequencies: lists compared as a set, a multiset
-
-    def same_value(self, value: Any, reference: Any, *, angle: bool = False) -> bool:
-        """A value of the parameters (and conserved momenta) equal to the key's: symbolically (an angle up to
-        whole turns), else at every shared state where the key's value is a number (complex ones too: an
-        equilibrium that exists only for some parameters), at least :data:`LIST_STATES` of them."""
-        if same_symbolic(value, reference) or (angle and whole_turns(value - reference)):
-            return True
-        values = self.context.values
-        return same_at_states(values.values(value), values.values(reference), angle=angle)
-
-    def listed(self, step: str, entries: dict[str, Any]) -> list[_Entry]:
-        """One entry per item of the key's list (matched, or missing) and one per extra item of the student's."""
-        if step == "equilibria":
-            return self.equilibria(entries)
-        return self.frequencies(entries)
-
-    def equilibria(self, entries: dict[str, Any]) -> list[_Entry]:
-        key = list(self.key["equilibria"].values())
-        coordinates = {q for point in key for q in point}
-        lone = next(iter(coordinates)) if len(coordinates) == 1 else None
-        angles = self.context.angles
-        given: list[dict[str, Any] | None] = []
-        out: list[_Entry] = []
-        for name, pairs in entries.items():
-            point = {(lone or "") if q == "" else q: v for q, v in pairs}
-            if "" in point:
-                out.append(_Entry(name, INCORRECT, None, f"equilibrium {name}: a bare value, but the key's "
-                                  "equilibria have several coordinates: write each as a mapping coordinate: value"))
-                given.append(None)
-                continue
-            given.append(point)
-
-        def same(point: dict[str, Any] | None, reference: dict[str, Any]) -> bool:
-            return point is not None and set(point) == set(reference) and all(
-                self.same_value(point[q], reference[q], angle=q in angles) for q in reference)
-
-        used: set[int] = set()
-        for reference in key:
-            found = next((i for i, p in enumerate(given) if i not in used and same(p, reference)), None)
-            if found is None:
-                shown = shown_point(reference)
-                out.append(_Entry(shown, INCORRECT, None, f"the equilibrium {shown} is missing"))
-            else:
-                used.add(found)
-                out.append(_Entry(shown_point(reference), CORRECT))
-        for i, extra in enumerate(given):
-            if i in used or extra is None:
-                continue
-            if any(same(extra, reference) for reference in key):
-                continue  # the same point again (an angle written another way): no more, no less credit
-            out.append(_Entry(str(i + 1), INCORRECT, None, f"{shown_point(extra)} is not an equilibrium of the key's"
-                              + ("" if set(extra) == coordinates else
-                                 f" (the key's equilibria give {', '.join(sorted(coordinates))})")))
-        return out
-
-    def frequencies(self, entries: dict[str, Any]) -> list[_Entry]:
-        key = list(self.key["frequencies"].values())
-        either = self.grading.frequency_form == "either"
-        given = list(entries.items())
-
-        def how(value: Any, reference: Any) -> str:
-            if self.same_value(value, reference):
-                return "squared"
-            if self.same_value(value**2, reference):
-                return "omega"
-            return ""
-
-        out: list[_Entry] = []
-        used: set[int] = set()
-        unmatched: list[Any] = []
-        for reference in key:
-            found = None
-            for i, (_, value) in enumerate(given):
-                if i in used:
-                    continue
-                kind = how(value, reference)
-                if kind:
-                    found = (i, kind)
-                    break
-            label = f"ω² = {sympy.sstr(reference)}"
-            if found is None:
-                if reference == 0:
-                    continue  # the zero ω² of a free motion (a continuum of equilibria) may be left out
-                unmatched.append(reference)
-                out.append(_Entry(label, INCORRECT, None, f"the squared frequency {sympy.sstr(reference)} is missing"))
-                continue
-            used.add(found[0])
-            if found[1] == "omega" and not either:
-                out.append(_Entry(label, INCORRECT, None, f"{given[found[0]][0]}: this is ω; the key asks for ω² "
-                                  f"({sympy.sstr(reference)})"))
-            else:
-                out.append(_Entry(label, CORRECT))
-        extras = [(i, value) for i, (_, value) in enumerate(given) if i not in used]
-        for i, value in extras:
-            if any(how(value, reference) for reference in key):
-                continue  # the same frequency again (about a symmetric equilibrium)
-            mistake, detail = None, "is not a squared frequency (nor a frequency) of the key's"
-            if len(unmatched) == 1 and len(extras) == 1:
-                mistake, detail = frequency_mistake(value, unmatched[0], detail)
-            out.append(_Entry(given[i][0], INCORRECT, mistake, f"{given[i][0]}: {sympy.sstr(value)} {detail}"))
-        return out
-
-
     def entry(self, step: str, name: str, value: Any) -> _Entry:
         if step in ("equations", "constraints"):
             return self.equation(step, name, value)
@@ -486,11 +483,14 @@ class _Grader:
         convention = step == "multipliers" and found.kind == OPPOSITE
         if convention and self.grading.lambda_sign == "either":
             return _Entry(name, CORRECT, None, f"{_label(name)}correct in the opposite sign convention of λ (accepted)")
-        own = self.follows.get(step, {}).get(name)
+        own = self.own_answer(step, name)
         if own is not None:
             followed = self.relation(value, own, step)
             if followed.kind == SAME or (followed.kind == OFFSET and step in SHIFTS):
                 return _Entry(name, FOLLOWS, None, f"{_label(name)}follows from the submission's own earlier steps")
+        if step == "conserved" and self.conserved_along_own(value):
+            return _Entry(name, FOLLOWS, None, f"{_label(name)}conserved along the submission's own equations of "
+                                               "motion")
         mistake, detail = self.diagnose(step, name, found, value, reference)
         return _Entry(name, INCORRECT, mistake, f"{_label(name)}{detail}")
 
@@ -502,7 +502,35 @@ class _Grader:
             real = [v for v in rate or () if isinstance(v, mpmath.mpf)]
             if len(real) >= MINIMUM_STATES and all(close(v, 0) for v in real):
                 return _Entry(name, CORRECT, None, f"{_label(name)}conserved along the key's equations of motion")
+        if self.conserved_along_own(value):
+            return _Entry(name, FOLLOWS, None, f"{_label(name)}conserved along the submission's own equations of "
+                                               "motion")
         return _Entry(name, INCORRECT, None, f"{_label(name)}not conserved along the key's equations of motion")
+
+    def conserved_along_own(self, value: Any) -> bool:
+        """``value`` is not constant at the shared states but its rate along the student's own q̈ (from their
+        equations, or their L's, with the key's constraints), which are not the key's, is zero there."""
+        own = self.raw_follows.get("accelerations")
+        model = self.derivation.model
+        if not own or any(q not in own for q in self.context.coordinates):
+            return False
+        values = self.context.values
+        key = self.context.answers.get("accelerations", {})
+        if all(q in key and self.relation(own[q], key[q]).kind == SAME for q in self.context.coordinates):
+            return False  # no earlier mistake: what the key's motion conserves is graded against the key
+        with contextlib.suppress(TypeError, ValueError, AttributeError):
+            at = values.values(value) or ()
+            groups: dict[int, list[Any]] = {}
+            for state, v in zip(values.states, at, strict=True):
+                if isinstance(v, mpmath.mpf):
+                    groups.setdefault(state.group, []).append(v)
+            if all(all(close(v, vs[0]) for v in vs) for vs in groups.values()):
+                return False  # constant at each value of the parameters: conserved by any equations
+            qdd = {a: own[q] for a, q in zip(model.accelerations, self.context.coordinates, strict=True)}
+            rate = model.time_derivative(value, second_order=True).xreplace(qdd)
+            found = [v for v in values.values(rate) or () if isinstance(v, mpmath.mpf)]
+            return len(found) >= MINIMUM_STATES and all(close(v, 0) for v in found)
+        return False
 
     def diagnose(self, step: str, name: str, found: Relation, value: Any, reference: Any) -> tuple[str | None, str]:
         """The mistake and a sentence of evidence: how the values relate first, then the candidates."""
@@ -523,15 +551,33 @@ class _Grader:
             if released is not None:
                 return DROPPED, (f"it is the acceleration with {released} released (λ = 0), as if the motion "
                                  "were free to leave the constraint surface")
-        if found.kind == FACTOR:
-            return FACTOR_MISSING, f"off by a constant factor{_factor(found)}"
-        for mistake, candidate, detail in self.context.candidates(step, reference):
+        dimension = self.dimension(step, value, reference)
+        if found.kind == FACTOR and not dimension.startswith(INHOMOGENEOUS):
+            model = self.derivation.model
+            moving_symbols = {model.time, *model.coordinates, *model.velocities}
+            return FACTOR_MISSING, (f"off by a constant factor{_factor(found, value, reference, moving_symbols)}"
+                                    + (f"; {dimension}" if dimension else ""))
+        still = self.context.moving(self.frame).get(step, {}).get(name)
+        if still is not None and self.relation(value, still, step).kind == SAME:
+            return MOVING, moving_evidence(self.derivation)
+        for mistake, candidate, detail in self.context.candidates(step, reference, self.frame):
             same = self.relation(value, candidate, step)
             if same.kind == SAME or (same.kind == OFFSET and step in SHIFTS):
                 return mistake or None, detail
+        if dimension:
+            return DIMENSION, dimension
         if step == "hamiltonian" and value.has(*self.derivation.model.velocities):
             return None, "written with velocities: H is a function of the coordinates and the momenta p_q"
         return None, self.differs(found)
+
+    def dimension(self, step: str, value: Any, reference: Any) -> str:
+        """The evidence of a wrong dimension ("" when none is found): not for H (its momenta have no units here);
+        in a step known up to a constant, a bare number added is that constant, not a term of another dimension."""
+        if step == "hamiltonian":
+            return ""
+        if step in SHIFTS and value.is_Add:
+            value = sympy.Add(*(t for t in value.args if not t.is_number))
+        return self.context.dimensions.differs(value, reference)
 
     def differs(self, found: Relation) -> str:
         if found.kind == UNDECIDED:
@@ -555,7 +601,7 @@ class _Grader:
         reference = self.key["equations"][name]
         if same(reference):
             return _Entry(name, CORRECT)
-        if same(_flip_multipliers(reference, self.derivation)):
+        if same(flip_multipliers(reference, self.derivation)):
             if self.grading.lambda_sign == "either":
                 return _Entry(name, CORRECT, None, f"{_label(name)}correct in the opposite sign convention of λ "
                                                    "(accepted)")
@@ -564,7 +610,7 @@ class _Grader:
         own = self.follows.get("equations", {}).get(name)
         if own is not None and same(own):
             return _Entry(name, FOLLOWS, None, f"{_label(name)}follows from the submission's own Lagrangian")
-        for mistake, candidate, detail in self.context.candidates("equations", reference):
+        for mistake, candidate, detail in self.context.candidates("equations", reference, self.frame):
             if same(candidate):
                 return _Entry(name, INCORRECT, mistake, f"{_label(name)}{detail}")
         return _Entry(name, INCORRECT, None, f"{_label(name)}not the key's equation, even up to a constant factor")
@@ -579,8 +625,27 @@ class _Grader:
             factor = ratio(value, reference)
             if factor is not None and not (factor.free_symbols & variables) and factor != 0:
                 return _Entry(name, CORRECT)
+        if terms.name in {c.name for c in moving(derivation)}:
+            for form in still_constraint(terms, model.time, model):
+                factor = ratio(value, form)
+                if factor is not None and not (factor.free_symbols & variables) and factor != 0:
+                    return _Entry(name, INCORRECT, MOVING, f"{_label(name)}written as if the constraint did not move:"
+                                  f" ∂ψ/∂t = {sympy.sstr(terms.offset)} is missing (ψ = "
+                                  f"{sympy.sstr(terms.expression)} = 0)")
+        if self.frame is not None and self.holds_on_surface(value):
+            return _Entry(name, CORRECT, None, f"{_label(name)}holds on the key's constraint surface (in the "
+                                               "submission's coordinates)")
         return _Entry(name, INCORRECT, None, f"{_label(name)}not the key's constraint ψ = "
                                              f"{sympy.sstr(terms.expression)} = 0 up to a constant factor")
+
+
+    def holds_on_surface(self, value: Any) -> bool:
+        """ψ (mapped) is zero at every shared state (on the key's constraint surface) and not zero everywhere."""
+        values = self.context.values
+        found = values.values(value)
+        if found is None or len(found) < MINIMUM_STATES or sympy.simplify(value) == 0:
+            return False
+        return all(isinstance(v, mpmath.mpf) and close(v, 0) for v in found)
 
 
 def _example(entries: list[_Entry], mistake: str | None, texts: dict[str, str]) -> str:
@@ -597,150 +662,18 @@ def _opposite_up_to_constant(found: Relation) -> bool:
     return len(rows) == len(found.rows) and constant_in_groups(rows, additive=True)
 
 
-def _label(name: str) -> str:
-    return f"{name}: " if name else ""
-
-
-def _factor(found: Relation) -> str:
-    """`` (it is k times the key's)`` when the ratio is one small rational number at every state."""
+def _factor(found: Relation, value: Any = None, reference: Any = None, variables: frozenset | set = frozenset()
+            ) -> str:
+    """`` (it is k times the key's)`` when the ratio is one small rational number at every state, or a product of
+    powers of the parameters (found by cancelling ``value / reference``)."""
     ratios = [r[1][0] / r[2][0] for r in found.rows if isinstance(r[1][0], mpmath.mpf) and abs(r[2][0]) > 1e-20]
     if not ratios or not all(close(v, ratios[0]) for v in ratios):
+        factor = ratio(value, reference) if value is not None and reference is not None else None
+        if factor is not None and monomial(factor) and sympy.count_ops(factor) <= 12 \
+                and not factor.free_symbols & variables:
+            return f" (it is {sympy.sstr(factor)} times the key's)"
         return " (a factor that depends on the parameters)"
     guess = Fraction(float(ratios[0])).limit_denominator(1000)
     if not close(mpmath.mpf(guess.numerator) / guess.denominator, ratios[0]):
         return ""
     return f" (it is {sympy.sstr(sympy.Rational(guess.numerator, guess.denominator))} times the key's)"
-
-
-# -- the answers a mistake would give -------------------------------------------------------------------
-
-
-def _flip_multipliers(expr: Any, derivation: Derivation) -> Any:
-    return expr.xreplace({c.multiplier: -c.multiplier for c in derivation.constraints})
-
-
-def _without_velocity_squared(expr: Any, velocities: Iterable[Any]) -> Any:
-    r"""``expr`` less its part quadratic in the velocities: with :math:`E(s) = E(s\dot q)`,
-    :math:`E - (E(2) - 2E(1) + E(0))/2` (exact for E of degree two in :math:`\dot q`)."""
-    velocities = tuple(velocities)
-
-    def scaled(k: int) -> Any:
-        return expr.xreplace({v: k * v for v in velocities})
-
-    return expr - (scaled(2) - 2 * expr + scaled(0)) / 2
-
-
-def _terms(expr: Any) -> tuple[Any, ...]:
-    with contextlib.suppress(TypeError, ValueError):
-        terms = sympy.Add.make_args(sympy.expand(expr))
-        return terms if 1 < len(terms) <= MAX_TERMS else ()
-    return ()
-
-
-def _candidates(step: str, reference: Any, derivation: Derivation) -> list[tuple[str, Any, str]]:
-    """(mistake, the key's answer with that mistake made, evidence) for ``step``, most specific first; a mistake
-    "" is a known difference without a name (said in the evidence only)."""
-    model = derivation.model
-    out: list[tuple[str, Any, str]] = []
-    if step == "lagrangian":
-        out.append((POTENTIAL_SIGN, model.kinetic + model.potential, "it is T + V: the potential has the wrong sign"))
-        for k in (2, sympy.Rational(1, 2)):
-            out.append((FACTOR_MISSING, k * model.kinetic - model.potential,
-                        f"the kinetic energy is {k} times the key's"))
-        for term in _terms(model.kinetic):
-            out.append((KINETIC_TERM, model.lagrangian - term, f"the kinetic term {sympy.sstr(term)} is missing"))
-    if step == "hamiltonian":
-        out.extend(hamiltonian_candidates(derivation))
-    if step == "kinetic":
-        for term in _terms(reference):
-            out.append((KINETIC_TERM, reference - term, f"the kinetic term {sympy.sstr(term)} is missing"))
-    if step not in ("kinetic", "potential", "lagrangian", "constraints", "hamiltonian"):
-        without = _without_velocity_squared(reference, model.velocities)
-        if without != reference:
-            out.append((VELOCITY_SQUARED, without,
-                        "the terms quadratic in the velocities (centripetal, Coriolis) are missing"))
-    signs = POTENTIAL_SIGN if step == "potential" else SIGN
-    for term in _terms(reference):
-        out.append((signs, reference - 2 * term, f"the term {sympy.sstr(term)} has the wrong sign"))
-    return out
-
-
-# -- follow-through: what the submission's own steps give -----------------------------------------------
-
-
-def _follow_through(derivation: Derivation, own: dict[str, dict[str, Any]]) -> dict[str, dict[str, Any]]:
-    """The answers that follow from the submission's own Lagrangian and equations, step by step."""
-    model = derivation.model
-    names = [q.name for q in derivation.problem.coordinates]
-    out: dict[str, dict[str, Any]] = {}
-    kinetic = own.get("kinetic", {}).get("")
-    potential = own.get("potential", {}).get("")
-    if kinetic is not None or potential is not None:
-        out["lagrangian"] = {"": (model.kinetic if kinetic is None else kinetic)
-                             - (model.potential if potential is None else potential)}
-    lagrangian = own.get("lagrangian", {}).get("", out.get("lagrangian", {}).get(""))
-    terms: LagrangeTerms | None = None
-    if lagrangian is not None:
-        form = derivation.form
-        forces = form.generalized_forces if form is not None else tuple(0 for _ in names)
-        student = Model(model.time, model.coordinates, model.velocities, model.accelerations,
-                        sympy.Integer(0), sympy.Integer(0), lagrangian)
-        with contextlib.suppress(TypeError, ValueError, AttributeError, NotImplementedError):
-            terms = lagrange_terms(student, tuple(_constraint_terms(derivation)), tuple(forces))
-    if lagrangian is not None:
-        with contextlib.suppress(TypeError, ValueError, AttributeError, NotImplementedError, ZeroDivisionError):
-            own_h = legendre(derivation, lagrangian)
-            if own_h is not None:
-                out["hamiltonian"] = {"": own_h}
-    if terms is not None:
-        out["momenta"] = dict(zip(names, terms.momenta, strict=True))
-        out["generalized_forces"] = dict(zip(names, terms.gradients, strict=True))
-        out["equations"] = dict(zip(names, terms.equations, strict=True))
-    equations = [own.get("equations", {}).get(q, (terms.equations[i] if terms is not None else None))
-                 for i, q in enumerate(names)]
-    if "equations" in own or terms is not None:
-        solved = _solve(derivation, equations)
-        if solved is not None:
-            accelerations, multipliers = solved
-            out["accelerations"] = dict(zip(names, accelerations, strict=True))
-            constraints = [c.name for c in derivation.constraints]
-            out["multipliers"] = dict(zip(constraints, multipliers, strict=True))
-    lam = own.get("multipliers") or out.get("multipliers")
-    if lam and derivation.form is not None:
-        magnitudes = {}
-        for c in derivation.constraints:
-            scale = force_scale(derivation.form.reactions[c.name])
-            if c.name in lam and scale is not sympy.nan:
-                magnitudes[c.name] = sympy.Abs(lam[c.name]) * scale
-        out["constraint_forces"] = magnitudes
-    return out
-
-
-def _constraint_terms(derivation: Derivation) -> tuple[Any, ...]:
-    form = derivation.form
-    return form.constraints if form is not None else derivation.constraints
-
-
-def _solve(derivation: Derivation, equations: list[Any]) -> tuple[list[Any], list[Any]] | None:
-    r"""q̈ and λ from the submission's equations (linear in them) and the key's constraints, A q̈ = β."""
-    if any(e is None for e in equations):
-        return None
-    model = derivation.model
-    constraints = _constraint_terms(derivation)
-    unknowns = [*model.accelerations, *(c.multiplier for c in constraints)]
-    rows = list(equations)
-    for c in constraints:
-        rows.append(sum((a * qdd for a, qdd in zip(c.coefficients, model.accelerations, strict=True)),
-                        sympy.Integer(0)) - c.acceleration_rhs)
-    zero = {u: 0 for u in unknowns}
-    try:
-        matrix = sympy.Matrix([[sympy.diff(r, u) for u in unknowns] for r in rows])
-        if any(entry.has(*unknowns) for entry in matrix):
-            return None  # not linear in the accelerations and multipliers
-        rhs = sympy.Matrix([-r.xreplace(zero) for r in rows])
-        solution = list(solve_linear(matrix, rhs))
-    except (ValueError, ZeroDivisionError, TypeError, DerivationError):
-        return None
-    n = len(model.accelerations)
-    return solution[:n], solution[n:]
-

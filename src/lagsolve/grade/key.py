@@ -8,6 +8,7 @@ earlier mistake, and whether the opposite sign convention of λ is accepted.
       follow_through: 0.5                         # share of a step's points for `follows` (default 1)
       lambda_sign: either                         # strict (default): -λ is the mistake lambda_sign_convention
       frequency_form: squared                     # either (default): ω or ω²; squared: ω² only
+      step_budget: 10                             # CPU seconds to grade one step of one submission (default 10)
 
 Without ``weights`` the steps of the derivation's core are graded (:func:`default_weights`).
 """
@@ -30,17 +31,21 @@ DEFAULT_WEIGHTS = {"kinetic": 1.0, "potential": 1.0, "lagrangian": 1.0, "constra
 LAMBDA_SIGN = ("strict", "either")
 #: what a submission's frequencies may be: ω² or ω (either, the default), or ω² only (squared)
 FREQUENCY_FORM = ("either", "squared")
+#: CPU seconds one step of one submission may take to grade (then it is `ungraded`)
+STEP_BUDGET = 10.0
 
 
 @dataclass(frozen=True)
 class Grading:
     """``weights`` by step (in :data:`~lagsolve.grade.submission.STEPS` order), ``follow_through`` in [0, 1],
-    ``lambda_sign`` strict or either, ``frequency_form`` either (ω or ω²) or squared (ω² only)."""
+    ``lambda_sign`` strict or either, ``frequency_form`` either (ω or ω²) or squared (ω² only), ``step_budget``
+    the CPU seconds one step of one submission may take to grade."""
 
     weights: dict[str, float]
     follow_through: float = 1.0
     lambda_sign: str = "strict"
     frequency_form: str = "either"
+    step_budget: float = STEP_BUDGET
 
 
 def default_weights(problem: Problem) -> dict[str, float]:
@@ -76,9 +81,9 @@ def read_grading(path: str | Path, problem: Problem) -> Grading:
         raise fail(("grading",), f"expected a mapping, found {kind_of(spec)}",
                    "write e.g. 'grading: {weights: {equations: 4}, follow_through: 0.5}'")
     for key in spec:
-        if key not in ("weights", "follow_through", "lambda_sign", "frequency_form"):
+        if key not in ("weights", "follow_through", "lambda_sign", "frequency_form", "step_budget"):
             raise fail(("grading", key), f"unknown key {key!r}",
-                       "use weights, follow_through, lambda_sign, frequency_form")
+                       "use weights, follow_through, lambda_sign, frequency_form, step_budget")
     weights = default_weights(problem)
     if "weights" in spec:
         raw = spec["weights"]
@@ -107,4 +112,7 @@ def read_grading(path: str | Path, problem: Problem) -> Grading:
     form = spec.get("frequency_form", "either")
     if form not in FREQUENCY_FORM:
         raise fail(("grading", "frequency_form"), f"expected one of {', '.join(FREQUENCY_FORM)}, found {form!r}")
-    return Grading(weights, float(follow), sign, form)
+    budget = spec.get("step_budget", STEP_BUDGET)
+    if isinstance(budget, bool) or not isinstance(budget, int | float) or not 0.1 <= budget <= 3600:
+        raise fail(("grading", "step_budget"), f"expected CPU seconds from 0.1 to 3600, found {budget!r}")
+    return Grading(weights, float(follow), sign, form, float(budget))

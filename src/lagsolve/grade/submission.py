@@ -18,6 +18,8 @@ from typing import Any
 import sympy
 
 from lagsolve.errors import ExpressionError, Issue, SpecError
+from lagsolve.grade.frame import Frame, MapError, build_frame
+from lagsolve.mechanics.stages import StageTimeout, cpu_limit
 from lagsolve.problem import expr as gateway
 from lagsolve.problem.names import momentum_name, momentum_symbol
 from lagsolve.problem.readers.base import line_of
@@ -41,6 +43,8 @@ LISTS = ("equilibria", "frequencies")
 #: most items in a list step
 MAX_ITEMS = 32
 MAX_NAME = 200
+#: CPU seconds to make a coordinates_map's chain rule (its Jacobian and inverse)
+MAP_BUDGET = 10.0
 
 
 @dataclass(frozen=True)
@@ -58,17 +62,21 @@ class Step:
 
 @dataclass(frozen=True)
 class Submission:
-    """A read submission: the student's id, the file, and the steps it contains (by name)."""
+    """A read submission: the student's id, the file, and the steps it contains (by name); ``frame`` is the
+    change of coordinates of its ``coordinates_map:`` (None in the key's coordinates), every entry already
+    mapped into the key's coordinates."""
 
     student: str
     source: str
     steps: dict[str, Step]
+    frame: Frame | None = None
 
 
 def names_for(problem: Problem, contacts: tuple[str, ...] = (), normals: dict[str, Any] | None = None,
-              *, accelerations: bool = False) -> gateway.Namespace:
+              *, accelerations: bool = False, frame: Frame | None = None) -> gateway.Namespace:
     """The names a submission's expressions may use: the key's own (``expected:``'s) plus, in the equations,
-    the accelerations ``q_ddot``, and ``N_<contact>``."""
+    the accelerations ``q_ddot``, and ``N_<contact>``; with a ``frame``, the student's coordinates too (their
+    ``_dot``, ``_ddot`` and ``p_`` names)."""
     symbols = dict(problem.symbols)
     for c in problem.constraints:
         symbols.setdefault(f"lambda_{c.name}", sympy.Symbol(f"lambda_{c.name}", real=True))
@@ -76,10 +84,14 @@ def names_for(problem: Problem, contacts: tuple[str, ...] = (), normals: dict[st
         symbols.setdefault(momentum_name(q.name), momentum_symbol(q.name))
     symbols.update(normals or {})
     forbidden = {}
-    for q in problem.coordinates:
-        name = q.acceleration.name
+    ddots = [(q.acceleration.name, q.acceleration) for q in problem.coordinates]
+    if frame is not None:
+        for own in frame.coordinates:
+            symbols.update({own.name: own.symbol, own.velocity.name: own.velocity, own.momentum.name: own.momentum})
+        ddots += [(own.acceleration.name, own.acceleration) for own in frame.coordinates]
+    for name, acceleration in ddots:
         if accelerations:
-            symbols[name] = q.acceleration
+            symbols[name] = acceleration
         else:
             forbidden[name] = "accelerations may appear only in the equations step"
     return gateway.Namespace(symbols, {f.name: f.function for f in problem.functions}, forbidden)
@@ -115,8 +127,10 @@ class _Reader:
     def __init__(self, document: Document, problem: Problem, source: str, normals: dict[str, Any]) -> None:
         self.data, self.lines, self.problem, self.source = document.data, document.lines, problem, source
         self.normals = normals
+        self.frame: Frame | None = None
         self.plain = names_for(problem, normals=normals)
         self.with_accelerations = names_for(problem, normals=normals, accelerations=True)
+        self.coordinates = tuple(q.name for q in problem.coordinates)
 
     def line(self, path: tuple) -> int:
         return line_of(self.lines, path)
@@ -129,10 +143,12 @@ class _Reader:
         if not isinstance(data, dict):
             raise SpecError([self.issue((), f"expected a mapping with 'student' and 'steps', found {kind_of(data)}",
                                         "see docs/grading.md for the submission format")])
-        unknown = [k for k in data if k not in ("student", "steps")]
+        unknown = [k for k in data if k not in ("student", "steps", "coordinates_map")]
         if unknown:
             raise SpecError([self.issue((unknown[0],), f"unknown key {unknown[0]!r}",
-                                        "a submission has only 'student' and 'steps'")])
+                                        "a submission has only 'student', 'steps' and 'coordinates_map'")])
+        if "coordinates_map" in data:
+            self.read_map(data["coordinates_map"])
         student = data.get("student", stem)
         if isinstance(student, int) and not isinstance(student, bool):
             student = str(student)
@@ -149,7 +165,47 @@ class _Reader:
             if name not in STEPS:
                 raise SpecError([self.issue(path, f"unknown step {name!r}", f"the steps are: {', '.join(STEPS)}")])
             out[name] = self.step(name, value, path)
-        return Submission(student.strip(), self.source, out)
+        return Submission(student.strip(), self.source, out, self.frame)
+
+    def read_map(self, spec: Any) -> None:
+        """``coordinates_map:``: each student coordinate as an expression of the key's coordinates and t."""
+        path = ("coordinates_map",)
+        example = "write e.g. 'coordinates_map: {phi: theta - pi}' (each of your coordinates in the key's)"
+        if not isinstance(spec, dict) or not spec or len(spec) > MAX_ITEMS:
+            raise SpecError([self.issue(path, f"expected a mapping of coordinates, found {kind_of(spec)}", example)])
+        problem = self.problem
+        keys = {q.name for q in problem.coordinates}
+        taken = set(self.plain.symbols) | set(self.with_accelerations.symbols) | {f.name for f in problem.functions}
+        parsed = {}
+        for name, text in spec.items():
+            where = (*path, name)
+            why = gateway.name_problem(name) if isinstance(name, str) else "a name must be a string"
+            if why is None and name not in keys and any(n in taken for n in (name, f"{name}_dot", f"{name}_ddot",
+                                                                              momentum_name(name))):
+                why = f"{name!r} (or its _dot, _ddot, p_ name) is already a name of the key"
+            if why is not None:
+                raise SpecError([self.issue(where, why, "name your coordinate with a new word")])
+            try:
+                parsed[name] = gateway.parse(text, self.plain)
+            except ExpressionError as error:
+                raise SpecError([self.issue(where, error.message, error.hint)]) from None
+        qs = tuple(q.symbol for q in problem.coordinates)
+        try:
+            with cpu_limit(MAP_BUDGET):
+                self.frame = build_frame(parsed, dict(problem.symbols), problem.time, qs,
+                                         tuple(q.velocity for q in problem.coordinates),
+                                         tuple(q.acceleration for q in problem.coordinates))
+        except StageTimeout:
+            raise SpecError([self.issue(path, f"the map is too large to use (its Jacobian was not inverted within "
+                                              f"{MAP_BUDGET:g} s of CPU)", example)]) from None
+        except MapError as error:
+            raise SpecError([self.issue(path, str(error), example)]) from None
+        except (TypeError, ValueError, ZeroDivisionError, NotImplementedError):
+            raise SpecError([self.issue(path, "the map is not a change of coordinates that can be used", example)]
+                            ) from None
+        self.plain = names_for(problem, normals=self.normals, frame=self.frame)
+        self.with_accelerations = names_for(problem, normals=self.normals, accelerations=True, frame=self.frame)
+        self.coordinates = self.frame.names
 
     def step(self, name: str, value: Any, path: tuple) -> Step:
         line = self.line(path)
@@ -161,25 +217,30 @@ class _Reader:
 
     def entries(self, name: str, value: Any, path: tuple) -> dict[str, Any]:
         if name in SCALAR:
-            return {"": self.expression(value, path, self.plain)}
+            parsed = self.expression(value, path, self.plain)
+            if self.frame is not None and name == "hamiltonian":
+                self.mapped(parsed, path)  # refused like the others when it cannot be written in the key's
+                return {"": self.frame.hamiltonian(parsed)}
+            return {"": self.mapped(parsed, path)}
         if name in LISTS:
             return self.items(name, value, path)
         if name == "effective_potential":
             spec = self.mapping(value, path, "{coordinate: r, expression: ...}")
             self.known(path, spec, ("coordinate", "expression"), "the keys")
             coordinate = spec.get("coordinate")
-            coordinates = [q.name for q in self.problem.coordinates]
+            coordinates = list(self.coordinates)
             if coordinate not in coordinates:
                 raise _Unreadable(self.issue((*path, "coordinate"), f"unknown coordinate {coordinate!r}",
                                              f"the coordinates are: {', '.join(coordinates)}"))
             if "expression" not in spec:
                 raise _Unreadable(self.issue(path, "no 'expression'", "write the effective potential as 'expression'"))
-            return {coordinate: self.expression(spec["expression"], (*path, "expression"), self.plain)}
+            where = (*path, "expression")
+            return {coordinate: self.mapped(self.expression(spec["expression"], where, self.plain), where)}
         spec = self.mapping(value, path, "{name: expression, ...}")
         known: tuple[str, ...] = ()
         what = "names"
         if name in PER_COORDINATE:
-            known, what = tuple(q.name for q in self.problem.coordinates), "coordinates"
+            known, what = self.coordinates, "coordinates"
         elif name in PER_CONSTRAINT:
             known, what = tuple(c.name for c in self.problem.constraints), "constraints"
         elif name in PER_CONTACT:
@@ -191,7 +252,7 @@ class _Reader:
         for key, text in spec.items():
             if not isinstance(key, str) or not key or len(key) > MAX_NAME:
                 raise _Unreadable(self.issue(path, f"{key!r} is not a name", "write names as plain words"))
-            out[key] = self.expression(text, (*path, key), names, equation=name in EQUATIONS)
+            out[key] = self.mapped(self.expression(text, (*path, key), names, equation=name in EQUATIONS), (*path, key))
         return out
 
     def items(self, name: str, value: Any, path: tuple) -> dict[str, Any]:
@@ -204,7 +265,7 @@ class _Reader:
         if not items or len(items) > MAX_ITEMS:
             raise _Unreadable(self.issue(path, f"expected a list of 1 to {MAX_ITEMS} items, found {len(items)}",
                                          f"write {example}"))
-        coordinates = tuple(q.name for q in self.problem.coordinates)
+        coordinates = self.coordinates
         out: dict[str, Any] = {}
         for i, item in enumerate(items):
             where = (*path, i) if isinstance(value, list) else path
@@ -220,6 +281,17 @@ class _Reader:
             self.known(where, item, coordinates, "coordinates")
             out[str(i + 1)] = tuple((q, self.expression(item[q], (*where, q), self.plain)) for q in item)
         return out
+
+    def mapped(self, expr: Any, path: tuple) -> Any:
+        """``expr`` in the key's coordinates (the student's put in through the map)."""
+        if self.frame is None:
+            return expr
+        try:
+            return self.frame.entry(expr)
+        except (TypeError, ValueError, AttributeError):
+            raise _Unreadable(self.issue(path, "cannot be written in the key's coordinates (a derivative with respect "
+                                               "to one of your coordinates that the map replaces)",
+                                         "write that derivative with the key's coordinate")) from None
 
     def mapping(self, value: Any, path: tuple, example: str) -> dict[str, Any]:
         if not isinstance(value, dict):

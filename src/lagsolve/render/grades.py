@@ -25,7 +25,7 @@ FORMATS = ("text", "json", "csv", "junit", "gradescope")
 #: the file each format is written to with ``-o DIR`` (gradescope: one folder per student)
 FILES = {"text": "grades.txt", "json": "grades.json", "csv": "grades.csv", "junit": "grades.xml",
          "gradescope": "results.json"}
-MARKS = {"correct": "✓", "follows": "→", "incorrect": "✗", "missing": "–", "unreadable": "?"}
+MARKS = {"correct": "✓", "follows": "→", "incorrect": "✗", "missing": "–", "unreadable": "?", "ungraded": "…"}
 
 
 def _number(value: float) -> float | int:
@@ -78,14 +78,17 @@ def _safe(text: str) -> str:
 
 
 def grades_junit(grades: ClassGrades) -> str:
-    """One test suite per student, one test per step (incorrect, missing, unreadable: a failure)."""
+    """One test suite per student, one test per step (incorrect, missing, unreadable: a failure; ungraded:
+    skipped, to be graded by hand)."""
     lines = ['<?xml version="1.0" encoding="UTF-8"?>', f"<testsuites name={quoteattr('lagsolve grade')}>"]
     for g in grades.grades:
-        failures = sum(1 for s in g.steps if s.status not in ("correct", "follows"))
+        failures = sum(1 for s in g.steps if s.status not in ("correct", "follows", "ungraded"))
         lines.append(f"  <testsuite name={quoteattr(g.student)} tests=\"{len(g.steps)}\" failures=\"{failures}\">")
         for s in g.steps:
             lines.append(f"    <testcase classname={quoteattr(g.student)} name={quoteattr(s.step)}>")
-            if s.status not in ("correct", "follows"):
+            if s.status == "ungraded":
+                lines.append(f"      <skipped message={quoteattr(s.message)}/>")
+            elif s.status not in ("correct", "follows"):
                 what = f"{s.status}" + (f" ({s.mistake})" if s.mistake else "")
                 lines.append(f"      <failure message={quoteattr(what)}>{_escape(s.message)}</failure>")
             lines.append("    </testcase>")
@@ -127,6 +130,8 @@ SUMMARIES = ("md", "html")
 #: the file each summary is written to with ``-o DIR``
 SUMMARY_FILES = {"md": "summary.md", "html": "summary.html"}
 STATUSES = ("correct", "follows", "incorrect", "missing", "unreadable")
+#: a comparison that used up its CPU budget: a column of the summary only when some step is ungraded
+UNGRADED = "ungraded"
 #: most mistakes listed per step, and longest example shown (characters)
 MAX_MISTAKES = 5
 MAX_EXAMPLE = 160
@@ -173,7 +178,7 @@ def class_summary(grades: ClassGrades) -> list[StepSummary]:
             first = next((s for s in same if s.answer), same[0])
             mistakes.append(MistakeSummary(mistake, groups[mistake], _one_line(first.answer), _one_line(first.message)))
         mean = sum(s.points for s in graded) / len(graded)
-        out.append(StepSummary(step, {k: counts.get(k, 0) for k in STATUSES}, mean,
+        out.append(StepSummary(step, {k: counts.get(k, 0) for k in (*STATUSES, UNGRADED)}, mean,
                                max(s.max_points for s in graded), tuple(mistakes)))
     return out
 
@@ -203,17 +208,23 @@ def _totals(grades: ClassGrades) -> tuple[int, float, float]:
     return n, mean, top
 
 
+def _columns(steps: list[StepSummary]) -> tuple[str, ...]:
+    """The statuses counted in the summary's table: ``ungraded`` only when some step is."""
+    return (*STATUSES, UNGRADED) if any(s.counts.get(UNGRADED) for s in steps) else STATUSES
+
+
 def summary_markdown(grades: ClassGrades) -> str:
     """The class summary as GitHub Markdown: a table of the steps, then each step's most common mistakes."""
     n, mean, top = _totals(grades)
     steps = class_summary(grades)
+    columns = _columns(steps)
     lines = [f"# Class summary: {_md_literal(grades.key)}", "",
              f"{n} submissions graded against {md_code_span(_one_line(grades.source))}; mean "
              f"{_number(round(mean, 2))}/{_number(top)} points; {grades.unreadable} files could not be read.", "",
-             "| step | mean points | " + " | ".join(STATUSES) + " |", "|---|---:|" + "---:|" * len(STATUSES)]
+             "| step | mean points | " + " | ".join(columns) + " |", "|---|---:|" + "---:|" * len(columns)]
     for s in steps:
         lines.append(f"| {s.step} | {_number(round(s.points, 2))}/{_number(s.max_points)} | "
-                     + " | ".join(str(s.counts[k]) for k in STATUSES) + " |")
+                     + " | ".join(str(s.counts[k]) for k in columns) + " |")
     lines += ["", "## Most common mistakes", ""]
     wrong = [s for s in steps if s.mistakes]
     if not wrong:
@@ -238,14 +249,15 @@ def summary_html(grades: ClassGrades) -> str:
     """The class summary as one HTML page (well-formed XML too); every piece of text escaped."""
     n, mean, top = _totals(grades)
     steps = class_summary(grades)
+    columns = _columns(steps)
     title = escape(f"Class summary: {grades.key}")
     out = ["<!DOCTYPE html>", '<html lang="en">', "<head>", '<meta charset="utf-8"/>', f"<title>{title}</title>",
            f"<style>{_STYLE}</style>", "</head>", "<body>", f"<h1>{title}</h1>",
            f"<p>{n} submissions graded against <code>{escape(grades.source)}</code>; mean "
            f"{_number(round(mean, 2))}/{_number(top)} points; {grades.unreadable} files could not be read.</p>",
-           "<table>", "<tr><th>step</th><th>mean points</th>" + "".join(f"<th>{k}</th>" for k in STATUSES) + "</tr>"]
+           "<table>", "<tr><th>step</th><th>mean points</th>" + "".join(f"<th>{k}</th>" for k in columns) + "</tr>"]
     for s in steps:
-        cells = "".join(f'<td class="n">{s.counts[k]}</td>' for k in STATUSES)
+        cells = "".join(f'<td class="n">{s.counts[k]}</td>' for k in columns)
         out.append(f'<tr><th>{escape(s.step)}</th><td class="n">{_number(round(s.points, 2))}/'
                    f"{_number(s.max_points)}</td>{cells}</tr>")
     out += ["</table>", "<h2>Most common mistakes</h2>"]
