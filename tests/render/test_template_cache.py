@@ -9,7 +9,7 @@ from pathlib import Path
 import jinja2
 import pytest
 
-from lagsolve.render import template_cache
+from lagsolve.render import precompile, template_cache
 from lagsolve.render.report import render_sections, sections_summary
 from lagsolve.render.sections import build
 from mechanics_support import derived_file
@@ -21,7 +21,7 @@ def _env(templates: Path, cache: jinja2.BytecodeCache | None) -> jinja2.Environm
 
 
 def test_build_compiles_every_packaged_template(tmp_path: Path) -> None:
-    count = template_cache.build(tmp_path)
+    count = precompile.build(tmp_path)
     entries = sorted((tmp_path / "ImmutableSandboxedEnvironment").iterdir())
     assert count == len(entries) > 30
     assert all(e.suffix == ".cache" and e.stat().st_size > 0 for e in entries)
@@ -40,7 +40,7 @@ def test_reports_are_the_same_with_the_compiled_templates(tmp_path: Path, monkey
 
     monkeypatch.setattr(template_cache, "CACHE", tmp_path / "none")
     plain = outputs()
-    template_cache.build(tmp_path / "cache")
+    precompile.build(tmp_path / "cache")
     monkeypatch.setattr(template_cache, "CACHE", tmp_path / "cache")
     cached = outputs()
     report._environment.cache_clear()
@@ -51,7 +51,7 @@ def test_the_cache_is_read_only_and_a_stale_entry_is_compiled_again(tmp_path: Pa
     templates, folder = tmp_path / "templates", tmp_path / "cache"
     templates.mkdir()
     (templates / "page.j2").write_text("one {{ x }}")
-    writer = _env(templates, template_cache._Writer(folder))
+    writer = _env(templates, template_cache.Writer(folder))
     folder.mkdir()
     assert writer.get_template("page.j2").render(x=1) == "one 1"
     before = {p.name: p.read_bytes() for p in folder.iterdir()}
@@ -70,7 +70,7 @@ def test_a_symbolic_link_in_the_cache_is_not_followed(tmp_path: Path) -> None:
     (templates / "page.j2").write_text("real {{ x }}")
     folder.mkdir()
     elsewhere.mkdir()
-    _env(templates, template_cache._Writer(elsewhere)).get_template("page.j2")
+    _env(templates, template_cache.Writer(elsewhere)).get_template("page.j2")
     (entry,) = elsewhere.iterdir()
     cache = template_cache.InstalledCache(folder)
     env, source = _env(templates, cache), "real {{ x }}"

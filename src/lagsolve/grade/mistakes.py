@@ -91,7 +91,7 @@ def moving(derivation: Derivation) -> list[Any]:
     """The key's constraints that move: an offset b = ∂ψ/∂t, or coefficients with an explicit t."""
     time = derivation.model.time
     return [c for c in constraint_terms(derivation)
-            if c.offset != 0 or any(sympy.sympify(a).has(time) for a in c.coefficients)]
+            if c.offset != 0 or any(sympy.sympify(a, strict=True).has(time) for a in c.coefficients)]
 
 
 def still_constraint(c: Any, time: Any, model: Any) -> tuple[Any, ...]:

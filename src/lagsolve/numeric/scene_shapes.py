@@ -18,6 +18,7 @@ import sympy
 
 from lagsolve.mechanics.geometry.shapes import Anchor, Geometry, Surface
 from lagsolve.numeric.compile import substitute_functions
+from lagsolve.numeric.pulleys import corner, meeting
 from lagsolve.numeric.scene import CURVE_POINTS, Force, Run, Scene, Shape
 
 #: points along a moving wire (drawn at every sample) and around a circle
@@ -387,37 +388,13 @@ class Builder:
             cut = None
             if shape.kind == "ground" and shape.points.shape == (4, 2) and self.gravity.size == 2:
                 cut = next((c for pulley, ups in self.pulleys for u in ups
-                            if (c := self._corner(shape.points, pulley, u)) is not None), None)
+                            if (c := corner(shape.points, pulley, u, self.gravity, self.scale)) is not None), None)
             if cut is None:
                 out.append(shape)
                 continue
             out += [Shape(shape.kind, shape.label, band, shape.closed, shape.views) for band in cut]
             self.ends.append((shape.label, cut[0][1], cut[0][1] - cut[0][0]))
         return out
-
-    def _corner(self, band: np.ndarray, pulley: np.ndarray, u: np.ndarray) -> list[np.ndarray] | None:
-        """The band (a, b on the surface, then into the material) ended where the strand along it meets its pulley,
-        and the face down from that corner; None when the pulley is not on the band's surface or the strand does
-        not run along it."""
-        a, b, into = band[0], band[1], band[3] - band[0]
-        e = (b - a) / np.linalg.norm(b - a)
-        u = u / np.linalg.norm(u)
-        n = into / np.linalg.norm(into)
-        if abs(float((pulley - a) @ n)) > 1e-6 * self.scale or abs(abs(float(u @ e)) - 1.0) > 1e-9:
-            return None
-        far = a if float((a - pulley) @ u) < float((b - pulley) @ u) else b
-        top = pulley - 0.06 * self.scale * u  # clear of the pulley's rim
-        g = self.gravity
-        drop = float((far - top) @ g)
-        if drop <= 0:
-            return None
-        level = top + drop * g
-        across = u - (u @ g) * g
-        inward = -across / np.linalg.norm(across)
-        depth = float(np.linalg.norm(into))
-        slope = np.stack([far, top, top + into, far + into])
-        face = np.stack([top, level, level + depth * inward, top + depth * inward])
-        return [slope, face]
 
     def _wedge(self, surface: Surface, point: np.ndarray, normal: np.ndarray) -> Shape | None:
         """The carrier's body under the face it carries: from the face (as far as the member on it goes, past its
@@ -481,7 +458,7 @@ class Builder:
                 anchors[i] = anchors[i] + shift * u
                 towards.append(u)
             u1, u2 = towards
-            meet = self._meeting(ends, anchors, u1, u2)
+            meet = meeting(ends, anchors, u1, u2, self.scale)
             if meet is not None:  # both strands' lines meet beyond their ends: one pulley there
                 wheel = circle(meet[:1], 0.04 * self.scale, np.array([[1.0, 0.0]]), np.array([[0.0, 1.0]]))
                 out.insert(0, Shape("string", string.constraint, np.stack([first, meet, second], axis=1)))
@@ -511,22 +488,6 @@ class Builder:
                         out.append(Shape("pulley", string.constraint, small[0], closed=True))
             out.insert(0, Shape("string", string.constraint, path))
         return out
-
-    def _meeting(self, ends: list[np.ndarray], anchors: list[np.ndarray], u1: np.ndarray | None,
-                 u2: np.ndarray | None) -> np.ndarray | None:
-        """The fixed point (samples, 2) where two strands of fixed, different directions ``u1``, ``u2`` (a block's
-        string up a slope, a weight's up from it) meet beyond where either end comes, or None."""
-        if u1 is None or u2 is None or anchors[0].shape[1] != 2 or np.allclose(u1, u2):
-            return None
-        basis = np.stack([u1, -u2], axis=1)
-        if abs(float(np.linalg.det(basis))) < 1e-6:
-            return None
-        t, _ = np.linalg.solve(basis, anchors[1][0] - anchors[0][0])
-        meet = anchors[0][0] + t * u1
-        for end, u in ((ends[0], u1), (ends[1], u2)):
-            if float(np.min((meet - end) @ u)) < 0.08 * self.scale:  # an end would pass the pulley
-                return None
-        return np.broadcast_to(meet, anchors[0].shape).copy()
 
     def springs(self) -> tuple[list[Shape], list[np.ndarray]]:
         """Springs as zig-zags and dampers as dashpots (side by side where both join the same ends), fixed to a

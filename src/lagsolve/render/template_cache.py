@@ -1,7 +1,7 @@
 """Compiled report templates, kept with the install so that a command does not compile them again.
 
 Compiling the Jinja2 templates of the reports costs about a quarter of a second of CPU at each ``lagsolve
-derive``, more than rendering them. ``make`` (after installing) runs ``python -m lagsolve.render.template_cache``,
+derive``, more than rendering them. ``make`` (after installing) runs ``python -m lagsolve.render.precompile``,
 which compiles every packaged template into Jinja2's bytecode cache under the environment's prefix
 (``<venv>/share/lagsolve/template-cache/<environment class>``); a command only ever *reads* that folder
 (:class:`InstalledCache`), so nothing is written at run time outside the output folder. Jinja2 checks each entry
@@ -15,7 +15,6 @@ from __future__ import annotations
 import os
 import sys
 from pathlib import Path
-from typing import Any
 
 import jinja2
 
@@ -46,28 +45,9 @@ class InstalledCache(jinja2.BytecodeCache):
         return None  # read-only at run time
 
 
-class _Writer(jinja2.FileSystemBytecodeCache):
-    """The cache as ``make`` writes it (same entry names as :class:`InstalledCache` reads)."""
+class Writer(jinja2.FileSystemBytecodeCache):
+    """The cache as ``make`` writes it (:mod:`lagsolve.render.precompile`; the entry names :class:`InstalledCache`
+    reads)."""
 
     def __init__(self, folder: Path) -> None:
         super().__init__(str(folder), "%s.cache")
-
-
-def build(folder: Path = CACHE) -> int:
-    """Compile every packaged template of every kind into ``folder`` (in the subfolder of the environment class
-    the reports use: the code Jinja2 compiles for its sandbox differs); the number compiled."""
-    from lagsolve.render.report import ENVIRONMENT, environment
-
-    folder = folder / ENVIRONMENT.__name__
-    folder.mkdir(parents=True, exist_ok=True)
-    count = 0
-    for kind in ("markdown", "latex", "html", "text"):
-        env: Any = environment(kind).overlay(bytecode_cache=_Writer(folder))
-        for name in env.list_templates(filter_func=lambda n: n.endswith(".j2")):
-            env.get_template(name)
-            count += 1
-    return count
-
-
-if __name__ == "__main__":  # pragma: no cover - run by make
-    print(f"lagsolve: compiled {build()} templates into {CACHE}")
