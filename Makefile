@@ -10,7 +10,7 @@ $(STAMP): pyproject.toml
 	test -d $(VENV) || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e '.[dev]'
-	$(BIN)/python -m lagsolve.render.precompile
+	$(BIN)/python -m lagsolve.prepare
 	touch $(STAMP)
 
 run: $(STAMP)

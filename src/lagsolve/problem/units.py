@@ -42,7 +42,11 @@ def registry() -> Any:
     """pint's unit registry, made once per process (loading it takes about 0.4 s, so only when a file has units)."""
     import pint
 
-    return pint.UnitRegistry(autoconvert_offset_to_baseunit=False)
+    from lagsolve.caches import pint_cache
+
+    folder = pint_cache(pint.__version__)  # definitions parsed by make, read only; else parsed here
+    return pint.UnitRegistry(autoconvert_offset_to_baseunit=False,
+                             cache_folder=str(folder) if folder is not None else None)
 
 
 def canonical(text: Any) -> str:

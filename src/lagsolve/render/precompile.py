@@ -1,5 +1,5 @@
-"""``python -m lagsolve.render.precompile``: compile every packaged report template into the install's bytecode
-cache (:mod:`lagsolve.render.template_cache`), as ``make`` does after installing."""
+"""Compile every packaged report template into the install's bytecode cache (:mod:`lagsolve.render.template_cache`),
+as ``make`` does after installing (``python -m lagsolve.prepare``)."""
 
 from __future__ import annotations
 
@@ -22,7 +22,3 @@ def build(folder: Path = CACHE) -> int:
             env.get_template(name)
             count += 1
     return count
-
-
-if __name__ == "__main__":  # pragma: no cover - run by make
-    print(f"lagsolve: compiled {build()} templates into {CACHE}")

@@ -1,7 +1,7 @@
 """Compiled report templates, kept with the install so that a command does not compile them again.
 
 Compiling the Jinja2 templates of the reports costs about a quarter of a second of CPU at each ``lagsolve
-derive``, more than rendering them. ``make`` (after installing) runs ``python -m lagsolve.render.precompile``,
+derive``, more than rendering them. ``make`` (after installing) runs ``python -m lagsolve.prepare``,
 which compiles every packaged template into Jinja2's bytecode cache under the environment's prefix
 (``<venv>/share/lagsolve/template-cache/<environment class>``); a command only ever *reads* that folder
 (:class:`InstalledCache`), so nothing is written at run time outside the output folder. Jinja2 checks each entry
@@ -13,13 +13,14 @@ folder (``pip install``) are rendered as before, only not faster.
 from __future__ import annotations
 
 import os
-import sys
 from pathlib import Path
 
 import jinja2
 
+from lagsolve.caches import TEMPLATES
+
 #: where ``make`` writes the compiled templates: beside the interpreter's install, never in the user's folders
-CACHE = Path(sys.prefix) / "share" / "lagsolve" / "template-cache"
+CACHE = TEMPLATES
 
 
 class InstalledCache(jinja2.BytecodeCache):
