@@ -3,8 +3,9 @@
 The module needs only NumPy. It holds ``PARAMETERS`` (the file's simulation values), ``STATE``
 (``q...`` then ``q_dot...``), ``rhs(t, y, p)`` solving the augmented linear system
 ``[[M, -Aᵀ], [A, 0]] [q̈; λ] = [F; β]`` numerically, and ``outputs(t, y, p)`` with the CSV's names
-(``lambda_<c>``, ``F_<c>``, ``energy``) and the residuals ``psi_<c>`` (holonomic constraints) and
-``velocity_<c>`` (A q̇ + offset). Names from the file appear only as string literals (``repr``);
+(``lambda_<c>``, ``F_<c>``, ``energy``), the force of constraint's components ``F_<c>_x`` (``_y``,
+``_z``: on the constraint's first particle, λ times its direction) and the residuals ``psi_<c>`` (holonomic
+constraints) and ``velocity_<c>`` (A q̇ + offset). Names from the file appear only as string literals (``repr``);
 every identifier in the code is generated (``_t``, ``_q0``, ``_p0``, ``_x0``...).
 """
 
@@ -87,6 +88,16 @@ def _friction(system: NumericSystem, unpack: list[str], mapping: dict[Any, Any],
     return lines
 
 
+def force_components(system: NumericSystem) -> list[tuple[str, int, int]]:
+    """Per component of each force of constraint (on its first particle): its output name ``F_<c>_x`` (``_y``,
+    ``_z``), the constraint's index and the component's row in ``expressions["force_directions"]``."""
+    out, at = [], 0
+    for j, (c, dims) in enumerate(zip(system.constraints, system.force_dims, strict=True)):
+        out += [(f"F_{c}_{axis}", j, at + i) for i, axis in enumerate("xyz"[:dims])]
+        at += dims
+    return out
+
+
 def _header(system: NumericSystem, name: str, version: str) -> list[str]:
     """The module's opening comment: the problem, the generator, and what the module does not model."""
     return [
@@ -149,6 +160,7 @@ def _outputs(system: NumericSystem, unpack: list[str], mapping: dict[Any, Any], 
         "    _, lam, normal = _solve(t, y, p)",
         *unpack,
         *_block("_scales", groups["scales"], mapping, printer),
+        *_block("_fdir", groups["force_directions"], mapping, printer),
         *_block("_energy", groups["energy"], mapping, printer),
         *_block("_psi", groups["psi"], mapping, printer),
         *_block("_jac", groups["velocity_jacobian"], mapping, printer),
@@ -158,6 +170,7 @@ def _outputs(system: NumericSystem, unpack: list[str], mapping: dict[Any, Any], 
         "    out = {}",
         *(f"    out[{f'lambda_{c}'!r}] = float(lam[{j}])" for j, c in enumerate(system.constraints)),
         *(f"    out[{f'F_{c}'!r}] = float(abs(lam[{j}]) * _scales[{j}])" for j, c in enumerate(system.constraints)),
+        *(f"    out[{name!r}] = float(lam[{j}] * _fdir[{at}])" for name, j, at in force_components(system)),
         "    out['energy'] = float(_energy[0])",
         *(f"    out[{f'N_{c}'!r}] = float(normal[{i}])" for i, c in enumerate(system.contact_names)),
         *(f"    out[{f'friction_{c}'!r}] = float(_mu[{2 * i + 1}] * normal[{i}]"
