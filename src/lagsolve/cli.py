@@ -329,7 +329,7 @@ def _write_reports(reports: Any, plan: _DerivePlan, output: Path | None) -> None
 
 @main.command()
 @click.argument("file", type=click.Path(path_type=Path))
-@click.option("--to", "to", type=click.Choice(["python", "c"]), default="python", show_default=True,
+@click.option("--to", "to", type=click.Choice(["python", "c", "fmu"]), default="python", show_default=True,
               help="Target: python (one NumPy module <slug>.py), c (C99 <name>.h and <name>.c, needing only libm), "
                    "fmu (an FMI 2.0 Model Exchange <name>.fmu, built with the system C compiler).")
 @click.option("-o", "--output", type=click.Path(path_type=Path), default=Path("out"), show_default=True,

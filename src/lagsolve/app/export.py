@@ -8,7 +8,7 @@ import sympy
 
 from lagsolve.errors import Issue, SpecError
 
-TARGETS = ("python", "c")
+TARGETS = ("python", "c", "fmu")
 
 
 def export_file(path: Path | str, to: str = "python", output: Path | str = "out") -> Path:
@@ -63,7 +63,7 @@ def export_file(path: Path | str, to: str = "python", output: Path | str = "out"
         return write_file(Path(output), f"{prefix}.c", code)
     from lagsolve.app.fmu import build_fmu
 
-    return build_fmu(system, prefix, problem.name, header, code, Path(output))
+    return build_fmu(system, problem, prefix, header, code, Path(output), __version__)
 
 
 def _prefix(source: str) -> str:
