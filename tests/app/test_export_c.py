@@ -40,6 +40,7 @@ class Compiled:
         self.states = self._names("state_names")
         self.parameters = self._names("parameter_names")
         self.outputs_names = self._names("output_names")
+        self.events = self._names("event_names")
         defaults = (ctypes.c_double * len(self.parameters)).in_dll(self.lib, f"{name}_parameter_defaults")
         self.p = np.array(defaults[:], dtype=float)
 
@@ -104,7 +105,8 @@ def test_c_matches_simulate(name: str, tmp_path: Path) -> None:
 
 
 @needs_cc
-@pytest.mark.parametrize("name", ["bead", "rotating_tube", "rough_incline", "atwood", "pendulum_cartesian"])
+@pytest.mark.parametrize("name", ["bead", "rotating_tube", "rough_incline", "atwood", "pendulum_cartesian",
+                                  "sliding_off_sphere"])
 def test_c_matches_the_python_export_at_random_states(name: str, tmp_path: Path) -> None:
     compiled = Compiled(name, tmp_path)
     module = _python_module(name, tmp_path)
@@ -120,6 +122,9 @@ def test_c_matches_the_python_export_at_random_states(name: str, tmp_path: Path)
         assert list(out) == list(reference)
         for key, value in reference.items():
             assert out[key] == pytest.approx(value, rel=1e-12, abs=1e-12 * max(1.0, abs(value))), key
+        assert compiled.events == list(module.EVENTS)
+        np.testing.assert_allclose(compiled._call("event_indicators", t, y, max(1, len(compiled.events)))[
+            :len(compiled.events)], module.event_indicators(t, y), rtol=1e-12, atol=1e-12)
 
 
 def test_a_file_name_without_identifier_is_refused(tmp_path: Path) -> None:

@@ -23,7 +23,7 @@ from sympy.printing.c import C99CodePrinter
 
 from lagsolve.numeric.system import NumericSystem
 from lagsolve.render.c_solve import gauss, normal_forces, sigma, size, solve
-from lagsolve.render.python_module import force_components
+from lagsolve.render.python_module import event_names, force_components
 
 #: the groups of ``system.expressions`` the C code evaluates, each one static function
 GROUPS = ("matrices", "sliding", "directions", "contact_values", "scales", "force_directions", "energy", "psi",
@@ -95,11 +95,9 @@ def layout(system: NumericSystem) -> Layout:
                *(name for name, _, _ in force_components(system)), "energy",
                *(f"N_{c}" for c in system.contact_names), *(f"friction_{c}" for c in system.contact_names),
                *(f"psi_{c}" for c in holonomic), *(f"velocity_{c}" for c in constraints)]
-    events = [*(f"sliding_{c}" for c, sticks in zip(system.contact_names, system.sticks, strict=True) if sticks),
-              *(f"lambda_{constraints[j]}" for j in system.unilateral)]
     return Layout(states=(*system.coordinates, *(f"{c}_dot" for c in system.coordinates)),
                   parameters=system.parameter_names, defaults=tuple(system.parameters.tolist()),
-                  outputs=tuple(outputs), events=tuple(events))
+                  outputs=tuple(outputs), events=tuple(event_names(system)))
 
 
 class _Writer:

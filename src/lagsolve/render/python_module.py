@@ -46,8 +46,12 @@ def _friction(system: NumericSystem, unpack: list[str], mapping: dict[Any, Any],
     """``_signs`` (per forcing column: 1, then −sign(σ)... folded in as sign(σ) for contacts that slide along
     one line, 1 otherwise) and ``_normal_forces`` (N = |a + B N| per contact, as lagsolve simulate solves it)."""
     n = system.n
-    lines = ["def _signs(t, y, p):", '    """1, then per contact sign(sigma) of its sliding rate (1 in a plane)."""']
-    lines += [*unpack, *_block("_sliding", system.expressions["sliding"], mapping, printer)]
+    lines = ["def _sliding_rates(t, y, p):",
+             '    """Per contact that can stick: the sliding rate\'s coefficients w, the drift and the forces g."""']
+    lines += [*unpack, *_block("_sliding", system.expressions["sliding"], mapping, printer), "    return _sliding",
+              "", ""]
+    lines += ["def _signs(t, y, p):", '    """1, then per contact sign(sigma) of its sliding rate (1 in a plane)."""',
+              "    _sliding = _sliding_rates(t, y, p)"]
     lines.append(f"    out = np.ones({len(system.contacts) + 1})")
     at = 0
     for c, sticks in enumerate(system.sticks):
@@ -183,6 +187,33 @@ def _outputs(system: NumericSystem, unpack: list[str], mapping: dict[Any, Any], 
     ]
 
 
+def event_names(system: NumericSystem) -> list[str]:
+    """The event indicators: the sliding rate ``sliding_<c>`` of each contact that can stick, the multiplier
+    ``lambda_<c>`` of each unilateral constraint; a sign change is a change of regime."""
+    sliding = [f"sliding_{c}" for c, sticks in zip(system.contact_names, system.sticks, strict=True) if sticks]
+    return [*sliding, *(f"lambda_{system.constraints[j]}" for j in system.unilateral)]
+
+
+def _events(system: NumericSystem) -> list[str]:
+    """``event_indicators(t, y, p)``: the values of EVENTS at (t, y), for ``solve_ivp``'s events."""
+    n = system.n
+    lines = ["def event_indicators(t, y, p=PARAMETERS):",
+             '    """Sliding rates of the contacts that can stick and multipliers of the unilateral constraints, in',
+             '    the order of EVENTS: a zero crossing is a change of regime (stick, slip or release)."""',
+             "    y = np.asarray(y, dtype=float)"]
+    if system.unilateral:
+        lines.append("    lam = _solve(t, y, p)[1]")
+    items = []
+    if any(system.sticks):
+        at = 0
+        for sticks in system.sticks:
+            if sticks:
+                items.append(f"float(_sliding_rates(t, y, p)[{at}:{at + n}] @ y[{n}:])")
+                at += 2 * n + 1
+    items += [f"float(lam[{j}])" for j in system.unilateral]
+    return [*lines, f"    return [{', '.join(items)}]", ""]
+
+
 def python_module(system: NumericSystem, name: str, version: str) -> str:
     """The module's text (deterministic: the same bytes for the same system)."""
     n, m, k = system.n, system.m, len(system.contacts)
@@ -207,6 +238,7 @@ def python_module(system: NumericSystem, name: str, version: str) -> str:
         f"PARAMETERS = {{{', '.join(f'{k!r}: {_number(v)}' for k, v in values.items())}}}",
         f"STATE = ({''.join(f'{s!r}, ' for s in state)})",
         f"CONSTRAINTS = ({''.join(f'{c!r}, ' for c in system.constraints)})",
+        f"EVENTS = ({''.join(f'{e!r}, ' for e in event_names(system))})",
         "",
         "",
         "def _matrices(t, y, p):",
@@ -225,6 +257,8 @@ def python_module(system: NumericSystem, name: str, version: str) -> str:
         *_SOLVE,
         *_rhs(n),
         *_outputs(system, unpack, mapping, printer),
+        "",
+        *_events(system),
     ]
     if printer._not_supported:  # a function NumPy has no spelling of: refuse rather than write a module that fails
         unsupported = ", ".join(sorted(str(e) for e in printer._not_supported))
