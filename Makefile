@@ -28,6 +28,8 @@ test-fast: $(STAMP)
 
 golden: $(STAMP)
 	$(BIN)/lagsolve derive problems/*.yaml --golden tests/golden --update-golden
+	for name in bead rotating_tube; do for to in python c; do \
+		$(BIN)/lagsolve export problems/$$name.yaml --to $$to -o tests/golden/export || exit 1; done; done
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests bench
