@@ -41,6 +41,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/simulate.py
 	$(BIN)/python bench/scale.py
 	$(BIN)/python bench/sweep.py
+	$(BIN)/python bench/export.py
 
 docs: $(STAMP)
 	$(BIN)/mkdocs build --strict
