@@ -84,3 +84,19 @@ def test_xml_names_are_escaped_and_control_characters_refused() -> None:
         variable_names(Layout(("x", "x_dot"), ("energy",), (1.0,), ("energy",), ()))
     with pytest.raises(SpecError):
         lagsolve.export(PROBLEMS / "bead.yaml", to="fmi", output="unused")
+
+
+@needs_cc
+def test_a_problem_name_with_xml_characters_is_escaped(tmp_path: Path) -> None:
+    from fmpy import read_model_description
+    from fmpy.validation import validate_fmu
+
+    text = (PROBLEMS / "bead.yaml").read_text()
+    lines = [line if not line.startswith("name:") else "name: 'A \"bead\" <on> & wire ]]> */'"
+             for line in text.splitlines()]
+    source = tmp_path / "odd-name.yaml"
+    source.write_text("\n".join(lines) + "\n")
+    fmu = lagsolve.export(source, to="fmu", output=tmp_path / "out")
+    assert fmu.name == "odd_name.fmu"
+    assert validate_fmu(str(fmu)) == []
+    assert read_model_description(str(fmu)).modelName == 'A "bead" <on> & wire ]]> */'
