@@ -106,7 +106,8 @@ def test_c_matches_simulate(name: str, tmp_path: Path) -> None:
 
 @needs_cc
 @pytest.mark.parametrize("name", ["bead", "rotating_tube", "rough_incline", "atwood", "pendulum_cartesian",
-                                  "sliding_off_sphere"])
+                                  "sliding_off_sphere", "stacked_blocks", "ladder_rough_floor", "rough_circular_wire",
+                                  "moving_support", "disc_on_cylinder"])
 def test_c_matches_the_python_export_at_random_states(name: str, tmp_path: Path) -> None:
     compiled = Compiled(name, tmp_path)
     module = _python_module(name, tmp_path)
