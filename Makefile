@@ -29,6 +29,8 @@ test-fast: $(STAMP)
 
 golden: $(STAMP)
 	$(BIN)/lagsolve derive problems/*.yaml --golden tests/golden --update-golden
+	for name in bead rotating_tube; do for to in python c; do \
+		$(BIN)/lagsolve export problems/$$name.yaml --to $$to -o tests/golden/export || exit 1; done; done
 
 lint: $(STAMP)
 	$(BIN)/ruff check src tests bench
@@ -41,6 +43,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/scale.py
 	$(BIN)/python bench/startup.py --phases
 	$(BIN)/python bench/sweep.py
+	$(BIN)/python bench/export.py
 
 docs: $(STAMP)
 	$(BIN)/mkdocs build --strict

@@ -379,8 +379,10 @@ def check(path_or_derivation: str | Path | bytes | Problem | Derivation, *, budg
 
 
 def export(path: str | Path, *, to: str = "python", output: str | Path = "out") -> Path:
-    """Write the problem's equations as code (``to="python"``: one NumPy module ``<slug>.py``) into
-    ``output`` and return the file's path. Raises :class:`SpecError` for what cannot be exported."""
+    """Write the problem's equations as code into ``output`` and return the main file's path: ``to="python"``,
+    one NumPy module ``<slug>.py``; ``"c"``, C99 ``<name>.h`` and ``<name>.c`` (the ``.c`` returned); ``"fmu"``, an
+    FMI 2.0 Model Exchange ``<name>.fmu`` built with the system C compiler. Raises :class:`SpecError` for what
+    cannot be exported (and, for ``"fmu"``, when no C compiler is found)."""
     from lagsolve.app.export import export_file
 
     return export_file(path, to, output)

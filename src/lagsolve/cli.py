@@ -329,8 +329,9 @@ def _write_reports(reports: Any, plan: _DerivePlan, output: Path | None) -> None
 
 @main.command()
 @click.argument("file", type=click.Path(path_type=Path))
-@click.option("--to", "to", type=click.Choice(["python"]), default="python", show_default=True,
-              help="Target: python (one NumPy module <slug>.py).")
+@click.option("--to", "to", type=click.Choice(["python", "c", "fmu"]), default="python", show_default=True,
+              help="Target: python (one NumPy module <slug>.py), c (C99 <name>.h and <name>.c, needing only libm), "
+                   "fmu (an FMI 2.0 Model Exchange <name>.fmu, built with the system C compiler).")
 @click.option("-o", "--output", type=click.Path(path_type=Path), default=Path("out"), show_default=True,
               help="Output folder.")
 def export(file: Path, to: str, output: Path) -> None:
@@ -338,6 +339,8 @@ def export(file: Path, to: str, output: Path) -> None:
 
     \b
     lagsolve export problems/bead.yaml --to python -o out/
+    lagsolve export problems/bead.yaml --to c -o out/
+    lagsolve export problems/rotating_tube.yaml --to fmu -o out/
     """
     from lagsolve.app.export import export_file
 

@@ -53,6 +53,8 @@ def test_module_matches_simulate(name: str, tmp_path: Path) -> None:
             lam = float(run.multipliers[i, j])
             assert out[f"lambda_{c}"] == pytest.approx(lam, rel=1e-8, abs=1e-8 * max(1.0, abs(lam)))
             assert out[f"F_{c}"] == pytest.approx(float(columns[f"F_{c}"][i]), rel=1e-8, abs=1e-8)
+            vector = [out[f"F_{c}_{axis}"] for axis in "xyz" if f"F_{c}_{axis}" in out]
+            assert len(vector) >= 2 and np.hypot.reduce(vector) == pytest.approx(out[f"F_{c}"], rel=1e-12, abs=1e-12)
             assert abs(out[f"velocity_{c}"]) < 1e-7
         for key in columns:
             if key.startswith(("N_", "friction_")):

@@ -34,7 +34,7 @@ from lagsolve.mechanics.analysis.minimal_chart import MinimalChart
 from lagsolve.mechanics.equations.energy import jacobi_integral
 from lagsolve.mechanics.equations.friction import contact_directions, normal_forces_at
 from lagsolve.mechanics.equations.matrix_form import MatrixForm
-from lagsolve.mechanics.equations.reactions import force_scale
+from lagsolve.mechanics.equations.reactions import force_direction, force_scale
 from lagsolve.numeric.compile import StateFunction, compile_state_function, substitute_functions
 from lagsolve.numeric.minimal_state import NumericChart, compile_chart
 from lagsolve.problem.schema import ConstraintKind, Problem
@@ -77,6 +77,9 @@ class NumericSystem:
     conserved: StateFunction
     energy_conserved: bool
     energy_note: str
+    # per constraint: how many components its force of constraint has (the force on its first particle is
+    # λ times the rows of expressions["force_directions"]; 0 where no physical force is known)
+    force_dims: tuple[int, ...] = ()
     chart: NumericChart | None = None  # minimal coordinates, when the constraints are solved in closed form
     evaluations: list[int] = field(default_factory=lambda: [0])
     # what was compiled, for batch compilers (lagsolve.sweep): each group's expressions (NaN where a symbol
@@ -353,6 +356,7 @@ def _expressions(form: MatrixForm, conserved: Mapping[str, Any]) -> tuple[list[A
     return contacts, {
         "matrices": matrices, "directions": directions,
         "scales": [force_scale(form.reactions[c.name]) for c in form.constraints], "psi": psi,
+        "force_directions": [e for c in form.constraints for e in force_direction(form.reactions[c.name])],
         "psi_jacobian": [sympy.diff(e, q) for e in psi for q in model.coordinates],
         "velocity_jacobian": list(lagrange.constraint_jacobian),
         "offsets": [c.offset for c in form.constraints], "energy": [jacobi_integral(model)],
@@ -428,6 +432,7 @@ def _compiled(form: MatrixForm, prepared: dict[str, list[Any]], values: dict[str
         conserved_names=tuple(conserved_names[i] for i in usable),
         conserved=compile_state_function([prepared["conserved"][i] for i in usable], **arguments),
         energy_conserved="energy" in conserved,
+        force_dims=tuple(len(force_direction(form.reactions[c.name])) for c in form.constraints),
         energy_note=energy_note or "the analysis finds no conserved energy",
         chart=chart,
         expressions={**{group: tuple(usable_group(group)) for group in prepared if group != "conserved"},

@@ -3,8 +3,9 @@
 The module needs only NumPy. It holds ``PARAMETERS`` (the file's simulation values), ``STATE``
 (``q...`` then ``q_dot...``), ``rhs(t, y, p)`` solving the augmented linear system
 ``[[M, -Aᵀ], [A, 0]] [q̈; λ] = [F; β]`` numerically, and ``outputs(t, y, p)`` with the CSV's names
-(``lambda_<c>``, ``F_<c>``, ``energy``) and the residuals ``psi_<c>`` (holonomic constraints) and
-``velocity_<c>`` (A q̇ + offset). Names from the file appear only as string literals (``repr``);
+(``lambda_<c>``, ``F_<c>``, ``energy``), the force of constraint's components ``F_<c>_x`` (``_y``,
+``_z``: on the constraint's first particle, λ times its direction) and the residuals ``psi_<c>`` (holonomic
+constraints) and ``velocity_<c>`` (A q̇ + offset). Names from the file appear only as string literals (``repr``);
 every identifier in the code is generated (``_t``, ``_q0``, ``_p0``, ``_x0``...).
 """
 
@@ -45,8 +46,12 @@ def _friction(system: NumericSystem, unpack: list[str], mapping: dict[Any, Any],
     """``_signs`` (per forcing column: 1, then −sign(σ)... folded in as sign(σ) for contacts that slide along
     one line, 1 otherwise) and ``_normal_forces`` (N = |a + B N| per contact, as lagsolve simulate solves it)."""
     n = system.n
-    lines = ["def _signs(t, y, p):", '    """1, then per contact sign(sigma) of its sliding rate (1 in a plane)."""']
-    lines += [*unpack, *_block("_sliding", system.expressions["sliding"], mapping, printer)]
+    lines = ["def _sliding_rates(t, y, p):",
+             '    """Per contact that can stick: the sliding rate\'s coefficients w, the drift and the forces g."""']
+    lines += [*unpack, *_block("_sliding", system.expressions["sliding"], mapping, printer), "    return _sliding",
+              "", ""]
+    lines += ["def _signs(t, y, p):", '    """1, then per contact sign(sigma) of its sliding rate (1 in a plane)."""',
+              "    _sliding = _sliding_rates(t, y, p)"]
     lines.append(f"    out = np.ones({len(system.contacts) + 1})")
     at = 0
     for c, sticks in enumerate(system.sticks):
@@ -85,6 +90,16 @@ def _friction(system: NumericSystem, unpack: list[str], mapping: dict[Any, Any],
         "", "",
     ]
     return lines
+
+
+def force_components(system: NumericSystem) -> list[tuple[str, int, int]]:
+    """Per component of each force of constraint (on its first particle): its output name ``F_<c>_x`` (``_y``,
+    ``_z``), the constraint's index and the component's row in ``expressions["force_directions"]``."""
+    out, at = [], 0
+    for j, (c, dims) in enumerate(zip(system.constraints, system.force_dims, strict=True)):
+        out += [(f"F_{c}_{axis}", j, at + i) for i, axis in enumerate("xyz"[:dims])]
+        at += dims
+    return out
 
 
 def _header(system: NumericSystem, name: str, version: str) -> list[str]:
@@ -149,6 +164,7 @@ def _outputs(system: NumericSystem, unpack: list[str], mapping: dict[Any, Any], 
         "    _, lam, normal = _solve(t, y, p)",
         *unpack,
         *_block("_scales", groups["scales"], mapping, printer),
+        *_block("_fdir", groups["force_directions"], mapping, printer),
         *_block("_energy", groups["energy"], mapping, printer),
         *_block("_psi", groups["psi"], mapping, printer),
         *_block("_jac", groups["velocity_jacobian"], mapping, printer),
@@ -158,6 +174,7 @@ def _outputs(system: NumericSystem, unpack: list[str], mapping: dict[Any, Any], 
         "    out = {}",
         *(f"    out[{f'lambda_{c}'!r}] = float(lam[{j}])" for j, c in enumerate(system.constraints)),
         *(f"    out[{f'F_{c}'!r}] = float(abs(lam[{j}]) * _scales[{j}])" for j, c in enumerate(system.constraints)),
+        *(f"    out[{name!r}] = float(lam[{j}] * _fdir[{at}])" for name, j, at in force_components(system)),
         "    out['energy'] = float(_energy[0])",
         *(f"    out[{f'N_{c}'!r}] = float(normal[{i}])" for i, c in enumerate(system.contact_names)),
         *(f"    out[{f'friction_{c}'!r}] = float(_mu[{2 * i + 1}] * normal[{i}]"
@@ -168,6 +185,33 @@ def _outputs(system: NumericSystem, unpack: list[str], mapping: dict[Any, Any], 
         "    return out",
         "",
     ]
+
+
+def event_names(system: NumericSystem) -> list[str]:
+    """The event indicators: the sliding rate ``sliding_<c>`` of each contact that can stick, the multiplier
+    ``lambda_<c>`` of each unilateral constraint; a sign change is a change of regime."""
+    sliding = [f"sliding_{c}" for c, sticks in zip(system.contact_names, system.sticks, strict=True) if sticks]
+    return [*sliding, *(f"lambda_{system.constraints[j]}" for j in system.unilateral)]
+
+
+def _events(system: NumericSystem) -> list[str]:
+    """``event_indicators(t, y, p)``: the values of EVENTS at (t, y), for ``solve_ivp``'s events."""
+    n = system.n
+    lines = ["def event_indicators(t, y, p=PARAMETERS):",
+             '    """Sliding rates of the contacts that can stick and multipliers of the unilateral constraints, in',
+             '    the order of EVENTS: a zero crossing is a change of regime (stick, slip or release)."""',
+             "    y = np.asarray(y, dtype=float)"]
+    if system.unilateral:
+        lines.append("    lam = _solve(t, y, p)[1]")
+    items = []
+    if any(system.sticks):
+        at = 0
+        for sticks in system.sticks:
+            if sticks:
+                items.append(f"float(_sliding_rates(t, y, p)[{at}:{at + n}] @ y[{n}:])")
+                at += 2 * n + 1
+    items += [f"float(lam[{j}])" for j in system.unilateral]
+    return [*lines, f"    return [{', '.join(items)}]", ""]
 
 
 def python_module(system: NumericSystem, name: str, version: str) -> str:
@@ -194,6 +238,7 @@ def python_module(system: NumericSystem, name: str, version: str) -> str:
         f"PARAMETERS = {{{', '.join(f'{k!r}: {_number(v)}' for k, v in values.items())}}}",
         f"STATE = ({''.join(f'{s!r}, ' for s in state)})",
         f"CONSTRAINTS = ({''.join(f'{c!r}, ' for c in system.constraints)})",
+        f"EVENTS = ({''.join(f'{e!r}, ' for e in event_names(system))})",
         "",
         "",
         "def _matrices(t, y, p):",
@@ -212,6 +257,8 @@ def python_module(system: NumericSystem, name: str, version: str) -> str:
         *_SOLVE,
         *_rhs(n),
         *_outputs(system, unpack, mapping, printer),
+        "",
+        *_events(system),
     ]
     if printer._not_supported:  # a function NumPy has no spelling of: refuse rather than write a module that fails
         unsupported = ", ".join(sorted(str(e) for e in printer._not_supported))

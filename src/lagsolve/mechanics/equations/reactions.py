@@ -190,6 +190,12 @@ def _least_norm(J: sympy.Matrix, a: sympy.Matrix) -> sympy.Matrix | None:
         return None
 
 
+def force_direction(react: Reaction) -> tuple[Any, ...]:
+    """The force of the constraint on its first particle (or named point) per unit λ, by component; empty where
+    no physical force is known."""
+    return tuple(react.particles[0].direction) if react.particles else ()
+
+
 def force_scale(react: Reaction) -> Any:
     """|force of the constraint| / |λ|: the length of its direction on its first particle (or named point),
     NaN where no physical force is known (no particle, no point of a body named): no magnitude is claimed."""
