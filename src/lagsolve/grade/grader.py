@@ -426,31 +426,11 @@ class _Grader(ListSteps):
 
     def step(self, step: str, weight: float) -> StepGrade:
         read = self.submission.steps.get(step)
-        if read is None:
-            return StepGrade(step, MISSING, None, 0.0, weight, "not in the submission")
-        if read.issue is not None:
-            return StepGrade(step, UNREADABLE, None, 0.0, weight, str(read.issue))
-        if step in NO_KEY and step not in self.key:
-            return StepGrade(step, INCORRECT, None, 0.0, weight, f"the key gives no {NO_KEY[step]} to compare")
-        if self.frame is not None and step in CARRIED and step not in self.key:
-            return StepGrade(step, INCORRECT, None, 0.0, weight, "the key's answer to this step could not be "
-                             "carried into the submission's coordinates (coordinates_map)")
-        entries: list[_Entry] = []
-        if step in LISTS:
-            entries = self.listed(step, read.entries)
-            own = self.analysis_follows().get(step) if any(e.status != CORRECT for e in entries) else None
-            if own:
-                mine = self.listed(step, read.entries, list(own.values()))
-                if all(e.status == CORRECT for e in mine):
-                    entries = [_Entry(e.name, FOLLOWS, None, "") for e in mine]
-                    entries[0] = _Entry(entries[0].name, FOLLOWS, None, f"the {step} of the submission's own "
-                                        "Lagrangian (its potential and inertia), not the key's")
-        else:
-            for name in self.expected_entries(step) or list(read.entries):
-                if name not in read.entries:
-                    entries.append(_Entry(name, INCORRECT, None, f"{_label(name)}no entry"))
-                    continue
-                entries.append(self.entry(step, name, read.entries[name]))
+        refused = self.refused(step, read, weight)
+        if refused is not None:
+            return refused
+        assert read is not None
+        entries = self.listed_step(step, read) if step in LISTS else self.entries(step, read)
         if not entries:
             return StepGrade(step, INCORRECT, None, 0.0, weight, "the step has no entries")
         share = weight / len(entries)
@@ -463,6 +443,44 @@ class _Grader(ListSteps):
                                                                          else "")
         example = _example(entries, mistake, read.texts)
         return StepGrade(step, status, mistake, round(points, 6), weight, message, example)
+
+    def refused(self, step: str, read: Any, weight: float) -> StepGrade | None:
+        """The grade of a step that is not compared at all (missing, unreadable, nothing in the key to compare
+        with, or the key's answer not carried into the submission's coordinates); None for a step to compare."""
+        if read is None:
+            return StepGrade(step, MISSING, None, 0.0, weight, "not in the submission")
+        if read.issue is not None:
+            return StepGrade(step, UNREADABLE, None, 0.0, weight, str(read.issue))
+        if step in NO_KEY and step not in self.key:
+            return StepGrade(step, INCORRECT, None, 0.0, weight, f"the key gives no {NO_KEY[step]} to compare")
+        if self.frame is not None and step in CARRIED and step not in self.key:
+            return StepGrade(step, INCORRECT, None, 0.0, weight, "the key's answer to this step could not be "
+                             "carried into the submission's coordinates (coordinates_map)")
+        return None
+
+    def listed_step(self, step: str, read: Any) -> list[_Entry]:
+        """The entries of a step that is a list (equilibria, frequencies): against the key's, or, where they are not
+        the key's, against what the submission's own Lagrangian gives (follow-through)."""
+        entries = self.listed(step, read.entries)
+        own = self.analysis_follows().get(step) if any(e.status != CORRECT for e in entries) else None
+        if own:
+            mine = self.listed(step, read.entries, list(own.values()))
+            if all(e.status == CORRECT for e in mine):
+                entries = [_Entry(e.name, FOLLOWS, None, "") for e in mine]
+                entries[0] = _Entry(entries[0].name, FOLLOWS, None, f"the {step} of the submission's own "
+                                    "Lagrangian (its potential and inertia), not the key's")
+        return entries
+
+    def entries(self, step: str, read: Any) -> list[_Entry]:
+        """The entries of a step by name: each the key expects (or, for a step without expected names, each the
+        submission gives), compared."""
+        entries: list[_Entry] = []
+        for name in self.expected_entries(step) or list(read.entries):
+            if name not in read.entries:
+                entries.append(_Entry(name, INCORRECT, None, f"{_label(name)}no entry"))
+                continue
+            entries.append(self.entry(step, name, read.entries[name]))
+        return entries
 
     def relation(self, value: Any, reference: Any, step: str = "") -> Relation:
         values = self.context.canonical if step == "hamiltonian" else self.context.values

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from lagsolve.errors import Issue, SpecError
 from lagsolve.grade.submission import STEPS
@@ -59,6 +60,27 @@ def default_weights(problem: Problem) -> dict[str, float]:
     return {k: v for k, v in DEFAULT_WEIGHTS.items() if k not in skip}
 
 
+def _weights(raw: Any, fail: Any) -> dict[str, float]:
+    """The points of each step from ``grading.weights`` (a step with 0 is not graded); ``fail(where, message,
+    hint)`` makes the error of a malformed entry."""
+    if not isinstance(raw, dict) or not raw:
+        raise fail(("grading", "weights"), f"expected a mapping of steps to points, found {kind_of(raw)}")
+    weights = {}
+    for step in STEPS:
+        if step not in raw:
+            continue
+        value = raw[step]
+        if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) \
+                or not 0 <= value <= 1000:
+            raise fail(("grading", "weights", step), f"expected a number of points from 0 to 1000, found {value!r}")
+        if value:
+            weights[step] = float(value)
+    for step in raw:
+        if step not in STEPS:
+            raise fail(("grading", "weights", step), f"unknown step {step!r}", f"the steps are: {', '.join(STEPS)}")
+    return weights
+
+
 def read_grading(path: str | Path, problem: Problem) -> Grading:
     """The ``grading:`` section of the key file ``path`` (already loaded as ``problem``).
 
@@ -84,25 +106,7 @@ def read_grading(path: str | Path, problem: Problem) -> Grading:
         if key not in ("weights", "follow_through", "lambda_sign", "frequency_form", "step_budget"):
             raise fail(("grading", key), f"unknown key {key!r}",
                        "use weights, follow_through, lambda_sign, frequency_form, step_budget")
-    weights = default_weights(problem)
-    if "weights" in spec:
-        raw = spec["weights"]
-        if not isinstance(raw, dict) or not raw:
-            raise fail(("grading", "weights"), f"expected a mapping of steps to points, found {kind_of(raw)}")
-        weights = {}
-        for step in STEPS:
-            if step not in raw:
-                continue
-            value = raw[step]
-            if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value) \
-                    or not 0 <= value <= 1000:
-                raise fail(("grading", "weights", step), f"expected a number of points from 0 to 1000, found "
-                           f"{value!r}")
-            if value:
-                weights[step] = float(value)
-        for step in raw:
-            if step not in STEPS:
-                raise fail(("grading", "weights", step), f"unknown step {step!r}", f"the steps are: {', '.join(STEPS)}")
+    weights = _weights(spec["weights"], fail) if "weights" in spec else default_weights(problem)
     follow = spec.get("follow_through", 1.0)
     if isinstance(follow, bool) or not isinstance(follow, int | float) or not 0 <= follow <= 1:
         raise fail(("grading", "follow_through"), f"expected a number from 0 to 1, found {follow!r}")

@@ -143,18 +143,12 @@ def frames(problem: Problem, coordinates: list[Any], rods: list[Rod], drawn: lis
     (``drawn``: the bodies' drawings, a bar pivoted on a block) is joined to it already."""
     members = [(p.name, tuple(p.position)) for p in problem.particles] + [(b.name, tuple(b.position))
                                                                            for b in problem.bodies]
-    bodies = {b.name for b in problem.bodies}
     joined = {frozenset((r.start.particle, r.end.particle)) for r in rods}
     joined |= {frozenset((b.name, b.pivot.particle)) for b in drawn if b.pivot is not None}
     moving = [(n, r) for n, r in members if any(c.free_symbols & set(coordinates) for c in r)]
     if len(moving) > 8 or sum(sympy.count_ops(c) for _, r in moving for c in r) > SIZE_LIMIT:
         return []
-    rigid: dict[frozenset, Any] = {}
-    for (n1, r1), (n2, r2) in combinations(moving, 2):
-        if len(r1) == len(r2) and frozenset((n1, n2)) not in joined and (n1 in bodies or n2 in bodies):
-            length = fixed_distance([a - b for a, b in zip(r1, r2, strict=True)], coordinates)
-            if length is not None:
-                rigid[frozenset((n1, n2))] = length
+    rigid = _rigid_pairs(moving, {b.name for b in problem.bodies}, joined, coordinates)
     out: list[Rod] = []
     for group in _groups(rigid, [n for n, _ in moving]):
         position = dict(moving)
@@ -162,6 +156,19 @@ def frames(problem: Problem, coordinates: list[Any], rods: list[Rod], drawn: lis
             Rod(Anchor(a), Anchor(b), rigid[frozenset((a, b))], None) for a, b in combinations(group, 2)
             if frozenset((a, b)) in rigid]
     return out
+
+
+def _rigid_pairs(moving: list[tuple[str, tuple[Any, ...]]], bodies: set[str], joined: set[frozenset],
+                 coordinates: list[Any]) -> dict[frozenset, Any]:
+    """Each pair of moving members, one of them a body, not joined yet, whose distance the coordinates keep fixed,
+    with that distance."""
+    rigid: dict[frozenset, Any] = {}
+    for (n1, r1), (n2, r2) in combinations(moving, 2):
+        if len(r1) == len(r2) and frozenset((n1, n2)) not in joined and (n1 in bodies or n2 in bodies):
+            length = fixed_distance([a - b for a, b in zip(r1, r2, strict=True)], coordinates)
+            if length is not None:
+                rigid[frozenset((n1, n2))] = length
+    return rigid
 
 
 def _groups(pairs: dict[frozenset, Any], order: list[str]) -> list[list[str]]:
