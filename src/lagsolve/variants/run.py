@@ -30,6 +30,13 @@ from lagsolve.variants.yamlfile import variant_text
 
 #: samples of each variant's run (fine enough for the finite differences of a start from rest)
 SAMPLES = 2001
+#: right-hand-side evaluations a variant's run may take (a normal run takes a few hundred; stick–slip chattering
+#: can take millions). A count, not a time, so that a seed gives the same variants on any machine.
+MAX_EVALUATIONS = 20_000
+
+
+class _Stalled(Exception):
+    """A run used up :data:`MAX_EVALUATIONS` (raised from the integrator's progress callback)."""
 
 
 @dataclass(frozen=True)
@@ -62,6 +69,24 @@ class VariantSet:
     @property
     def slug(self) -> str:
         return self.problem.slug
+
+    def answer_names(self, *, every: bool = False) -> list[str]:
+        """The answers' names in order of first appearance (``every``: only those every variant has)."""
+        names: list[str] = []
+        for v in self.variants:
+            names += [a.name for a in v.key.answers if a.name not in names]
+        if every:
+            names = [n for n in names if all(any(a.name == n for a in v.key.answers) for v in self.variants)]
+        return names
+
+    def exported(self) -> list[str]:
+        """The answers a quiz asks for: those every variant has, except those that are 0 in every variant."""
+        names = self.answer_names(every=True)
+        return [n for n in names if any(a.name == n and a.value != 0 for v in self.variants for a in v.key.answers)]
+
+    def answer(self, variant: Variant, name: str) -> Any:
+        """``variant``'s answer ``name`` (an :class:`~lagsolve.variants.key.Answer`)."""
+        return next(a for a in variant.key.answers if a.name == name)
 
 
 @dataclass(frozen=True)
@@ -131,8 +156,14 @@ def _simulate(shared: _Shared, system: NumericSystem, start: Candidate) -> Traje
     assert spec is not None and spec.t_end is not None  # check_request refused a file without them
     from lagsolve.problem.methods import DEFAULT
 
+    def watch(t: float) -> None:
+        if system.evaluations[0] > MAX_EVALUATIONS:
+            raise _Stalled(f"the run stalls at t = {t:.6g} (more than {MAX_EVALUATIONS} evaluations of the "
+                           "equations: stick-slip chattering or a stiff stretch)")
+
     return integrate_motion(system, start.q0, start.qd0, spec.t_end, samples=SAMPLES, method=spec.method or DEFAULT,
-                            rtol=spec.rtol or 1e-10, atol=spec.atol or 1e-12, minimal=shared.minimal)
+                            rtol=spec.rtol or 1e-10, atol=spec.atol or 1e-12, minimal=shared.minimal,
+                            progress=watch)
 
 
 def _try(shared: _Shared, request: Request, varied: dict[str, float]) -> tuple[Any, sanity.Rejection | None]:
@@ -149,7 +180,7 @@ def _try(shared: _Shared, request: Request, varied: dict[str, float]) -> tuple[A
         return None, rejection
     try:
         run = _simulate(shared, system, start)
-    except LagsolveError as error:
+    except (LagsolveError, _Stalled) as error:
         return None, sanity.Rejection("simulation", str(error))
     rejection = sanity.normal_force(run, request.require)
     builder = KeyBuilder(shared.derivation, system, start.values, run)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 
 from lagsolve.enums import TextEnum
@@ -109,7 +110,8 @@ def parse_vary(text: str, problem: Problem) -> Vary:
         raise SpecError([_issue("--vary", f"{text!r}: LOW {low:g} is above HIGH {high:g}",
                                 f"swap them: --vary {name}={high:g}:{low:g}")])
     if step is not None and not step > 0:
-        raise SpecError([_issue("--vary", f"{text!r}: STEP must be positive", f"e.g. --vary {name}={low:g}:{high:g}:0.1")])
+        raise SpecError([_issue("--vary", f"{text!r}: STEP must be positive",
+                                f"e.g. --vary {name}={low:g}:{high:g}:0.1")])
     positive = {p.name for p in problem.parameters if p.positive}
     if name in positive and low <= 0:
         raise SpecError([_issue("--vary", f"{text!r}: parameter {name!r} is declared positive, but LOW is {low:g}",
@@ -147,3 +149,34 @@ def _regime_issues(problem: Problem, require: Require | None) -> list[Issue]:
         return [_issue("--require", f"{require} needs a unilateral constraint, and {problem.source} has none",
                        "drop --require, or use a file with one (problems/sliding_off_sphere.yaml)")]
     return []
+
+
+def build_request(problem: Problem, *, count: int, vary: object, seed: int = 0, require: str | None = None,
+                  sig_figs: int = 3, to: str = "yaml", attempts: int = 0) -> Request:
+    """A checked :class:`Request` from the library's arguments: ``vary`` is a sequence of ``"NAME=LOW:HIGH[:STEP]"``
+    strings or a mapping of names to ``"LOW:HIGH[:STEP]"``; ``require`` and ``to`` are their options' words.
+
+    Raises
+    ------
+    SpecError
+        Everything :func:`parse_vary` and :func:`check_request` refuse, an unknown ``require`` or ``to``.
+    """
+    issues = []
+    if require is not None and require not in tuple(Require):
+        issues.append(_issue("--require", f"unknown regime {require!r}", "one of " + ", ".join(Require)))
+    if to not in tuple(Export):
+        issues.append(_issue("--to", f"unknown export {to!r}", "one of " + ", ".join(Export)))
+    if issues:
+        raise SpecError(issues)
+    if isinstance(vary, Mapping):
+        texts = [f"{k}={v}" for k, v in vary.items()]
+    elif isinstance(vary, str) or not isinstance(vary, Iterable):
+        raise SpecError([_issue("vary", "expected a list of NAME=LOW:HIGH[:STEP] strings or a mapping",
+                                'e.g. vary=["mu=0.1:0.6", "Omega=1:4"]')])
+    else:
+        texts = [str(v) for v in vary]
+    request = Request(count=count, vary=tuple(parse_vary(t, problem) for t in texts), seed=seed,
+                      require=Require(require) if require is not None else None, sig_figs=sig_figs,
+                      to=Export(to), attempts=attempts)
+    check_request(problem, request)
+    return request
