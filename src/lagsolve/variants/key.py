@@ -73,7 +73,8 @@ class StateNumbers:
     """Evaluates the derivation's expressions at one state and the variant's values."""
 
     def __init__(self, derivation: Derivation, values: Mapping[str, float], q: np.ndarray, qd: np.ndarray,
-                 coordinates: tuple[str, ...], t: float = 0.0) -> None:
+                 coordinates: tuple[str, ...], t: float = 0.0, signs: Mapping[Any, float] | None = None) -> None:
+        self.signs = {k: sympy.Integer(int(v)) for k, v in (signs or {}).items()}
         symbols = derivation.problem.symbols
         numbers: dict[str, float] = {**values, str(derivation.problem.time): t}
         numbers.update(zip(coordinates, map(float, q), strict=True))
@@ -81,7 +82,7 @@ class StateNumbers:
         self.map = {symbols[k]: sympy.Float(v, 17) for k, v in numbers.items() if k in symbols}
 
     def __call__(self, expr: Any) -> float:
-        value = complex(sympy.sympify(expr).xreplace(self.map).evalf(17))
+        value = complex(sympy.sympify(expr).xreplace(self.signs).xreplace(self.map).evalf(17))
         return value.real if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) else math.nan
 
 
@@ -109,8 +110,8 @@ class KeyBuilder:
     def build(self) -> Key:
         run = self.run
         q0, qd0 = run.q[0], run.qd[0]
-        at_rest, regime, probe = self.contacts_at_start(q0, qd0)
-        numbers = StateNumbers(self.derivation, self.values, q0, probe, run.coordinates)
+        at_rest, regime, signs = self.contacts_at_start(q0, qd0)
+        numbers = StateNumbers(self.derivation, self.values, q0, qd0, run.coordinates, signs=signs)
         self.scale = max([1.0, *(abs(v) for v in run.multipliers[0]), *(abs(v) for v in run.normal_forces[0])])
         self.accelerations(numbers, q0, qd0, at_rest, regime)
         self.multipliers(numbers)
@@ -123,12 +124,13 @@ class KeyBuilder:
         released = any(e.kind == EventKind.RELEASE for e in run.events)
         return Key(tuple(self.answers), regime, released)
 
-    def contacts_at_start(self, q0: np.ndarray, qd0: np.ndarray) -> tuple[dict[str, bool], dict[str, str], np.ndarray]:
+    def contacts_at_start(self, q0: np.ndarray, qd0: np.ndarray) -> tuple[dict[str, bool], dict[str, str],
+                                                                         dict[Any, float]]:
         """Per contact: whether it is at rest at t = 0, its regime (the closed form, checked against the run),
-        and the velocities to evaluate sign(σ) with: those of the state, nudged the way a contact at rest slips."""
+        and for a contact at rest that slips, sign(σ) as the way it starts to slide (against the holding force)."""
         at_rest: dict[str, bool] = {}
         regime: dict[str, str] = {}
-        probe = np.array(qd0, dtype=float)
+        signs: dict[Any, float] = {}
         numbers = StateNumbers(self.derivation, self.values, q0, qd0, self.run.coordinates)
         for c, result in enumerate(self.derivation.friction):
             name, term = result.term.name, result.term
@@ -140,14 +142,12 @@ class KeyBuilder:
             if at_rest[name]:
                 ratio, static = numbers(result.sticking.ratio), numbers(term.static)
                 closed = "stick" if ratio <= static else "slip"
-                w = np.array([numbers(x) for x in term.rate])
-                push = -numbers(result.sticking.force)
-                probe = probe + 1e-9 * math.copysign(1.0, push) * w / max(float(w @ w), 1e-300)
+                signs[sympy.sign(term.sliding_rate)] = math.copysign(1.0, -numbers(result.sticking.force))
             simulated = "stick" if c < self.run.stuck.shape[1] and self.run.stuck[0, c] > 0.5 else "slip"
             if closed != simulated:
                 self.faults.append(f"contact {name} at t = 0: closed form says {closed}, simulation {simulated}")
             regime[name] = simulated
-        return at_rest, regime, probe
+        return at_rest, regime, signs
 
     def accelerations(self, numbers: StateNumbers, q0: np.ndarray, qd0: np.ndarray, at_rest: Mapping[str, bool],
                       regime: Mapping[str, str]) -> None:
@@ -167,7 +167,7 @@ class KeyBuilder:
             if expr is None or (stuck and i in sliding):
                 continue
             self.add(f"{name}_ddot", numbers(expr), float(numeric[i]), f"acceleration of {name} at t = 0", checked,
-                     tolerance, max(1e-9, float(np.max(np.abs(numeric)))))
+                     tolerance, max(1.0, float(np.max(np.abs(numeric)))))
 
     def multipliers(self, numbers: StateNumbers) -> None:
         run = self.run

@@ -1,0 +1,54 @@
+"""Issue 34: variants of the rough level tube, each passing its own key, the stick/slip label at t = 0 agreeing
+with the closed form mu_s*g >= Omega**2*r (derived for this file: at rest, N = m*g and the force that holds
+the particle is m*Omega**2*r), and the key's numbers agreeing with the closed forms of either regime."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from lagsolve.mechanics.derivation import derive
+from lagsolve.problem.load import load_problem
+from variants_support import TUBE, TUBE_VARY, answers, check_text, run, spec, tube_sticks
+
+
+def _variants(count: int, seed: int):
+    problem = load_problem(TUBE)
+    request = spec.build_request(problem, count=count, vary=TUBE_VARY, seed=seed)
+    return run.generate(TUBE, request)
+
+
+def _assert_tube(made, derivation) -> tuple[int, int]:
+    sticks = slips = 0
+    for v in made.variants:
+        report = check_text(derivation, v.text)
+        assert report.passed and all(x.status == "ok" for x in report.verdicts), (v.index, report.verdicts)
+        values, initial, key = v.values, v.initial, answers(v)
+        held = tube_sticks(values, initial)
+        assert v.key.regime == {"wall": "stick" if held else "slip"}, (v.varied, v.key.regime)
+        m, g, omega, r = values["m"], values["g"], values["Omega"], initial["r"]
+        assert math.isclose(key["N_wall"], m * g, rel_tol=1e-5)
+        assert math.isclose(key["least_static_wall"], omega ** 2 * r / g, rel_tol=1e-5)
+        if held:
+            sticks += 1
+            assert math.isclose(key["friction_wall"], -m * omega ** 2 * r, rel_tol=1e-5)
+            assert "r_ddot" not in key
+        else:
+            slips += 1
+            assert math.isclose(key["r_ddot"], omega ** 2 * r - values["mu"] * g, rel_tol=1e-5)
+    return sticks, slips
+
+
+def test_a_few_tube_variants_pass_their_keys_and_the_closed_form():
+    made = _variants(8, seed=3)
+    sticks, slips = _assert_tube(made, derive(load_problem(TUBE)))
+    assert sticks + slips == 8 and made.rejections["key"] == 0
+
+
+@pytest.mark.slow
+def test_200_tube_variants_pass_their_keys_and_the_closed_form():
+    made = _variants(200, seed=34)
+    sticks, slips = _assert_tube(made, derive(load_problem(TUBE)))
+    assert sticks > 20 and slips > 20  # both regimes are exercised
+    assert made.rejections["key"] == 0 and made.attempts < 260
