@@ -12,10 +12,10 @@ from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
+from variants_support import TUBE, TUBE_VARY
 
 import lagsolve
 from lagsolve.cli import main
-from variants_support import TUBE, TUBE_VARY
 
 ROOT = Path(__file__).resolve().parents[2]
 PROBLEMS = ROOT / "problems"

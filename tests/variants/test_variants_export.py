@@ -13,9 +13,9 @@ from pathlib import Path
 import jsonschema
 import pytest
 from lxml import etree
+from variants_support import TUBE, TUBE_VARY, answers, layout, run, spec
 
 from lagsolve.problem.load import load_problem
-from variants_support import TUBE, TUBE_VARY, answers, layout, run, spec
 
 SCHEMA = Path(__file__).resolve().parents[1] / "data" / "prairielearn" / "infoQuestion.json"
 

@@ -7,10 +7,10 @@ from __future__ import annotations
 import math
 
 import pytest
+from variants_support import TUBE, TUBE_VARY, answers, check_text, run, spec, tube_sticks
 
 from lagsolve.mechanics.derivation import derive
 from lagsolve.problem.load import load_problem
-from variants_support import TUBE, TUBE_VARY, answers, check_text, run, spec, tube_sticks
 
 
 def _variants(count: int, seed: int):
