@@ -79,3 +79,10 @@ def test_the_library_function_writes_the_same_files(tmp_path: Path) -> None:
     assert (tmp_path / "variant-02" / "key.json").is_file() and (tmp_path / "variants.csv").is_file()
     with pytest.raises(lagsolve.SpecError, match="unknown regime"):
         lagsolve.variants(TUBE, count=2, vary=["mu_s=0.1:0.6"], require="sticky")
+
+
+def test_variants_stays_the_function_after_the_package_is_imported() -> None:
+    import importlib
+
+    importlib.import_module("lagsolve.variants.run")
+    assert callable(lagsolve.variants) and lagsolve.variants is lagsolve.api.variants
