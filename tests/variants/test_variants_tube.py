@@ -52,3 +52,20 @@ def test_200_tube_variants_pass_their_keys_and_the_closed_form():
     sticks, slips = _assert_tube(made, derive(load_problem(TUBE)))
     assert sticks > 20 and slips > 20  # both regimes are exercised
     assert made.rejections["key"] == 0 and made.attempts < 260
+
+
+def test_sphere_variants_release_where_energy_says() -> None:
+    """Released from rest at height y0 on a sphere of radius R, the particle leaves it at y = 2*y0/3 (energy and
+    N = 0); the key's release place agrees, and every key passes its own check."""
+    from pathlib import Path
+
+    sphere = Path(__file__).resolve().parents[2] / "problems" / "sliding_off_sphere.yaml"
+    problem = load_problem(sphere)
+    request = spec.build_request(problem, count=3, vary=["R=0.5:2", "x=0.001:0.3"], seed=7, require="release")
+    made = run.generate(sphere, request)
+    derivation = derive(problem)
+    for v in made.variants:
+        assert check_text(derivation, v.text).passed
+        key = answers(v)
+        assert math.isclose(key["y_at_release_surface"], 2 * v.initial["y"] / 3, rel_tol=1e-4), (v.varied, key)
+        assert key["release_time_surface"] > 0 and v.key.released

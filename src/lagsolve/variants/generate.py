@@ -63,19 +63,23 @@ def file_values(problem: Problem) -> dict[str, float]:
 
 def _complete(system: NumericSystem, given: dict[str, float], varied: set[str],
               source: str) -> tuple[np.ndarray, np.ndarray]:
-    """The state from ``given``; if its velocities violate the constraints, the same without one of the file's
-    velocities that were not varied (the first, in the file's order, that makes it consistent), else without all."""
+    """The state from ``given``; if it violates the constraints (a varied radius or rate of turn), the same
+    without one of the file's values that were not varied (velocities first, then coordinates, in the file's
+    order: the first that makes it consistent), else without all the file's velocities, else without all."""
     try:
         return complete_initial(system, given, source)
     except SpecError:
         pass
-    velocities = [k for k in given if k.endswith("_dot") and k not in varied]
-    for k in velocities:
+    fixed = [k for k in given if k not in varied]
+    velocities = [k for k in fixed if k.endswith("_dot")]
+    trials = [[k] for k in velocities] + [[k] for k in fixed if k not in velocities] + [velocities]
+    for dropped in trials:
         try:
-            return complete_initial(system, {n: v for n, v in given.items() if n != k}, source)
+            return complete_initial(system, {n: v for n, v in given.items() if n not in dropped}, source,
+                                    start=given)
         except SpecError:
             continue
-    return complete_initial(system, {n: v for n, v in given.items() if n not in velocities}, source)
+    return complete_initial(system, {n: v for n, v in given.items() if n in varied}, source, start=given)
 
 
 def candidate(problem: Problem, system: NumericSystem, varied: Mapping[str, float],

@@ -218,6 +218,10 @@ class KeyBuilder:
                 f"time constraint {event.name} lets go"
             self.answers.append(Answer(f"{event.kind}_time_{event.name}", float(f"{event.time:.6g}"), what,
                                        "simulation (event located on the dense output)"))
+            if event.kind == EventKind.RELEASE:
+                self.answers += [Answer(f"{c}_at_release_{event.name}", float(f"{state[c]:.6g}"),
+                                        f"{c} where constraint {event.name} lets go",
+                                        "simulation (event located on the dense output)") for c in coordinates]
             self.event_condition(event, numbers, friction, constraints)
 
     def event_condition(self, event: Any, numbers: StateNumbers, friction: Mapping[str, Any],

@@ -60,6 +60,9 @@ def normal_force(run: Trajectory, require: Require | None) -> Rejection | None:
             return Rejection("normal-force", f"the normal force of contact {name} reaches {float(np.min(values)):.3g} "
                                              f"at t = {when:.4g}")
     releases = [e for e in run.events if e.kind == EventKind.RELEASE]
+    if releases and releases[0].time <= 0:
+        e = releases[0]
+        return Rejection("normal-force", f"constraint {e.name} pulls at t = 0 (its force is negative there)")
     if releases and require != Require.RELEASE:
         e = releases[0]
         return Rejection("normal-force", f"constraint {e.name} lets go at t = {e.time:.4g} (its force reaches 0)")
@@ -68,7 +71,7 @@ def normal_force(run: Trajectory, require: Require | None) -> Rejection | None:
 
 def regime(run: Trajectory, require: Require | None, labels: Mapping[str, str]) -> Rejection | None:
     """``regime``: the required regime happens (``labels``: each friction contact's stick/slip at t = 0)."""
-    released = any(e.kind == EventKind.RELEASE for e in run.events)
+    released = any(e.kind == EventKind.RELEASE and e.time > 0 for e in run.events)
     if require == Require.STICK and not (labels and all(v == "stick" for v in labels.values())):
         return Rejection("regime", "no contact is held at t = 0" if labels else "no contact can stick")
     if require == Require.SLIP and not (labels and all(v == "slip" for v in labels.values())):
