@@ -4,6 +4,7 @@ library function writes the same files."""
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -65,11 +66,17 @@ def _run(folder: Path, hashseed: str) -> dict[str, bytes]:
 
 def test_same_seed_same_bytes_whatever_the_hash_seed(tmp_path: Path) -> None:
     first, second = _run(tmp_path / "a", "1"), _run(tmp_path / "b", "4242")
-    assert first == second and len(first) == 3 * 3 + 2 + 3
+    assert first == second and len(first) == 3 * 3 + 3 + 3
     result = subprocess.run([sys.executable, "-m", "lagsolve", "check",
                              *(str(tmp_path / "a" / f"variant-0{i}" / "rough_level_tube.yaml") for i in (1, 2, 3))],
                             cwd=ROOT, capture_output=True, text=True)
     assert result.returncode == 0 and result.stdout.count("ok (symbolic)") >= 3 * 6, result.stdout
+    key, model = tmp_path / "a" / "variant-02" / "rough_level_tube.yaml", tmp_path / "a" / "model_submission.yaml"
+    graded = subprocess.run([sys.executable, "-m", "lagsolve", "grade", str(key), str(model), "--format", "json"],
+                            cwd=ROOT, capture_output=True, text=True)
+    assert graded.returncode == 0, graded.stderr
+    (grade,) = json.loads(graded.stdout)["submissions"]
+    assert grade["points"] == grade["max_points"] > 10
 
 
 def test_the_library_function_writes_the_same_files(tmp_path: Path) -> None:

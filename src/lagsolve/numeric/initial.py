@@ -47,8 +47,7 @@ def complete_initial(system: NumericSystem, given: Mapping[str, float], source: 
     n = len(names)
 
     if system.holonomic and free_q.any():
-        first = [float(start.get(n, 0.0)) for n, free in zip(names, free_q, strict=True) if free] if start else None
-        q = _solve_positions(system, q, qd, free_q, t0, first)
+        q = _solve_positions(system, q, qd, free_q, t0, start)
     if system.holonomic:
         psi = system.position_residual(t0, q, qd, p)
         if not np.all(np.isfinite(psi)) or np.max(np.abs(psi), initial=0.0) > TOLERANCE:
@@ -79,7 +78,7 @@ GUESSES = (0.0, -1.0, 1.0, -0.5, 0.5, -2.0, 2.0)
 
 
 def _solve_positions(system: NumericSystem, q: np.ndarray, qd: np.ndarray, free: np.ndarray,
-                     t0: float, first: list[float] | None = None) -> np.ndarray:
+                     t0: float, start: Mapping[str, float] | None = None) -> np.ndarray:
     """Least-norm Newton iteration (:func:`~lagsolve.mechanics.equations.surface.newton`) on the free coordinates;
     tries several starting values, since a start such as y = 0 for x² + y² = l² has a singular Jacobian."""
     p, n = system.parameters, system.n
@@ -96,7 +95,8 @@ def _solve_positions(system: NumericSystem, q: np.ndarray, qd: np.ndarray, free:
         return system.position_jacobian(t0, full(x), qd, p).reshape(len(system.holonomic), n)[:, free]
 
     best, best_residual = q, np.inf
-    starts = ([first] if first else []) + [[guess] * int(free.sum()) for guess in GUESSES]
+    first = [[float(start.get(c, 0.0)) for c, f in zip(system.coordinates, free, strict=True) if f]] if start else []
+    starts = first + [[guess] * int(free.sum()) for guess in GUESSES]
     for x0 in starts:
         with np.errstate(all="ignore"):
             x, _ = newton(residual, jacobian, x0, step=least_squares, tolerance=1e-14)

@@ -6,6 +6,7 @@
 ``variant-NN/key.json``      its numbers (value, what, how verified) and regime
 ``variants.csv``             one row per variant: the varied values, the regime, every answer
 ``summary.json``             the request, attempts and rejections per rule, notes
+``model_submission.yaml``    the key in ``lagsolve grade``'s submission format (full marks on every variant)
 and, with ``--to``, ``prairielearn/<slug>/`` or ``moodle/<slug>.xml``.
 """
 
@@ -65,6 +66,7 @@ def files(variants: VariantSet) -> dict[str, str]:
         out[f"{place}/solution.md"] = variant_markdown(variants.problem.name, v.index, count, v.values, v.initial,
                                                        v.key, v.summary, variants.report)
         out[f"{place}/key.json"] = json.dumps(v.key.as_dict(), indent=2) + "\n"
+    out["model_submission.yaml"] = variants.submission
     out["variants.csv"] = table(variants)
     out["summary.json"] = json.dumps(summary(variants), indent=2) + "\n"
     if variants.request.to == Export.PRAIRIELEARN:

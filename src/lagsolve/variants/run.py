@@ -65,6 +65,7 @@ class VariantSet:
     expected: dict[str, dict[str, str]]
     report: str
     notes: tuple[str, ...] = ()
+    submission: str = ""  # the key as a lagsolve grade submission (the same for every variant)
 
     @property
     def slug(self) -> str:
@@ -120,7 +121,7 @@ def verified_expected(derivation: Derivation, original: str) -> tuple[dict[str, 
     return {k: v for k, v in expected.items() if v}, tuple(notes)
 
 
-def _prepare(path: str | Path, request: Request, budget: float) -> tuple[_Shared, tuple[str, ...], str]:
+def _prepare(path: str | Path, request: Request, budget: float) -> tuple[_Shared, tuple[str, ...], str, str]:
     from lagsolve.mechanics.analysis.minimal_chart import minimal_chart
     from lagsolve.mechanics.derivation import derive
     from lagsolve.problem.load import load_problem
@@ -139,7 +140,9 @@ def _prepare(path: str | Path, request: Request, budget: float) -> tuple[_Shared
     energy_note = derivation.analysis.conservation.energy.reason() if derivation.analysis else ""
     system = bind(derivation.form, middle, derivation.conserved or {}, chart, energy_note)
     shared = _Shared(problem, derivation, system, chart is not None, original, expected)
-    return shared, notes, render(derivation, "md")
+    from lagsolve.variants.submission import model_submission
+
+    return shared, notes, render(derivation, "md"), model_submission(derivation)
 
 
 def _own_system(shared: _Shared, varied: dict[str, float]) -> NumericSystem:
@@ -202,7 +205,7 @@ def generate(path: str | Path, request: Request, *, budget: float = 120.0,
     """
     from lagsolve.render.trajectory import summary
 
-    shared, notes, report = _prepare(path, request, budget)
+    shared, notes, report, submission = _prepare(path, request, budget)
     rng = np.random.default_rng(request.seed)
     limit = request.attempts or max(50, 20 * request.count)
     rejections = dict.fromkeys(sanity.RULES, 0)
@@ -224,7 +227,8 @@ def generate(path: str | Path, request: Request, *, budget: float = 120.0,
             progress(len(accepted), attempts)
     if len(accepted) < request.count:
         raise SpecError([_exhausted(shared.problem, request, len(accepted), attempts, rejections, reasons)])
-    return VariantSet(shared.problem, request, tuple(accepted), rejections, attempts, shared.expected, report, notes)
+    return VariantSet(shared.problem, request, tuple(accepted), rejections, attempts, shared.expected, report, notes,
+                      submission)
 
 
 def _variant(shared: _Shared, request: Request, index: int, start: Candidate, key: Key, text: str) -> Variant:
