@@ -69,3 +69,27 @@ def test_sphere_variants_release_where_energy_says() -> None:
         key = answers(v)
         assert math.isclose(key["y_at_release_surface"], 2 * v.initial["y"] / 3, rel_tol=1e-4), (v.varied, key)
         assert key["release_time_surface"] > 0 and v.key.released
+
+
+def test_hoop_variants_give_the_equilibria_and_frequencies_of_the_closed_form() -> None:
+    """The bead on a hoop turning at Omega (Taylor, ch. 7): theta = 0 with omega**2 = g/R - Omega**2 while
+    Omega**2 < g/R, else cos(theta) = g/(R*Omega**2) with omega**2 = Omega**2 - g**2/(R**2*Omega**2)."""
+    from pathlib import Path
+
+    hoop = Path(__file__).resolve().parents[2] / "problems" / "bead_on_rotating_hoop.yaml"
+    problem = load_problem(hoop)
+    made = run.generate(hoop, spec.build_request(problem, count=6, vary=["Omega=2:8"], seed=1))
+    fast = slow = 0
+    for v in made.variants:
+        key, g, radius, omega = answers(v), v.values["g"], v.values["R"], v.values["Omega"]
+        assert key["equilibrium_1_theta"] == 0 and math.isclose(key["equilibrium_2_theta"], math.pi, rel_tol=1e-6)
+        if omega ** 2 < g / radius:
+            slow += 1
+            assert math.isclose(key["omega_1"], math.sqrt(g / radius - omega ** 2), rel_tol=1e-5)
+            assert "equilibrium_4_theta" not in key
+        else:
+            fast += 1
+            assert math.isclose(key["equilibrium_4_theta"], math.acos(g / (radius * omega ** 2)), rel_tol=1e-5)
+            assert math.isclose(key["omega_4"], math.sqrt(omega ** 2 - g ** 2 / (radius * omega) ** 2), rel_tol=1e-5)
+            assert "omega_1" not in key
+    assert fast and slow

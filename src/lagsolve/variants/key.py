@@ -82,7 +82,10 @@ class StateNumbers:
         self.map = {symbols[k]: sympy.Float(v, 17) for k, v in numbers.items() if k in symbols}
 
     def __call__(self, expr: Any) -> float:
-        value = complex(sympy.sympify(expr).xreplace(self.signs).xreplace(self.map).evalf(17))
+        try:
+            value = complex(sympy.sympify(expr).xreplace(self.signs).xreplace(self.map).evalf(17))
+        except TypeError:  # a symbol without a value (a conserved momentum p_phi): no number
+            return math.nan
         return value.real if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) else math.nan
 
 
@@ -120,6 +123,10 @@ class KeyBuilder:
             if name in run.conserved:
                 self.add(name, numbers(expr), float(run.conserved[name][0]), f"conserved {name} at t = 0",
                          "simulation at t = 0")
+        from lagsolve.variants.equilibria import equilibrium_answers
+
+        parameters = [abs(v) for v in self.values.values()]
+        equilibrium_answers(self.derivation, self.system, numbers, self.add, max([1.0, *parameters]))
         self.events()
         released = any(e.kind == EventKind.RELEASE for e in run.events)
         return Key(tuple(self.answers), regime, released)
