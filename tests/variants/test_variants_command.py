@@ -93,3 +93,21 @@ def test_variants_stays_the_function_after_the_package_is_imported() -> None:
 
     importlib.import_module("lagsolve.variants.run")
     assert callable(lagsolve.variants) and lagsolve.variants is lagsolve.api.variants
+
+
+def test_a_link_inside_the_output_folder_is_refused(tmp_path: Path) -> None:
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (tmp_path / "hw").mkdir()
+    (tmp_path / "hw" / "variant-01").symlink_to(elsewhere, target_is_directory=True)
+    result = CliRunner().invoke(main, ["variants", str(TUBE), "--count", "1", "--vary", "mu_s=0.1:0.6",
+                                       "-o", str(tmp_path / "hw")])
+    assert result.exit_code == 2 and "link" in result.output
+    assert list(elsewhere.iterdir()) == []
+
+
+def test_stick_with_a_contact_that_starts_sliding_is_refused_with_the_fix(tmp_path: Path) -> None:
+    result = CliRunner().invoke(main, ["variants", str(PROBLEMS / "rotating_tube.yaml"), "--count", "2",
+                                       "--vary", "mu=0.1:0.6", "--require", "stick", "-o", str(tmp_path)])
+    assert result.exit_code == 2 and "contact wall starts sliding (r_dot = 0.5" in result.output
+    assert "--vary r_dot=0:0" in result.output

@@ -93,3 +93,24 @@ def test_hoop_variants_give_the_equilibria_and_frequencies_of_the_closed_form() 
             assert math.isclose(key["omega_4"], math.sqrt(omega ** 2 - g ** 2 / (radius * omega) ** 2), rel_tol=1e-5)
             assert "omega_1" not in key
     assert fast and slow
+
+
+def test_inclined_tube_from_rest_sticks_where_the_closed_form_says() -> None:
+    """problems/rotating_tube.yaml started at rest in the tube: held at t = 0 iff
+    |Omega**2*r*sin(theta)**2 - g*cos(theta)| <= mu*|sin(theta)|*|Omega**2*r*cos(theta) + g| (mu is also the
+    static coefficient), the force along the tube against the friction the normal force allows."""
+    from pathlib import Path
+
+    tube = Path(__file__).resolve().parents[2] / "problems" / "rotating_tube.yaml"
+    problem = load_problem(tube)
+    request = spec.build_request(problem, count=8, vary=["mu=0.05:0.9", "Omega=1:4", "r_dot=0:0"], seed=4)
+    made = run.generate(tube, request)
+    labels = []
+    for v in made.variants:
+        mu, g, omega = v.values["mu"], v.values["g"], v.values["Omega"]
+        r, theta = v.initial["r"], v.initial["theta"]
+        along = abs(omega ** 2 * r * math.sin(theta) ** 2 - g * math.cos(theta))
+        allowed = mu * abs(math.sin(theta)) * abs(omega ** 2 * r * math.cos(theta) + g)
+        labels.append(v.key.regime["wall"])
+        assert labels[-1] == ("stick" if along <= allowed else "slip"), (v.varied, along, allowed)
+    assert set(labels) == {"stick", "slip"}

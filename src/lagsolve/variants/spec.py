@@ -136,8 +136,24 @@ def check_request(problem: Problem, request: Request) -> None:
         issues.append(_issue("FILE", f"{problem.source} has no simulation.t_end, so no variant can be simulated",
                              "add a simulation section with values, initial and t_end"))
     issues += _regime_issues(problem, request.require)
+    if request.require == Require.STICK and not issues:
+        issues += _moving_contacts(problem, {v.name for v in request.vary})
     if issues:
         raise SpecError(issues)
+
+
+def _moving_contacts(problem: Problem, varied: set[str]) -> list[Issue]:
+    """``--require stick`` when a contact's sliding coordinate starts moving at a fixed (not varied) rate."""
+    initial = problem.simulation.initial if problem.simulation else {}
+    for contact in problem.friction:
+        for q in contact.sliding:
+            rate = f"{q}_dot"
+            if rate not in varied and float(initial.get(rate, 0.0)) != 0.0:
+                return [_issue("--require", f"stick: contact {contact.name} starts sliding ({rate} = "
+                                            f"{float(initial[rate]):g} in simulation.initial), so it is never held "
+                                            "at t = 0", f"start it at rest: --vary {rate}=0:0, or set {rate}: 0 "
+                                                        "in the file")]
+    return []
 
 
 def _regime_issues(problem: Problem, require: Require | None) -> list[Issue]:
