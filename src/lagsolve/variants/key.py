@@ -139,10 +139,11 @@ class KeyBuilder:
         regime: dict[str, str] = {}
         signs: dict[Any, float] = {}
         numbers = StateNumbers(self.derivation, self.values, q0, qd0, self.run.coordinates)
-        for c, result in enumerate(self.derivation.friction):
+        for result in self.derivation.friction:
             name, term = result.term.name, result.term
-            if result.sticking is None or not term.rate:
+            if result.sticking is None or not term.rate or name not in self.run.contacts:
                 continue
+            c = self.run.contacts.index(name)
             sigma = numbers(term.sliding_rate)
             at_rest[name] = abs(sigma) <= 1e-12
             closed = "slip"
@@ -150,7 +151,7 @@ class KeyBuilder:
                 ratio, static = numbers(result.sticking.ratio), numbers(term.static)
                 closed = "stick" if ratio <= static else "slip"
                 signs[sympy.sign(term.sliding_rate)] = math.copysign(1.0, -numbers(result.sticking.force))
-            simulated = "stick" if c < self.run.stuck.shape[1] and self.run.stuck[0, c] > 0.5 else "slip"
+            simulated = "stick" if self.run.stuck[0, c] > 0.5 else "slip"
             if closed != simulated:
                 self.faults.append(f"contact {name} at t = 0: closed form says {closed}, simulation {simulated}")
             regime[name] = simulated
@@ -190,10 +191,11 @@ class KeyBuilder:
 
     def friction(self, numbers: StateNumbers, at_rest: Mapping[str, bool], regime: Mapping[str, str]) -> None:
         run = self.run
-        for c, result in enumerate(self.derivation.friction):
+        for result in self.derivation.friction:
             name = result.term.name
-            if c >= run.normal_forces.shape[1]:
+            if name not in run.contacts:
                 continue
+            c = run.contacts.index(name)
             normal = numbers(result.normal_force)
             self.add(f"N_{name}", normal, float(run.normal_forces[0, c]), f"normal force of contact {name} at t = 0",
                      "simulation at t = 0")
@@ -242,3 +244,9 @@ class KeyBuilder:
             sigma = numbers(friction[event.name].term.sliding_rate)
             if not abs(sigma) <= LOOSE * max(1.0, float(np.max(np.abs(self.run.qd)))):
                 self.faults.append(f"{event.name} sticks at t = {event.time:.6g} with sliding rate {sigma:.3g}")
+        elif event.kind == EventKind.SLIP and event.name in friction and friction[event.name].sticking is not None:
+            result = friction[event.name]
+            ratio, static = numbers(result.sticking.ratio), numbers(result.term.static)
+            if not _agree(ratio, static, LOOSE):
+                self.faults.append(f"{event.name} slips at t = {event.time:.6g} needing |Φ|/N = {ratio:.6g}, "
+                                   f"not mu_s = {static:.6g}")
