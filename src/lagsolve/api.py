@@ -389,7 +389,7 @@ def export(path: str | Path, *, to: str = "python", output: str | Path = "out") 
 
 def variants(path: str | Path, *, count: int, vary: Any, seed: int = 0, require: str | None = None,
              sig_figs: int = 3, to: str = "yaml", output: str | Path | None = None, budget: float = DEFAULT_BUDGET,
-             attempts: int = 0) -> VariantSet:
+             attempts: int = 0, figures: bool = False) -> VariantSet:
     """Homework variants of a problem with verified keys (``lagsolve variants``).
 
     The problem is derived once; each variant draws the varied numbers (``numpy.random.default_rng(seed)``),
@@ -419,6 +419,8 @@ def variants(path: str | Path, *, count: int, vary: Any, seed: int = 0, require:
         CPU seconds of the one derivation.
     attempts : int
         Candidates drawn at most (0: 20 per variant, at least 50).
+    figures : bool
+        Also draw each variant's coordinates and forces against time (PNG bytes in ``Variant.figures``).
 
     Returns
     -------
@@ -442,7 +444,7 @@ def variants(path: str | Path, *, count: int, vary: Any, seed: int = 0, require:
 
     ranges.check(count=count, seed=seed, sig_figs=sig_figs, attempts=attempts, budget=budget)
     request = build_request(load_problem(Path(path)), count=count, vary=vary, seed=seed, require=require,
-                            sig_figs=sig_figs, to=to, attempts=attempts)
+                            sig_figs=sig_figs, to=to, attempts=attempts, figures=figures)
     made = generate(path, request, budget=budget)
     if output is not None:
         from lagsolve.files import write_file

@@ -625,9 +625,10 @@ def sweep(file: Path, grid: tuple[str, ...], random_: tuple[str, ...], runs: int
 @_number("--attempts", key="attempts", default=0, show_default=True,
          help="Candidates drawn at most (0: 20 per variant, at least 50).")
 @_number("--timeout", key="timeout", default=120.0, show_default=True, help="CPU seconds of the one derivation.")
+@click.option("--figures", is_flag=True, help="Also draw each variant's coordinates and forces (PNG; slower).")
 @click.option("-o", "--output", type=click.Path(path_type=Path), required=True, help="Output folder.")
 def variants(file: Path, count: int, vary: tuple[str, ...], seed: int, require: str | None, to: str, sig_figs: int,
-             attempts: int, timeout: float, output: Path) -> None:
+             attempts: int, timeout: float, figures: bool, output: Path) -> None:
     """Write COUNT homework variants of problem FILE, each with its problem file, worked solution and a key
     verified twice (closed form and simulation), every one physically sane (exit 2 if too few pass).
 
@@ -644,7 +645,7 @@ def variants(file: Path, count: int, vary: tuple[str, ...], seed: int, require: 
         from lagsolve.problem.load import load_problem
 
         request = build_request(load_problem(file), count=count, vary=vary, seed=seed, require=require,
-                                sig_figs=sig_figs, to=to, attempts=attempts)
+                                sig_figs=sig_figs, to=to, attempts=attempts, figures=figures)
         made = generate(file, request, budget=timeout)
         written = [write_file(output, name, data) for name, data in files(made).items()]
     except LagsolveError as error:

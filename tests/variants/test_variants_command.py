@@ -111,3 +111,10 @@ def test_stick_with_a_contact_that_starts_sliding_is_refused_with_the_fix(tmp_pa
                                        "--vary", "mu=0.1:0.6", "--require", "stick", "-o", str(tmp_path)])
     assert result.exit_code == 2 and "contact wall starts sliding (r_dot = 0.5" in result.output
     assert "--vary r_dot=0:0" in result.output
+
+
+def test_figures_are_drawn_on_request(tmp_path: Path) -> None:
+    lagsolve.variants(TUBE, count=1, vary=["mu_s=0.1:0.6"], figures=True, output=tmp_path)
+    for name in ("coordinates", "forces"):
+        assert (tmp_path / "variant-01" / f"{name}.png").read_bytes().startswith(b"\x89PNG")
+        assert f"![{name}]({name}.png)" in (tmp_path / "variant-01" / "solution.md").read_text(encoding="utf-8")

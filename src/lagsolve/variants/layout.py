@@ -4,6 +4,7 @@
 ``variant-NN/<slug>.yaml``   the problem file with the variant's numbers and the ``expected:`` key
 ``variant-NN/solution.md``   its worked solution
 ``variant-NN/key.json``      its numbers (value, what, how verified) and regime
+``variant-NN/*.png``         with ``--figures``: its coordinates and forces against time
 ``variants.csv``             one row per variant: the varied values, the regime, every answer
 ``summary.json``             the request, attempts and rejections per rule, notes
 ``model_submission.yaml``    the key in ``lagsolve grade``'s submission format (full marks on every variant)
@@ -56,16 +57,17 @@ def table(variants: VariantSet) -> str:
     return out.getvalue()
 
 
-def files(variants: VariantSet) -> dict[str, str]:
+def files(variants: VariantSet) -> dict[str, str | bytes]:
     """Every file of the set, by relative path, in a fixed order."""
-    out: dict[str, str] = {}
+    out: dict[str, str | bytes] = {}
     slug, count = variants.slug, len(variants.variants)
     for v in variants.variants:
         place = folder(variants, v.index)
         out[f"{place}/{slug}.yaml"] = v.text
         out[f"{place}/solution.md"] = variant_markdown(variants.problem.name, v.index, count, v.values, v.initial,
-                                                       v.key, v.summary, variants.report)
+                                                       v.key, v.summary, variants.report, tuple(v.figures))
         out[f"{place}/key.json"] = json.dumps(v.key.as_dict(), indent=2) + "\n"
+        out.update({f"{place}/{name}.png": png for name, png in v.figures.items()})
     out["model_submission.yaml"] = variants.submission
     out["variants.csv"] = table(variants)
     out["summary.json"] = json.dumps(summary(variants), indent=2) + "\n"

@@ -50,6 +50,7 @@ class Variant:
     key: Key
     text: str
     summary: str
+    figures: dict[str, bytes] = dataclasses.field(default_factory=dict)  # PNG by name, with --figures
 
 
 @dataclass(frozen=True)
@@ -222,7 +223,13 @@ def generate(path: str | Path, request: Request, *, budget: float = 120.0,
             continue
         start, run, key = outcome
         index = len(accepted) + 1
-        accepted.append(_variant(shared, request, index, start, key, summary(run, shared.problem.name, timing=False)))
+        variant = _variant(shared, request, index, start, key, summary(run, shared.problem.name, timing=False))
+        if request.figures:
+            from lagsolve.variants.figures import variant_figures
+
+            title = f"{shared.problem.name}, variant {index}"
+            variant = dataclasses.replace(variant, figures=variant_figures(run, title))
+        accepted.append(variant)
         if progress is not None:
             progress(len(accepted), attempts)
     if len(accepted) < request.count:

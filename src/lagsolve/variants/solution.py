@@ -22,7 +22,7 @@ def _regime_lines(key: Key) -> list[str]:
 
 
 def variant_markdown(name: str, index: int, count: int, values: dict[str, float], initial: dict[str, float],
-                     key: Key, summary: str, report: str) -> str:
+                     key: Key, summary: str, report: str, figures: tuple[str, ...] = ()) -> str:
     """The solution page of variant ``index`` of ``count``."""
     lines = [f"# {name}: variant {index} of {count}", "", "## The numbers of this variant", "",
              "| quantity | value |", "|---|---|"]
@@ -33,6 +33,8 @@ def variant_markdown(name: str, index: int, count: int, values: dict[str, float]
     regime = _regime_lines(key)
     if regime:
         lines += ["", *regime]
-    lines += ["", "## Simulation", "", "```text", summary.rstrip(), "```", "", "## Worked solution", "",
+    lines += ["", "## Simulation", "", "```text", summary.rstrip(), "```"]
+    lines += [line for name in figures for line in ("", f"![{name}]({name}.png)")]
+    lines += ["", "## Worked solution", "",
               "The derivation below holds for every variant; put in the numbers above.", "", "---", ""]
     return "\n".join(lines) + "\n" + report

@@ -63,6 +63,7 @@ class Request:
     sig_figs: int = 3
     to: Export = Export.YAML
     attempts: int = 0  # 0: 20 per variant asked for, at least 50
+    figures: bool = False  # also draw each variant's coordinates and forces (PNG)
 
 
 def _issue(option: str, message: str, fix: str) -> Issue:
@@ -168,7 +169,7 @@ def _regime_issues(problem: Problem, require: Require | None) -> list[Issue]:
 
 
 def build_request(problem: Problem, *, count: int, vary: object, seed: int = 0, require: str | None = None,
-                  sig_figs: int = 3, to: str = "yaml", attempts: int = 0) -> Request:
+                  sig_figs: int = 3, to: str = "yaml", attempts: int = 0, figures: bool = False) -> Request:
     """A checked :class:`Request` from the library's arguments: ``vary`` is a sequence of ``"NAME=LOW:HIGH[:STEP]"``
     strings or a mapping of names to ``"LOW:HIGH[:STEP]"``; ``require`` and ``to`` are their options' words.
 
@@ -193,6 +194,6 @@ def build_request(problem: Problem, *, count: int, vary: object, seed: int = 0, 
         texts = [str(v) for v in vary]
     request = Request(count=count, vary=tuple(parse_vary(t, problem) for t in texts), seed=seed,
                       require=Require(require) if require is not None else None, sig_figs=sig_figs,
-                      to=Export(to), attempts=attempts)
+                      to=Export(to), attempts=attempts, figures=figures)
     check_request(problem, request)
     return request
