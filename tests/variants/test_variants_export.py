@@ -92,3 +92,10 @@ def test_moodle_xml_parses_and_is_a_quiz_of_numerical_questions():
     first = numerical[0]
     index, name = re.fullmatch(r"rough_level_tube variant (\d+): (\w+)", first.findtext("name/text")).groups()
     assert float(first.findtext("answer/text")) == answers(made.variants[int(index) - 1])[name]
+
+
+def test_text_from_the_file_is_inert_in_the_prairielearn_page():
+    import importlib
+
+    page = importlib.import_module("lagsolve.variants.prairielearn")
+    assert page._text("<b>{{params.x}}</b>") == "&lt;b&gt;&#123;&#123;params.x&#125;&#125;&lt;/b&gt;"

@@ -55,6 +55,12 @@ def server_py(variants: VariantSet) -> str:
     )
 
 
+def _text(value: str) -> str:
+    """Text from the file, inert in the page: HTML-escaped, and braces as entities (PrairieLearn renders
+    question.html as a Mustache template, so ``{{...}}`` in a description must not become a tag)."""
+    return html.escape(value).replace("{", "&#123;").replace("}", "&#125;")
+
+
 def question_html(variants: VariantSet) -> str:
     problem = variants.problem
     first = variants.variants[0]
@@ -63,12 +69,12 @@ def question_html(variants: VariantSet) -> str:
     inputs = "\n".join(
         f'<pl-number-input answers-name="{html.escape(n)}" label="{html.escape(n)} ="'
         f' rtol="{RTOL}" comparison="relabs"></pl-number-input>'
-        f"\n<p><small>{html.escape(variants.answer(first, n).what)}</small></p>"
+        f"\n<p><small>{_text(variants.answer(first, n).what)}</small></p>"
         for n in variants.exported())
     return (
         "<pl-question-panel>\n"
-        f"  <p>{html.escape(problem.name)}</p>\n"
-        f"  <p>{html.escape(problem.description.strip())}</p>\n"
+        f"  <p>{_text(problem.name)}</p>\n"
+        f"  <p>{_text(problem.description.strip())}</p>\n"
         "  <p>The numbers of your variant (simulation values and initial state, one consistent system of units):</p>\n"
         f"  <ul>\n{rows}\n  </ul>\n"
         "</pl-question-panel>\n\n"
