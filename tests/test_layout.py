@@ -19,7 +19,7 @@ MAX_LINES = 750
 #: only. The data flows problem → mechanics → numeric → render; check reads a derivation (render shows its
 #: reports), app runs the commands, sweep many runs; the library (api), the CLI and the package come last.
 LAYERS = ("errors", "enums", "caches", "notebook", "ranges", "files", "problem", "mechanics", "numeric", "check",
-          "grade", "render", "app", "sweep", "schemas", "api", "prepare", "cli", "__main__", "")
+          "grade", "render", "app", "sweep", "variants", "schemas", "api", "prepare", "cli", "__main__", "")
 
 
 def _module_name(path: Path) -> str:

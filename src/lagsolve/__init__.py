@@ -22,7 +22,7 @@ from lagsolve import notebook
 __version__ = "0.1.0"
 
 if TYPE_CHECKING:
-    from lagsolve.api import Trajectory, check, derive, export, load_problem, simulate
+    from lagsolve.api import Trajectory, check, derive, export, load_problem, simulate, variants
     from lagsolve.check.compare import CheckReport
     from lagsolve.errors import DerivationError, LagsolveError, RenderError, SimulationError, SpecError
     from lagsolve.mechanics.derivation import Derivation
@@ -37,6 +37,7 @@ _PUBLIC = {
     "export": "lagsolve.api",
     "sweep": "lagsolve.sweep.api",
     "check": "lagsolve.api",
+    "variants": "lagsolve.api",
     "Trajectory": "lagsolve.api",
     "Derivation": "lagsolve.mechanics.derivation",
     "CheckReport": "lagsolve.check.compare",
@@ -51,6 +52,7 @@ _PUBLIC = {
 __all__ = [
     "CheckReport", "Derivation", "DerivationError", "LagsolveError", "Problem", "RenderError", "SimulationError",
     "SpecError", "Trajectory", "__version__", "check", "derive", "export", "load_problem", "simulate", "sweep",
+    "variants",
 ]
 
 
@@ -69,8 +71,8 @@ def __dir__() -> list[str]:
 
 
 class _Package(types.ModuleType):
-    """The package module: ``lagsolve.check`` stays the function when the submodule of that name is
-    imported (the import system would otherwise set the package attribute to the module)."""
+    """The package module: ``lagsolve.check`` (and ``lagsolve.variants``) stays the function when the submodule of
+    that name is imported (the import system would otherwise set the package attribute to the module)."""
 
     def __setattr__(self, name: str, value: Any) -> None:
         if name in _PUBLIC and isinstance(value, types.ModuleType):

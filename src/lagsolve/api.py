@@ -33,8 +33,9 @@ if TYPE_CHECKING:
     from lagsolve.numeric.integrate import Event
     from lagsolve.numeric.integrate import Trajectory as Motion
     from lagsolve.problem.schema import Problem
+    from lagsolve.variants.run import VariantSet
 
-__all__ = ["Trajectory", "check", "derive", "load_problem", "simulate"]
+__all__ = ["Trajectory", "check", "derive", "load_problem", "simulate", "variants"]
 
 #: CPU seconds a derivation gets when the caller gives no budget (the command line's default)
 DEFAULT_BUDGET = 120.0
@@ -386,3 +387,71 @@ def export(path: str | Path, *, to: str = "python", output: str | Path = "out") 
     from lagsolve.app.export import export_file
 
     return export_file(path, to, output)
+
+
+def variants(path: str | Path, *, count: int, vary: Any, seed: int = 0, require: str | None = None,
+             sig_figs: int = 3, to: str = "yaml", output: str | Path | None = None, budget: float = DEFAULT_BUDGET,
+             attempts: int = 0, figures: bool = False) -> VariantSet:
+    """Homework variants of a problem with verified keys (``lagsolve variants``).
+
+    The problem is derived once; each variant draws the varied numbers (``numpy.random.default_rng(seed)``),
+    rounds them to ``sig_figs`` significant figures, simulates, builds its key (every number found by two routes
+    that must agree) and passes the sanity rules (:mod:`lagsolve.variants.sanity`), or is replaced.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The problem file (it needs a ``simulation`` section with ``t_end``).
+    count : int
+        Variants wanted.
+    vary : sequence of str, or mapping of str to str
+        ``["mu=0.1:0.6", "Omega=1:4:0.5"]`` or ``{"mu": "0.1:0.6"}``: a parameter, coordinate or velocity,
+        uniform in [LOW, HIGH], or on the grid LOW + k·STEP.
+    seed : int
+        The same seed gives the same variants, byte for byte.
+    require : {"stick", "slip", "release", "no-release"}, optional
+        The regime every variant must show (stick/slip: of the friction contacts at t = 0).
+    sig_figs : int
+        Significant figures of the varied numbers.
+    to : {"yaml", "prairielearn", "moodle-xml"}
+        Also write a PrairieLearn question folder or a Moodle XML quiz (with ``output``).
+    output : str or pathlib.Path, optional
+        Write the files (:mod:`lagsolve.variants.layout`) into this folder (atomically, following no link).
+    budget : float
+        CPU seconds of the one derivation.
+    attempts : int
+        Candidates drawn at most (0: 20 per variant, at least 50).
+    figures : bool
+        Also draw each variant's coordinates and forces against time (PNG bytes in ``Variant.figures``).
+
+    Returns
+    -------
+    VariantSet
+        The variants (numbers, key, problem text), the rejections per rule and the shared report.
+
+    Raises
+    ------
+    SpecError
+        A bad option (before any work), or too few variants passed within the attempts.
+
+    Examples
+    --------
+    >>> made = variants("problems/rotating_tube.yaml", count=3, vary=["mu=0.1:0.6", "Omega=1:4"],
+    ...                 require="slip", output="hw")  # doctest: +SKIP
+    >>> made.rejections["regime"], [v.key.regime["wall"] for v in made.variants]  # doctest: +SKIP
+    (0, ['slip', 'slip', 'slip'])
+    """
+    from lagsolve.variants.run import generate
+    from lagsolve.variants.spec import build_request
+
+    ranges.check(count=count, seed=seed, sig_figs=sig_figs, attempts=attempts, budget=budget)
+    request = build_request(load_problem(Path(path)), count=count, vary=vary, seed=seed, require=require,
+                            sig_figs=sig_figs, to=to, attempts=attempts, figures=figures)
+    made = generate(path, request, budget=budget)
+    if output is not None:
+        from lagsolve.files import write_file
+        from lagsolve.variants.layout import files
+
+        for name, data in files(made).items():
+            write_file(Path(output), name, data)
+    return made

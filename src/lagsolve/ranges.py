@@ -74,6 +74,9 @@ RANGES: dict[str, Range] = {
     "runs": Range(1, 10_000_000, integer=True),
     "chunk_size": Range(1, 10_000_000, integer=True),
     "seed": Range(0, 2**64 - 1, integer=True),
+    "count": Range(1, 10_000, integer=True),  # variants of a problem (lagsolve variants --count)
+    "sig_figs": Range(1, 12, integer=True),  # significant figures of a variant's varied numbers
+    "attempts": Range(0, 1_000_000, integer=True),  # candidates drawn at most (0: 20 per variant, at least 50)
 }
 
 

@@ -20,12 +20,13 @@ TOLERANCE = 1e-9
 
 
 def complete_initial(system: NumericSystem, given: Mapping[str, float], source: str = "",
-                     t0: float = 0.0, *, line: int = 0,
-                     field: str = "simulation.initial") -> tuple[np.ndarray, np.ndarray]:
+                     t0: float = 0.0, *, line: int = 0, field: str = "simulation.initial",
+                     start: Mapping[str, float] | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Positions and velocities at ``t0`` from the ``given`` values (``x``, ``x_dot``, ...).
 
     ``line`` and ``field`` say where the values were given (``simulation.initial`` at a line of
-    ``source``, or ``--initial``), for the messages.
+    ``source``, or ``--initial``), for the messages. ``start`` gives starting values for coordinates
+    that are not given, tried before the usual ones (so the solution near them is found first).
 
     Raises
     ------
@@ -46,7 +47,7 @@ def complete_initial(system: NumericSystem, given: Mapping[str, float], source: 
     n = len(names)
 
     if system.holonomic and free_q.any():
-        q = _solve_positions(system, q, qd, free_q, t0)
+        q = _solve_positions(system, q, qd, free_q, t0, start)
     if system.holonomic:
         psi = system.position_residual(t0, q, qd, p)
         if not np.all(np.isfinite(psi)) or np.max(np.abs(psi), initial=0.0) > TOLERANCE:
@@ -77,7 +78,7 @@ GUESSES = (0.0, -1.0, 1.0, -0.5, 0.5, -2.0, 2.0)
 
 
 def _solve_positions(system: NumericSystem, q: np.ndarray, qd: np.ndarray, free: np.ndarray,
-                     t0: float) -> np.ndarray:
+                     t0: float, start: Mapping[str, float] | None = None) -> np.ndarray:
     """Least-norm Newton iteration (:func:`~lagsolve.mechanics.equations.surface.newton`) on the free coordinates;
     tries several starting values, since a start such as y = 0 for x² + y² = l² has a singular Jacobian."""
     p, n = system.parameters, system.n
@@ -94,9 +95,11 @@ def _solve_positions(system: NumericSystem, q: np.ndarray, qd: np.ndarray, free:
         return system.position_jacobian(t0, full(x), qd, p).reshape(len(system.holonomic), n)[:, free]
 
     best, best_residual = q, np.inf
-    for guess in GUESSES:
+    first = [[float(start.get(c, 0.0)) for c, f in zip(system.coordinates, free, strict=True) if f]] if start else []
+    starts = first + [[guess] * int(free.sum()) for guess in GUESSES]
+    for x0 in starts:
         with np.errstate(all="ignore"):
-            x, _ = newton(residual, jacobian, [guess] * int(free.sum()), step=least_squares, tolerance=1e-14)
+            x, _ = newton(residual, jacobian, x0, step=least_squares, tolerance=1e-14)
             trial = full(x)
             left = np.max(np.abs(system.position_residual(t0, trial, qd, p)))
         if np.isfinite(left) and left < best_residual:
