@@ -144,7 +144,7 @@ class NumericSystem:
                 F[:, c + 1] = 0.0
                 held.append((c, w, drift, g))
                 continue
-            F[:, c + 1] *= rate_sign(w, qd, direction[c] if direction is not None else 0.0)
+            F[:, c + 1] *= sliding_sign(w, qd, direction, c)
         kept = A.shape[0]
         rows = kept + len(held)
         if rows == 0:
@@ -216,7 +216,7 @@ class NumericSystem:
             elif stuck[c]:
                 out[c] = sticking[c]
             else:
-                out[c] = -kinetic * normal[c] * rate_sign(parts[c][0], qd, direction[c])
+                out[c] = -kinetic * normal[c] * sliding_sign(parts[c][0], qd, direction, c)
         return out
 
     def magnitudes(self, t: float, q: np.ndarray, qd: np.ndarray, lam: np.ndarray) -> np.ndarray:
@@ -228,6 +228,16 @@ _EMPTY = np.zeros(0)
 
 #: a sliding rate this small against |w|·|q̇| counts as zero (rounding after a projection onto σ = 0)
 RATE_TOLERANCE = 1e-12
+
+
+def sliding_sign(w: np.ndarray, qd: np.ndarray, direction: np.ndarray | None, c: int) -> float:
+    """The sign kinetic friction opposes at contact ``c``: the direction the integrator holds between events
+    (``direction[c]``, set where the contact starts to slide and flipped where its rate passes through zero,
+    :mod:`lagsolve.numeric.integrate`), so that the right-hand side is smooth up to the event and the rate
+    crosses zero there, not stalls at it with ever smaller steps; without one, the sign of the rate."""
+    if direction is not None and direction[c] != 0:
+        return float(np.sign(direction[c]))
+    return rate_sign(w, qd, direction[c] if direction is not None else 0.0)
 
 
 def rate_sign(w: np.ndarray, qd: np.ndarray, fallback: float) -> float:
