@@ -43,6 +43,7 @@ class Settings:
     rtol: float = 1e-10
     atol: float = 1e-12
     section: Section | None = None
+    engine: str = "numpy"  # "compiled": lagsolve.sweep.native where it applies; "numpy": rk.integrate_batch
 
 
 @dataclass(frozen=True)
@@ -56,6 +57,18 @@ class Compiled:
     initial: Mapping[str, float]
     angular: tuple[bool, ...]  # per coordinate: L depends on it, and L and the positions repeat when it grows by 2π
     conserved: tuple[str, ...]
+    text: str = ""  # the problem's text (the compiled path is built from it on first use)
+    natives: dict[str, Any] = dataclasses.field(default_factory=dict)  # "native" -> (NativeSystem or None, why)
+
+    def native(self) -> tuple[Any, str]:
+        """The compiled integrator of :mod:`lagsolve.sweep.native` (built on first use, then kept), or None and
+        why the compiled path does not apply."""
+        if "native" not in self.natives:
+            from lagsolve.sweep.native import native_system
+
+            self.natives["native"] = (None, self.why_per_run) if self.batch is None else native_system(self.system)
+        found: tuple[Any, str] = self.natives["native"]
+        return found
 
 
 _CACHE: dict[tuple[str, str], Compiled] = {}
@@ -100,7 +113,7 @@ def _compile(text: str, source: str) -> Compiled:
         # a cyclic angle (a turning tube's φ, a spherical pendulum's azimuth) goes round; it does not flip
         angular.append(bool(same) and sympy.diff(model.lagrangian, q) != 0)
     initial = dict(problem.simulation.initial) if problem.simulation is not None else {}
-    return Compiled(source, system, batch, why, initial, tuple(angular), system.conserved_names)
+    return Compiled(source, system, batch, why, initial, tuple(angular), system.conserved_names, text)
 
 
 def run_chunk(text: str, source: str, settings: Settings, inputs: Mapping[str, np.ndarray],
@@ -113,6 +126,11 @@ def run_chunk(text: str, source: str, settings: Settings, inputs: Mapping[str, n
 
     problem = compiled(text, source)
     count = len(next(iter(inputs.values())))
+    native = problem.native()[0] if settings.engine == "compiled" and settings.method in EXPLICIT else None
+    if native is not None:
+        from lagsolve.sweep.fast import compiled_chunk
+
+        return compiled_chunk(problem, native, settings, inputs, start)
     names = problem.system.parameter_names
     parameters = np.tile(problem.system.parameters, (count, 1))
     for name, values in inputs.items():
