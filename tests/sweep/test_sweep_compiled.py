@@ -106,3 +106,13 @@ def test_the_default_workers_follow_the_run_count() -> None:
     """In process for small sweeps and on the other paths; threads for large compiled sweeps."""
     assert default_workers(10, True) == 0 and default_workers(100_000, False) == 0
     assert default_workers(10_000, True) >= 1
+
+
+def test_a_run_that_starts_outside_the_domain_fails_and_the_chunk_goes_on() -> None:
+    """x = 0 on y = log(x): the compiled code divides by zero there (NumPy's error model: an infinity, not an
+    exception), so that run fails at its start with the NumPy path's reason and the others run."""
+    options = {"grid": {"x": [0.0, 20.0]}, "t_end": 0.5}
+    fast, slow = sweep(LOG_WIRE, engine="compiled", **options), sweep(LOG_WIRE, engine="numpy", **options)
+    assert fast["path"].tolist() == ["compiled"] * 2
+    assert fast["status"].tolist() == slow["status"].tolist() == ["failed", "ok"]
+    assert fast["reason"][0] == slow["reason"][0]

@@ -140,7 +140,7 @@ def _function(name: str, signature: str, flat: Sequence[Any], n: int, targets: l
 
     renamed, exprs = private_arguments(flat, [sympy.sympify(e) if isinstance(e, int | float) else e
                                               for _, e in targets])
-    printer = PythonCodePrinter({"fully_qualified_modules": True, "standard": "python3"})
+    printer = _printer(PythonCodePrinter)
     lines = [f"def {name}{signature}:  # noqa: F811, ANN001, ANN202, E501"]
     args = ["t", *(f"y[{i}]" for i in range(2 * n)), *(f"p[{i}]" for i in range(len(renamed) - 1 - 2 * n))]
     for symbol, arg in zip(renamed, args, strict=True):
@@ -154,6 +154,22 @@ def _function(name: str, signature: str, flat: Sequence[Any], n: int, targets: l
     if not targets or targets[-1][0] != "return":
         lines.append("    return")
     return "\n".join(lines)
+
+
+def _printer(base: type) -> Any:
+    """SymPy's Python printer, writing a negative whole power as a division (``1.0/(x**2)``): Numba raises
+    ZeroDivisionError for ``0.0**-2`` whatever its error model, while a division by zero gives an infinity."""
+    import sympy
+
+    class Printer(base):
+        def _print_Pow(self, expr: Any, rational: bool = False) -> str:
+            exponent = expr.exp
+            if exponent.is_Integer and exponent < 0:
+                power = expr.base if exponent == -1 else sympy.Pow(expr.base, -exponent, evaluate=False)
+                return f"(1.0/({self._print(power)}))"
+            return str(super()._print_Pow(expr, rational=rational))
+
+    return Printer({"fully_qualified_modules": True, "standard": "python3"})
 
 
 def _print(printer: Any, expr: Any) -> str:
