@@ -95,6 +95,7 @@ def test_problems_the_compiled_path_does_not_cover_take_the_others() -> None:
     the path column says which; the table is the one the NumPy engine gives."""
     constrained = sweep(CARTESIAN, grid={"x": [0.2, 0.5]}, t_end=1.0, engine="compiled")
     assert (constrained["path"] == "batched").all()
+    assert (constrained["note"] == "not compiled: constraints (the batched path projects onto them)").all()
     options = {"grid": {"x": [0.3, 0.5]}, "t_end": 2.0}
     friction = sweep(SPRING, engine="compiled", **options)
     assert friction["path"].str.startswith("per run: friction contacts").all()

@@ -133,7 +133,8 @@ def run_chunk(text: str, source: str, settings: Settings, inputs: Mapping[str, n
 
     problem = compiled(text, source)
     count = len(next(iter(inputs.values())))
-    native = problem.native()[0] if settings.engine == "compiled" and settings.method in EXPLICIT else None
+    native, not_compiled = (problem.native() if settings.engine == "compiled" and settings.method in EXPLICIT
+                            else (None, ""))
     if native is not None:
         return _compiled_chunk(problem, native, settings, inputs, start)
     names = problem.system.parameter_names
@@ -145,6 +146,8 @@ def run_chunk(text: str, source: str, settings: Settings, inputs: Mapping[str, n
     batched = problem.batch is not None and settings.method in EXPLICIT
     if batched:
         rows = _batched(problem, settings, parameters, starts, failures)
+        for row in rows:  # the compiled path was asked for: why these runs are batched instead
+            row["note"] = row["note"] or (f"not compiled: {not_compiled}" if not_compiled else "")
     else:
         why = problem.why_per_run or f"the {settings.method} method (implicit) is not batched"
         rows = _per_run(problem, settings, parameters, starts, failures, why)
