@@ -19,7 +19,9 @@ with other work the wall clock says little, the CPU time more):
 Targets: the sweep with 2 workers in ≤ 1.5 s wall (on the idle 2-core machine), and 2 workers ≥ 1.7×
 one worker. PASS/MISS is given by wall clock and, for the speed-up, also by CPU time (the speed-up two
 free cores allow: twice the CPU time of one worker over that of two, the split being even); the script
-always exits 0. The compiled sweep's final states are checked against the solve_ivp sample.
+always exits 0. The compiled sweep's final states are checked against the solve_ivp sample. "On two
+free cores" is what the run would take without the other work of a shared machine: the main thread's
+CPU seconds (the serial part) plus those of the busiest worker thread, read per thread with psutil.
 
     .venv/bin/python bench/sweep_fast.py                   # 10⁴ runs
     .venv/bin/python bench/sweep_fast.py --runs 400 --sample 5 --json
@@ -94,14 +96,77 @@ def solve_ivp_loop(theta1: np.ndarray, theta2: np.ndarray, runs: int) -> tuple[d
             np.array(finals))
 
 
+class ThreadClock:
+    """The CPU seconds of each thread of this process while it runs (sampled every 20 ms with psutil, whose
+    per-thread times outlive nothing: a worker thread's last sample is kept), to tell what two free cores
+    would take from what a busy machine gave: the main thread's CPU (the serial part) plus the busiest
+    worker thread's."""
+
+    def __init__(self) -> None:
+        import threading
+
+        self.seen: dict[int, float] = {}
+        self.stop = threading.Event()
+        self.thread = threading.Thread(target=self._sample, daemon=True)
+
+    def _sample(self) -> None:
+        import psutil
+
+        me = psutil.Process()
+        while not self.stop.is_set():
+            for thread in me.threads():
+                self.seen[thread.id] = thread.user_time + thread.system_time
+            self.stop.wait(0.02)
+
+    def __enter__(self) -> ThreadClock:
+        import threading
+
+        self.main = threading.get_native_id()
+        self._sample_once()
+        self.before = dict(self.seen)
+        self.thread.start()
+        return self
+
+    def _sample_once(self) -> None:
+        import psutil
+
+        for thread in psutil.Process().threads():
+            self.seen[thread.id] = thread.user_time + thread.system_time
+
+    def __exit__(self, *exc: object) -> None:
+        self.stop.set()
+        self.thread.join()
+        self._sample_once()
+
+    def critical_path(self) -> float:
+        """Main thread's CPU plus the busiest other thread's (not the sampler's), in seconds."""
+        sampler = self.thread.native_id
+        used = {tid: cpu - self.before.get(tid, 0.0) for tid, cpu in self.seen.items() if tid != sampler}
+        main = used.pop(self.main, 0.0)
+        return main + max(used.values(), default=0.0)
+
+
 def time_sweep(axes: tuple[np.ndarray, np.ndarray], engine: str, workers: int) -> tuple[dict[str, Any], Any]:
     from lagsolve.sweep.api import sweep
 
+    clock = None
+    try:
+        import psutil  # noqa: F401 - only to know that the per-thread clock can run
+        clock = ThreadClock()
+    except ImportError:  # pragma: no cover - psutil is a dev dependency
+        pass
     start, cpu = time.perf_counter(), time.process_time()
-    frame = sweep(PROBLEM, grid={"theta1": axes[0], "theta2": axes[1]}, t_end=T_END, method=METHOD, rtol=RTOL,
-                  atol=ATOL, workers=workers, engine=engine)
+    if clock is not None:
+        with clock:
+            frame = sweep(PROBLEM, grid={"theta1": axes[0], "theta2": axes[1]}, t_end=T_END, method=METHOD,
+                          rtol=RTOL, atol=ATOL, workers=workers, engine=engine)
+    else:
+        frame = sweep(PROBLEM, grid={"theta1": axes[0], "theta2": axes[1]}, t_end=T_END, method=METHOD, rtol=RTOL,
+                      atol=ATOL, workers=workers, engine=engine)
     figures = {"seconds": time.perf_counter() - start, "cpu_seconds": time.process_time() - cpu,
                "failed": int((frame["status"] == "failed").sum()), "path": str(frame["path"].iloc[0])}
+    if clock is not None:
+        figures["free_cores_seconds"] = clock.critical_path()
     return figures, frame
 
 
@@ -139,10 +204,12 @@ def measure(args: argparse.Namespace) -> dict[str, Any]:
     result["load_after"] = os.getloadavg()[0]
     result["loaded"] = result["load_before"] > LOADED
     one, two = result["sweep"]["1"], result["sweep"]["2"]
+    free_two = two.get("free_cores_seconds", two["cpu_seconds"] / 2)
     result["targets"] = {
-        "seconds": {"target": TARGET_SECONDS, "value": two["seconds"], "met": two["seconds"] <= TARGET_SECONDS},
+        "seconds": {"target": TARGET_SECONDS, "value": two["seconds"], "cpu_value": free_two,
+                    "met": two["seconds"] <= TARGET_SECONDS},
         "workers": {"target": TARGET_SPEEDUP, "value": one["seconds"] / two["seconds"],
-                    "cpu_value": 2 * one["cpu_seconds"] / two["cpu_seconds"],
+                    "cpu_value": one["cpu_seconds"] / free_two,
                     "met": one["seconds"] / two["seconds"] >= TARGET_SPEEDUP},
     }
     return result
@@ -172,11 +239,13 @@ def show(result: dict[str, Any]) -> None:
     print(f"{'reference: solve_ivp loop (extrapolated)':<40}{ivp['seconds']:>9.2f}{ivp['cpu_seconds']:>9.2f}   "
           f"(final states within {ivp['max_difference']:.1e} of the sweep's)")
     seconds, workers = result["targets"]["seconds"], result["targets"]["workers"]
+    free = seconds["cpu_value"]
     print(f"target: 2 workers <= {seconds['target']:g} s wall: {seconds['value']:.2f} s  "
-          f"{'PASS' if seconds['met'] else 'MISS'}")
+          f"{'PASS' if seconds['met'] else 'MISS'}; on two free cores (main thread's CPU + the busiest "
+          f"worker thread's) {free:.2f} s  {'PASS' if free <= seconds['target'] else 'MISS'}")
     print(f"target: 2 workers >= {workers['target']:g}x one worker: {workers['value']:.2f}x wall  "
-          f"{'PASS' if workers['met'] else 'MISS'}; by CPU time {workers['cpu_value']:.2f}x  "
-          f"{'PASS' if workers['cpu_value'] >= workers['target'] else 'MISS'}")
+          f"{'PASS' if workers['met'] else 'MISS'}; on two free cores (one worker's CPU over that) "
+          f"{workers['cpu_value']:.2f}x  {'PASS' if workers['cpu_value'] >= workers['target'] else 'MISS'}")
 
 
 def main() -> int:
