@@ -117,3 +117,32 @@ def test_a_run_that_starts_outside_the_domain_fails_and_the_chunk_goes_on() -> N
     assert fast["path"].tolist() == ["compiled"] * 2
     assert fast["status"].tolist() == slow["status"].tolist() == ["failed", "ok"]
     assert fast["reason"][0] == slow["reason"][0]
+
+
+def test_the_kernel_as_plain_python_gives_the_compiled_numbers() -> None:
+    """The generated module run by the interpreter (no Numba) integrates two runs, with a section, to the
+    numbers of its compiled form: the compiled path is the kernel's text, nothing else."""
+    import importlib.util
+
+    from lagsolve.sweep import native
+    from lagsolve.sweep.run import compiled
+
+    problem = compiled(DOUBLE.read_text(encoding="utf-8"), str(DOUBLE))
+    text, why = native.source(problem.system)
+    assert text is not None, why
+    path = native._written(text, "lagsolve_sweep_plain_python_test")
+    spec = importlib.util.spec_from_file_location("lagsolve_sweep_plain_python_test", path)
+    assert spec is not None and spec.loader is not None
+    plain = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(plain)
+    fast = problem.native()[0]
+    y0 = np.array([[0.3, 0.2, 0.0, 0.0], [2.5, -1.0, 0.5, 0.0]])
+    p = np.tile(np.asarray(problem.system.parameters, dtype=float), (2, 1))
+    angular = np.array(problem.angular, dtype=bool)
+    slow = native.NativeSystem(2, fast.n_conserved, plain).integrate(y0, p, 1.0, "DOP853", 1e-8, 1e-10, angular,
+                                                                      (1, 0.0))
+    ours = fast.integrate(y0, p, 1.0, "DOP853", 1e-8, 1e-10, angular, (1, 0.0))
+    assert slow[2].tolist() == ours[2].tolist() and slow[3].tolist() == ours[3].tolist()  # steps, end codes
+    for mine, theirs in zip(slow, ours, strict=True):
+        np.testing.assert_allclose(np.asarray(mine, dtype=float), np.asarray(theirs, dtype=float), rtol=1e-12,
+                                   atol=1e-12)
