@@ -39,6 +39,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/simulate.py
 	$(BIN)/python bench/scale.py
 	$(BIN)/python bench/sweep.py
+	$(BIN)/python bench/sweep_fast.py --numpy
 
 docs: $(STAMP)
 	$(BIN)/mkdocs build --strict
