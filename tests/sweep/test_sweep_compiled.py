@@ -146,3 +146,17 @@ def test_the_kernel_as_plain_python_gives_the_compiled_numbers() -> None:
     for mine, theirs in zip(slow, ours, strict=True):
         np.testing.assert_allclose(np.asarray(mine, dtype=float), np.asarray(theirs, dtype=float), rtol=1e-12,
                                    atol=1e-12)
+
+
+@pytest.mark.parametrize("method", ["RK45", "RK23"])
+def test_the_other_explicit_methods_take_the_numpy_paths_steps(method: str) -> None:
+    """RK45 and RK23 on the compiled path (their own dense output for the crossings): the steps, final states
+    and crossings of the batched NumPy path."""
+    options = {"grid": {"theta1": [0.4, 1.2], "theta2": [0.3, -0.8]}, "t_end": 2.0, "rtol": 1e-9, "atol": 1e-11,
+               "method": method, "poincare": "theta2=0"}
+    fast, slow = sweep(DOUBLE, engine="compiled", **options), sweep(DOUBLE, engine="numpy", **options)
+    assert fast["steps"].tolist() == slow["steps"].tolist()
+    np.testing.assert_allclose(fast[FINALS], slow[FINALS], atol=1e-9)
+    assert fast["poincare_count"].tolist() == slow["poincare_count"].tolist() and fast["poincare_count"].sum() > 0
+    for ours, theirs in zip(fast["poincare_t"], slow["poincare_t"], strict=True):
+        np.testing.assert_allclose(ours, theirs, atol=1e-9)
