@@ -106,7 +106,7 @@ def test_problems_the_compiled_path_does_not_cover_take_the_others() -> None:
 def test_the_default_workers_follow_the_run_count() -> None:
     """In process for small sweeps and on the other paths; threads for large compiled sweeps."""
     assert default_workers(10, True) == 0 and default_workers(100_000, False) == 0
-    assert default_workers(10_000, True) >= 1
+    assert default_workers(10_000, True) >= 1 and default_workers(100, False, batched=True) == 0
 
 
 def test_a_run_that_starts_outside_the_domain_fails_and_the_chunk_goes_on() -> None:

@@ -31,17 +31,26 @@ COMPILED_FROM = 1000
 #: thread is too short to pay for the split)
 THREADS_FROM = 512
 
+#: runs from which the default ``workers`` on the batched NumPy path is a local Dask cluster, one process per core
+PROCESSES_FROM = 5000
+
 ENGINES = ("auto", "compiled", "numpy")
 
 
-def default_workers(runs: int, compiled: bool) -> int:
-    """The fastest ``workers`` for ``runs`` runs, measured (docs/api.md, "Speed"): threads, one per core, on the
-    compiled path for at least :data:`THREADS_FROM` runs; else 0, in this process: a local Dask cluster's
-    start-up (a few seconds, each worker importing and compiling the problem) costs more than the NumPy or
-    per-run path spends on most sweeps, and ``--workers N`` asks for it explicitly."""
-    if compiled and runs >= THREADS_FROM:
-        return max(1, min(len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1,
-                          runs // (THREADS_FROM // 2)))
+def default_workers(runs: int, compiled: bool, batched: bool = False) -> int:
+    """The fastest ``workers`` for ``runs`` runs, measured (docs/api.md, "Speed of sweeps"): on the compiled path,
+    threads, one per core, for at least :data:`THREADS_FROM` runs; on the batched NumPy path, a local Dask
+    cluster of one process per core for at least :data:`PROCESSES_FROM` runs (where Dask is installed): its
+    start-up and each worker's own derivation cost about 5 s, which two cores win back from about 4000 runs
+    of the double pendulum to t = 10 s; else 0, in this process (and always on the per-run path, whose cost
+    per run varies too much with the problem to choose for it: ``--workers N`` asks)."""
+    import importlib.util
+
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    if compiled:
+        return max(1, min(cores, runs // (THREADS_FROM // 2))) if runs >= THREADS_FROM else 0
+    if batched and runs >= PROCESSES_FROM and cores > 1 and importlib.util.find_spec("distributed") is not None:
+        return cores
     return 0
 
 
@@ -105,7 +114,8 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
         0 runs in this process. N > 0: on the compiled path, N threads of this process (the compiled
         integrator releases the GIL: nothing to start, nothing to ship); otherwise a local Dask cluster of
         N worker processes. None (the default) takes the fastest for the sweep (:func:`default_workers`):
-        one thread per core on the compiled path for at least :data:`THREADS_FROM` runs, else in process.
+        one thread per core on the compiled path for at least :data:`THREADS_FROM` runs, a Dask process
+        per core on the batched NumPy path for at least :data:`PROCESSES_FROM` runs, else in process.
     scheduler : str, optional
         Address of an existing Dask scheduler (``tcp://host:8786``) to run on instead. It is checked first,
         with a time-out: it must answer as a Dask scheduler and have a worker (else SpecError).
@@ -159,7 +169,10 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     settings = dataclasses.replace(settings, engine=_engine(engine, total, method))
     fast = settings.engine == "compiled" and built.native()[0] is not None  # compiled once, here
     if workers is None:
-        workers = default_workers(total, fast and scheduler is None)
+        from lagsolve.problem.methods import EXPLICIT
+
+        workers = default_workers(total, fast and scheduler is None,
+                                  batched=built.batch is not None and method in EXPLICIT)
     if before is not None:
         before(columns(built, settings, list(inputs)))
     frames = _run_chunks(text, source, settings, inputs, chunk_size, workers, scheduler, progress,
