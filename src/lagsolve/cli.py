@@ -567,7 +567,7 @@ def _sweep_progress() -> Callable[[int, int], None]:
          help="Parallel workers: threads on the compiled path, else processes of a local Dask cluster "
               "(0: in this process; default: the fastest for the run count).")
 @click.option("--engine", type=click.Choice(["auto", "compiled", "numpy"]), default="auto", show_default=True,
-              help="compiled: machine code per run (Numba, the fast extra); numpy: the batched NumPy integrator; "
+              help="compiled: machine code per run (Numba, in the sweep extra); numpy: the batched NumPy integrator; "
                    "auto: compiled for 1000 runs or more when Numba is installed.")
 @click.option("--scheduler", metavar="ADDRESS", help="Run on an existing Dask cluster, e.g. tcp://10.0.0.1:8786.")
 @_number("--chunk-size", key="chunk_size", help="Runs per chunk (default: about 4 chunks per worker).")
