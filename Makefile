@@ -44,6 +44,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/startup.py --phases
 	$(BIN)/python bench/sweep.py
 	$(BIN)/python bench/export.py
+	$(BIN)/python bench/sweep_fast.py --numpy
 
 docs: $(STAMP)
 	$(BIN)/mkdocs build --strict

@@ -16,7 +16,9 @@ Three ways to run N initial conditions (θ1, θ2 on a grid over [0.1, 1.5]², at
   ``sympy.lambdify(cse=True)`` of the mass matrix and forcing of SymPy's ``LagrangesMethod``
   (``np.linalg.solve`` per evaluation), the same S runs; building the function is not timed.
 
-The sample runs are also checked against the sweep's rows (final states within 1e-7).
+The sample runs are also checked against the sweep's rows (final states within 1e-7). The sweep
+takes its default engine: in process, 1000 runs or more run on the compiled path (Numba; see
+bench/sweep_fast.py), fewer on the batched NumPy path; on the Dask workers the same rule applies.
 Targets (issue 18): sweep ≥ 20× the simulate loop, ≥ 5× the solve_ivp loop (per run), and a
 near-linear speed-up from 1 to 2 workers (≥ 1.6×). Each ratio is given by wall clock and by CPU
 time (runs per CPU second; for the workers, the 1-worker CPU over the busiest worker's CPU with

@@ -566,8 +566,12 @@ def _sweep_progress() -> Callable[[int, int], None]:
 @_number("--rtol", key="rtol", default=1e-10, show_default=True)
 @_number("--atol", key="atol", default=1e-12, show_default=True)
 @click.option("--poincare", metavar="SECTION", help='Record section crossings, e.g. "theta2=0, theta2_dot>0".')
-@_number("--workers", key="workers", default=0, show_default=True,
-         help="Worker processes of a local Dask cluster (0: run in this process).")
+@_number("--workers", key="workers",
+         help="Parallel workers: threads on the compiled path, else processes of a local Dask cluster "
+              "(0: in this process; default: the fastest for the run count).")
+@click.option("--engine", type=click.Choice(["auto", "compiled", "numpy"]), default="auto", show_default=True,
+              help="compiled: machine code per run (Numba, in the sweep extra); numpy: the batched NumPy integrator; "
+                   "auto: compiled for 1000 runs or more when Numba is installed.")
 @click.option("--scheduler", metavar="ADDRESS", help="Run on an existing Dask cluster, e.g. tcp://10.0.0.1:8786.")
 @_number("--chunk-size", key="chunk_size", help="Runs per chunk (default: about 4 chunks per worker).")
 @click.option("-o", "--output", type=click.Path(path_type=Path), required=True,
@@ -575,8 +579,9 @@ def _sweep_progress() -> Callable[[int, int], None]:
 @click.option("--plot", is_flag=True, help="Also write the regime map (two inputs) or bifurcation scatter (one).")
 @click.option("--color", metavar="COLUMN", help="Colour the regime map by this column instead of the outcome.")
 def sweep(file: Path, grid: tuple[str, ...], random_: tuple[str, ...], runs: int | None, seed: int,
-          t_end: float | None, method: str, rtol: float, atol: float, poincare: str | None, workers: int,
-          scheduler: str | None, chunk_size: int | None, output: Path, plot: bool, color: str | None) -> None:
+          t_end: float | None, method: str, rtol: float, atol: float, poincare: str | None, workers: int | None,
+          engine: str, scheduler: str | None, chunk_size: int | None, output: Path, plot: bool,
+          color: str | None) -> None:
     """Run problem FILE many times over parameters and initial conditions; one table row per run.
 
     \b
@@ -595,7 +600,7 @@ def sweep(file: Path, grid: tuple[str, ...], random_: tuple[str, ...], runs: int
 
         frame = run_sweep(file, grid=grid, random=random_, runs=runs, seed=seed, t_end=t_end, method=method,
                           rtol=rtol, atol=atol, poincare=poincare, workers=workers, scheduler=scheduler,
-                          chunk_size=chunk_size, progress=_sweep_progress(),
+                          chunk_size=chunk_size, progress=_sweep_progress(), engine=engine,
                           before=lambda numeric: check_color(color, numeric))
         written = [write_file(output.parent, output.name, table_bytes(frame, output.suffix))]
         if plot or color:

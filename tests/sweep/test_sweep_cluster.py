@@ -194,7 +194,7 @@ def test_ctrl_c_during_a_sweep_with_workers_exits_130_quietly(tmp_path: Path) ->
 
     out = tmp_path / "s.csv"
     command = [sys.executable, "-m", "lagsolve", "sweep", str(DOUBLE), "--grid", "theta1=0.1:1.5:40", "--grid",
-               "theta2=0.1:1.5:40", "--t-end", "50", "--workers", "2", "-o", str(out)]
+               "theta2=0.1:1.5:40", "--t-end", "50", "--workers", "2", "--engine", "numpy", "-o", str(out)]
     process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                                start_new_session=True)
     try:
@@ -207,6 +207,36 @@ def test_ctrl_c_during_a_sweep_with_workers_exits_130_quietly(tmp_path: Path) ->
         assert len(workers) >= 2, "the workers did not start"
         family = parent.children(recursive=True)
         time.sleep(1.0)  # the workers are at work (or still connecting: the signal is then held, not lost)
+        os.killpg(process.pid, signal.SIGINT)
+        _, stderr = process.communicate(timeout=120)
+    finally:
+        if process.poll() is None:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.wait()
+    assert process.returncode == 130, stderr
+    assert stderr == "interrupted\n"
+    assert not out.exists()
+    _, alive = psutil.wait_procs(family, timeout=30)
+    assert alive == []
+
+
+@pytest.mark.slow
+def test_ctrl_c_during_a_compiled_sweep_on_threads_exits_130_quietly(tmp_path: Path) -> None:
+    """The compiled path's workers are threads of the command: Ctrl-C stops it with exit 130 and the one line
+    "interrupted" (the chunks not started are cancelled), no table written, no process left."""
+    import os
+    import signal
+    import time
+
+    pytest.importorskip("numba")
+    out = tmp_path / "s.csv"
+    command = [sys.executable, "-m", "lagsolve", "sweep", str(DOUBLE), "--grid", "theta1=0.1:1.5:40", "--grid",
+               "theta2=0.1:1.5:40", "--t-end", "500", "--workers", "2", "--engine", "compiled", "-o", str(out)]
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                               start_new_session=True)
+    try:
+        time.sleep(8.0)  # derived, compiled (or loaded), at work
+        family = psutil.Process(process.pid).children(recursive=True)
         os.killpg(process.pid, signal.SIGINT)
         _, stderr = process.communicate(timeout=120)
     finally:

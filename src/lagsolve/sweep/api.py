@@ -9,7 +9,9 @@ or the worker that ran it.
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import os
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -20,6 +22,46 @@ from lagsolve.problem.methods import DEFAULT as DEFAULT_METHOD
 from lagsolve.sweep import INSTALL
 
 ProgressCallback = Callable[[int, int], None]  # (runs done, runs in all)
+
+#: runs from which ``engine="auto"`` takes the compiled path (below, the NumPy batch is done before Numba
+#: would have loaded its cached machine code, let alone compiled it the first time)
+COMPILED_FROM = 1000
+
+#: runs from which the default ``workers`` on the compiled path is one thread per core (below, a chunk per
+#: thread is too short to pay for the split)
+THREADS_FROM = 512
+
+#: runs from which the default ``workers`` on the batched NumPy path is a local Dask cluster, one process per core
+PROCESSES_FROM = 5000
+
+ENGINES = ("auto", "compiled", "numpy")
+
+
+def default_workers(runs: int, compiled: bool, batched: bool = False) -> int:
+    """The fastest ``workers`` for ``runs`` runs, measured (docs/api.md, "Speed of sweeps"): on the compiled path,
+    threads, one per core, for at least :data:`THREADS_FROM` runs; on the batched NumPy path, a local Dask
+    cluster of one process per core for at least :data:`PROCESSES_FROM` runs (where Dask is installed): its
+    start-up and each worker's own derivation cost about 5 s, which two cores win back from about 4000 runs
+    of the double pendulum to t = 10 s; else 0, in this process (and always on the per-run path, whose cost
+    per run varies too much with the problem to choose for it: ``--workers N`` asks)."""
+    import importlib.util
+
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    if compiled:
+        return max(1, min(cores, runs // (THREADS_FROM // 2))) if runs >= THREADS_FROM else 0
+    if batched and runs >= PROCESSES_FROM and cores > 1 and importlib.util.find_spec("distributed") is not None:
+        return cores
+    return 0
+
+
+def _engine(engine: str, runs: int, method: str) -> str:
+    """The route the runs take: "compiled" or "numpy" (see :func:`sweep`'s ``engine``)."""
+    if engine != "auto":
+        return engine
+    from lagsolve.problem.methods import EXPLICIT
+    from lagsolve.sweep.native import numba_available
+
+    return "compiled" if runs >= COMPILED_FROM and method in EXPLICIT and numba_available() else "numpy"
 
 
 def _text(path_or_text: str | Path | bytes) -> tuple[str, str]:
@@ -46,9 +88,9 @@ def _as_specs(given: Mapping[str, Any] | Sequence[str] | None, option: str) -> l
 def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequence[str] | None = None,
           random: Mapping[str, tuple[float, float]] | Sequence[str] | None = None, runs: int | None = None,
           seed: int = 0, t_end: float | None = None, method: str = DEFAULT_METHOD, rtol: float = 1e-10,
-          atol: float = 1e-12, poincare: str | None = None, workers: int = 0, scheduler: str | None = None,
-          chunk_size: int | None = None, progress: ProgressCallback | None = None,
-          before: Callable[[dict[str, bool]], None] | None = None) -> Any:
+          atol: float = 1e-12, poincare: str | None = None, workers: int | None = None,
+          scheduler: str | None = None, chunk_size: int | None = None, progress: ProgressCallback | None = None,
+          before: Callable[[dict[str, bool]], None] | None = None, engine: str = "auto") -> Any:
     """Run a problem many times and return one row per run (a :class:`pandas.DataFrame`).
 
     Parameters
@@ -68,8 +110,12 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     poincare : str, optional
         A section such as ``"theta2=0, theta2_dot>0"`` (grammar in :mod:`lagsolve.sweep.spec`):
         each run's crossings, located on the dense output.
-    workers : int
-        0 runs in this process; N starts a local Dask cluster of N worker processes.
+    workers : int, optional
+        0 runs in this process. N > 0: on the compiled path, N threads of this process (the compiled
+        integrator releases the GIL: nothing to start, nothing to ship); otherwise a local Dask cluster of
+        N worker processes. None (the default) takes the fastest for the sweep (:func:`default_workers`):
+        one thread per core on the compiled path for at least :data:`THREADS_FROM` runs, a Dask process
+        per core on the batched NumPy path for at least :data:`PROCESSES_FROM` runs, else in process.
     scheduler : str, optional
         Address of an existing Dask scheduler (``tcp://host:8786``) to run on instead. It is checked first,
         with a time-out: it must answer as a Dask scheduler and have a worker (else SpecError).
@@ -80,6 +126,12 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     before : callable, optional
         Called with the table's columns (each mapped to whether it is numeric) once the input is checked and
         before any run starts: a caller checks what it will ask of the table (``lagsolve sweep --color``).
+    engine : str
+        ``"compiled"``: each run integrated by machine code (:mod:`lagsolve.sweep.native`, Numba) where the
+        problem allows it (no constraint, no friction contact, an explicit method); ``"numpy"``: the batched
+        NumPy integrator (:mod:`lagsolve.sweep.rk`); ``"auto"`` (the default): compiled for at least
+        :data:`COMPILED_FROM` runs when Numba is installed, else NumPy. The route depends on these inputs
+        only, never on the chunking or the workers; the ``path`` column names it.
 
     Returns
     -------
@@ -107,15 +159,24 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     from lagsolve.sweep.run import columns, compiled
 
     text, source, settings, inputs = _prepare(path_or_text, grid, random, runs, seed, t_end, method, rtol, atol,
-                                              poincare, workers, chunk_size)
+                                              poincare, workers, chunk_size, engine)
     if scheduler is not None:  # a wrong address is refused before the problem is compiled
         from lagsolve.sweep.cluster import check_scheduler
 
         scheduler = check_scheduler(scheduler)
     built = compiled(text, source)  # bad values surface here, as SpecError, before any worker starts
+    total = len(next(iter(inputs.values())))
+    settings = dataclasses.replace(settings, engine=_engine(engine, total, method))
+    fast = settings.engine == "compiled" and built.native()[0] is not None  # compiled once, here
+    if workers is None:
+        from lagsolve.problem.methods import EXPLICIT
+
+        workers = default_workers(total, fast and scheduler is None,
+                                  batched=built.batch is not None and method in EXPLICIT)
     if before is not None:
         before(columns(built, settings, list(inputs)))
-    frames = _run_chunks(text, source, settings, inputs, chunk_size, workers, scheduler, progress)
+    frames = _run_chunks(text, source, settings, inputs, chunk_size, workers, scheduler, progress,
+                         threads=fast)
     frame = pandas.concat(frames, ignore_index=True)
     frame.attrs["swept"] = list(inputs)
     if settings.section is not None:
@@ -134,8 +195,8 @@ def _pandas() -> Any:
 
 def _prepare(path_or_text: str | Path | bytes, grid: Mapping[str, Any] | Sequence[str] | None,
              random: Mapping[str, tuple[float, float]] | Sequence[str] | None, runs: int | None, seed: int,
-             t_end: float | None, method: str, rtol: float, atol: float, poincare: str | None, workers: int,
-             chunk_size: int | None) -> tuple[str, str, Any, dict[str, Any]]:
+             t_end: float | None, method: str, rtol: float, atol: float, poincare: str | None,
+             workers: int | None, chunk_size: int | None, engine: str = "auto") -> tuple[str, str, Any, dict[str, Any]]:
     """The problem's text and source, how every run is integrated, and each swept name's input values
     (one per run), once the input is checked (SpecError otherwise)."""
     from lagsolve.problem.load import load_text
@@ -148,7 +209,7 @@ def _prepare(path_or_text: str | Path | bytes, grid: Mapping[str, Any] | Sequenc
     names = spec.Names(tuple(p.name for p in problem.parameters),
                        frozenset(p.name for p in problem.parameters if p.positive),
                        tuple(c.name for c in problem.coordinates))
-    _check_options(method, rtol, atol, workers, runs, chunk_size, seed, BATCHED)
+    _check_options(method, rtol, atol, workers, runs, chunk_size, seed, BATCHED, engine)
     ranges.check(t_end=t_end)
     grid_values, random_values = _swept(grid, random, names)
     end = _end_time(t_end, problem, source)
@@ -187,9 +248,11 @@ def _end_time(t_end: float | None, problem: Any, source: str) -> float:
 
 
 def _run_chunks(text: str, source: str, settings: Any, inputs: dict[str, Any], chunk_size: int | None,
-                workers: int, scheduler: str | None, progress: ProgressCallback | None) -> list[Any]:
+                workers: int, scheduler: str | None, progress: ProgressCallback | None,
+                threads: bool = False) -> list[Any]:
     """The runs cut into chunks (about four per worker, at most 1024 runs each, unless ``chunk_size`` is
-    given), each run here or on a Dask cluster: one frame per chunk, in input order."""
+    given), each run here, on threads of this process (``threads``: the compiled path) or on a Dask cluster:
+    one frame per chunk, in input order."""
     from lagsolve.sweep.run import run_chunk
 
     total = len(next(iter(inputs.values())))
@@ -202,20 +265,49 @@ def _run_chunks(text: str, source: str, settings: Any, inputs: dict[str, Any], c
             if progress is not None:
                 progress(start + len(frames[-1]), total)
         return frames
+    if threads and scheduler is None:
+        return _run_threads(run_chunk, [(text, source, settings, chunk, start) for start, chunk in chunks], workers,
+                            progress, total)
     from lagsolve.sweep.cluster import run_distributed
 
     return run_distributed(run_chunk, [(text, source, settings, chunk, start) for start, chunk in chunks],
                            workers, scheduler, progress, total)
 
 
-def _check_options(method: str, rtol: float, atol: float, workers: int, runs: int | None, chunk_size: int | None,
-                   seed: int, batched: tuple[str, ...]) -> None:
+def _run_threads(function: Callable[..., Any], tasks: list[tuple[Any, ...]], workers: int,
+                 progress: ProgressCallback | None, total: int) -> list[Any]:
+    """``function(*task)`` for every task on ``workers`` threads of this process (the compiled integrator
+    releases the GIL); results in the order of ``tasks``. An error or a Ctrl-C cancels the chunks not
+    started; those running finish first (a chunk is short)."""
+    from concurrent.futures import ThreadPoolExecutor, as_completed
+
+    executor = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="lagsolve-sweep")
+    try:
+        futures = {executor.submit(function, *task): i for i, task in enumerate(tasks)}
+        results: list[Any] = [None] * len(tasks)
+        done = 0
+        for future in as_completed(futures):
+            result = future.result()
+            results[futures[future]] = result
+            done += len(result)
+            if progress is not None:
+                progress(done, total)
+        return results
+    finally:
+        executor.shutdown(wait=True, cancel_futures=True)
+
+
+def _check_options(method: str, rtol: float, atol: float, workers: int | None, runs: int | None,
+                   chunk_size: int | None, seed: int, batched: tuple[str, ...], engine: str = "auto") -> None:
     from lagsolve.numeric.integrate import METHODS
 
     bad = []
     if method not in METHODS:
         bad.append(Issue("<argument>", 0, "method", f"expected one of {', '.join(METHODS)}, found {method!r}",
                          f"{', '.join(batched)} run batched; the others one run at a time"))
+    if engine not in ENGINES:
+        bad.append(Issue("<argument>", 0, "engine", f"expected one of {', '.join(ENGINES)}, found {engine!r}",
+                         "auto takes the compiled path for large sweeps where Numba is installed"))
     bad += ranges.issues((("rtol", rtol), ("atol", atol), ("workers", workers), ("runs", runs),
                           ("chunk_size", chunk_size), ("seed", seed)))
     if bad:

@@ -2,8 +2,12 @@
 
 A chunk is plain data (the problem's text, the settings, the inputs of its runs), so it can be
 shipped to a Dask worker; the worker compiles the problem on first use and keeps it
-(:func:`compiled`). Two paths:
+(:func:`compiled`). Three paths:
 
+* **compiled** (``Settings.engine == "compiled"``; no constraint, no friction contact, an explicit
+  method; Numba installed): each run integrated alone by machine code (:mod:`lagsolve.sweep.native`)
+  with the batched path's step control and measures, the GIL released; the chunk's table is built
+  column by column from its arrays;
 * **batched** (no friction contact, no unilateral constraint, an explicit method): every run of
   the chunk is integrated together by :func:`lagsolve.sweep.rk.integrate_batch`, with its own
   steps and error control, the right-hand side evaluated for all runs at once; holonomic
@@ -30,6 +34,9 @@ from lagsolve.sweep.spec import Section
 if TYPE_CHECKING:
     from lagsolve.sweep.rk import Step
 
+#: the ``path`` of a run on the compiled path (lagsolve.sweep.native)
+COMPILED_PATH = "compiled"
+
 #: samples a per-run integration keeps (the drift of the conserved quantities is measured on them)
 FALLBACK_SAMPLES = 201
 
@@ -43,6 +50,7 @@ class Settings:
     rtol: float = 1e-10
     atol: float = 1e-12
     section: Section | None = None
+    engine: str = "numpy"  # "compiled": lagsolve.sweep.native where it applies; "numpy": rk.integrate_batch
 
 
 @dataclass(frozen=True)
@@ -56,6 +64,18 @@ class Compiled:
     initial: Mapping[str, float]
     angular: tuple[bool, ...]  # per coordinate: L depends on it, and L and the positions repeat when it grows by 2π
     conserved: tuple[str, ...]
+    text: str = ""  # the problem's text (the compiled path is built from it on first use)
+    natives: dict[str, Any] = dataclasses.field(default_factory=dict)  # "native" -> (NativeSystem or None, why)
+
+    def native(self) -> tuple[Any, str]:
+        """The compiled integrator of :mod:`lagsolve.sweep.native` (built on first use, then kept), or None and
+        why the compiled path does not apply."""
+        if "native" not in self.natives:
+            from lagsolve.sweep.native import native_system
+
+            self.natives["native"] = (None, self.why_per_run) if self.batch is None else native_system(self.system)
+        found: tuple[Any, str] = self.natives["native"]
+        return found
 
 
 _CACHE: dict[tuple[str, str], Compiled] = {}
@@ -100,7 +120,7 @@ def _compile(text: str, source: str) -> Compiled:
         # a cyclic angle (a turning tube's φ, a spherical pendulum's azimuth) goes round; it does not flip
         angular.append(bool(same) and sympy.diff(model.lagrangian, q) != 0)
     initial = dict(problem.simulation.initial) if problem.simulation is not None else {}
-    return Compiled(source, system, batch, why, initial, tuple(angular), system.conserved_names)
+    return Compiled(source, system, batch, why, initial, tuple(angular), system.conserved_names, text)
 
 
 def run_chunk(text: str, source: str, settings: Settings, inputs: Mapping[str, np.ndarray],
@@ -113,6 +133,10 @@ def run_chunk(text: str, source: str, settings: Settings, inputs: Mapping[str, n
 
     problem = compiled(text, source)
     count = len(next(iter(inputs.values())))
+    native, not_compiled = (problem.native() if settings.engine == "compiled" and settings.method in EXPLICIT
+                            else (None, ""))
+    if native is not None:
+        return _compiled_chunk(problem, native, settings, inputs, start)
     names = problem.system.parameter_names
     parameters = np.tile(problem.system.parameters, (count, 1))
     for name, values in inputs.items():
@@ -122,6 +146,8 @@ def run_chunk(text: str, source: str, settings: Settings, inputs: Mapping[str, n
     batched = problem.batch is not None and settings.method in EXPLICIT
     if batched:
         rows = _batched(problem, settings, parameters, starts, failures)
+        for row in rows:  # the compiled path was asked for: why these runs are batched instead
+            row["note"] = row["note"] or (f"not compiled: {not_compiled}" if not_compiled else "")
     else:
         why = problem.why_per_run or f"the {settings.method} method (implicit) is not batched"
         rows = _per_run(problem, settings, parameters, starts, failures, why)
@@ -441,3 +467,134 @@ def _per_run(problem: Compiled, settings: Settings, parameters: np.ndarray, star
             row["note"] = "Poincaré crossings are recorded on the batched path only"
         _settle(row, bool(system.contacts), bool(angular.any()))
     return rows
+
+
+# ---- the compiled path: a chunk's table built column by column from the compiled integrator's arrays ----
+
+
+def _compiled_reason(code: int, t: float, measures: list[str]) -> str:
+    """Why a run with the kernel's end ``code`` at time ``t`` failed (the batched path's words), or ""."""
+    from lagsolve.sweep import kernel
+
+    if code == kernel.BAD_START:
+        return "the initial state or its accelerations are not finite"
+    if code == kernel.SMALL_STEP:
+        return f"the step size fell below the smallest allowed at t = {t:.6g}"
+    if code == kernel.NOT_FINITE:
+        return (f"the state is no longer finite at t = {t:.6g} (the motion diverged or left the domain of an "
+                "expression)")
+    if code == kernel.TOO_MANY:
+        return "more than 1000000 steps before t_end"
+    if code in (kernel.BAD_ENERGY, kernel.BAD_CONSERVED):
+        what = f"{' and '.join(measures)} {'is' if len(measures) == 1 else 'are'}"
+        return (f"{what} no longer finite at t = {t:.6g} (an expression was evaluated outside its domain, such "
+                "as log or sqrt of a number <= 0, or the motion diverged)")
+    return ""
+
+
+def _compiled_chunk(problem: Compiled, native: Any, settings: Settings, inputs: Mapping[str, np.ndarray],
+                   start: int) -> Any:
+    """The result table (a pandas DataFrame) of the runs ``inputs`` on the compiled path."""
+    import pandas
+
+    from lagsolve.sweep import kernel
+
+    system = problem.system
+    n = system.n
+    count = len(next(iter(inputs.values())))
+    names = system.parameter_names
+    parameters = np.tile(np.asarray(system.parameters, dtype=float), (count, 1))
+    for name, values in inputs.items():
+        if name in names:
+            parameters[:, names.index(name)] = values
+    states = _state_names(system)
+    y0 = np.empty((count, 2 * n))
+    for j, name in enumerate(states):
+        y0[:, j] = np.asarray(inputs[name], dtype=float) if name in inputs else float(problem.initial.get(name, 0.0))
+    section = settings.section
+    angular = np.array(problem.angular, dtype=bool)
+    (t, y, steps, code, energy0, worst_energy, conserved0, worst_conserved, flip_time, crossings,
+     _) = native.integrate(y0, parameters, settings.t_end, settings.method, settings.rtol, settings.atol, angular,
+                           None if section is None else (section.index, section.value))
+    failed = code != kernel.DONE
+    columns: dict[str, Any] = {"run": np.arange(start, start + count)}
+    columns.update({name: np.asarray(values, dtype=float) for name, values in inputs.items()})
+    template = _empty_row(problem, settings, COMPILED_PATH)
+    conserved_names = [f"the conserved quantity {name}" for name in problem.conserved]
+    reasons = []
+    for r in range(count):
+        if not failed[r]:
+            reasons.append("")
+            continue
+        measures = ["the energy"] if not np.isfinite(worst_energy[r]) else []
+        measures += [what for c, what in enumerate(conserved_names) if not np.isfinite(worst_conserved[r, c])]
+        reasons.append(_compiled_reason(int(code[r]), float(t[r]), measures))
+    table: dict[str, Any] = {key: None for key in template}
+    table["status"] = np.where(failed, "failed", "ok").astype(object)
+    table["reason"] = np.array(reasons, dtype=object)
+    table["path"] = np.full(count, COMPILED_PATH, dtype=object)
+    table["note"] = np.full(count, "", dtype=object)
+    table["t_final"] = np.where(code == kernel.BAD_START, np.nan, t)
+    started = code != kernel.BAD_START
+    for j, name in enumerate(states):
+        table[f"final_{name}"] = np.where(started, y[:, j], np.nan)
+    table["max_residual"] = np.where(started, 0.0, np.nan)
+    table["energy_conserved"] = np.full(count, bool(system.energy_conserved))
+    table["energy_drift"] = np.where(started, _drift(energy0, worst_energy), np.nan)
+    for c, name in enumerate(problem.conserved):
+        table[f"drift_{name}"] = np.where(started, _drift(conserved0[:, c], worst_conserved[:, c]), np.nan)
+    flipped = np.isfinite(flip_time) & started
+    table["flipped"] = flipped
+    table["flip_time"] = np.where(flipped, flip_time, np.nan)
+    for key in ("stick_count", "slip_count"):
+        table[key] = np.zeros(count, dtype=np.int64)
+    for key in ("stick_times", "slip_times"):
+        table[key] = [[] for _ in range(count)]
+    table["stuck_at_end"] = np.zeros(count, dtype=bool)
+    table["release_time"] = np.full(count, np.nan)
+    table["release_constraint"] = np.full(count, "", dtype=object)
+    for c in system.coordinates:
+        table[f"release_{c}"] = np.full(count, np.nan)
+    table["steps"] = np.where(started, steps, 0).astype(np.int64)
+    if section is not None:
+        _compiled_crossings(table, crossings, section, states, count, started)
+    _settle_columns(table, bool(angular.any()))
+    missing = [key for key, value in table.items() if value is None]
+    if missing:  # pragma: no cover - every column of the row is filled above
+        raise AssertionError(f"columns not filled on the compiled path: {missing}")
+    frame = pandas.DataFrame(columns)
+    return pandas.concat([frame, pandas.DataFrame(table)], axis=1)
+
+
+def _compiled_crossings(table: dict[str, Any], crossings: np.ndarray, section: Any, states: list[str], count: int,
+               started: np.ndarray) -> None:
+    """The section's crossings where its conditions hold, as lists per run."""
+    keep = section.holds(crossings[:, 2:]) if len(crossings) else np.zeros(0, dtype=bool)
+    kept = crossings[keep]
+    owner = kept[:, 0].astype(np.int64)
+    bounds = np.searchsorted(owner, np.arange(count + 1))  # the kernel writes them run by run, in order
+    table["poincare_count"] = np.diff(bounds).astype(np.int64)
+    table["poincare_t"] = [kept[bounds[r]: bounds[r + 1], 1].tolist() for r in range(count)]
+    for j, name in enumerate(states):
+        table[f"poincare_{name}"] = [kept[bounds[r]: bounds[r + 1], 2 + j].tolist() for r in range(count)]
+
+
+def _settle_columns(table: dict[str, Any], angular: bool) -> None:
+    """run._settle for every row at once: a run is ok only if every value it reports is finite; then its
+    outcome (flipped, no flip or ok; failed)."""
+    status, reason = table["status"], table["reason"]
+    keys = [*MEASURED, *(k for k in table if k.startswith(("final_", "drift_")))]
+    bad_columns = {k: ~np.isfinite(np.asarray(table[k], dtype=float)) for k in keys}
+    bad_columns["flip_time"] = table["flipped"] & ~np.isfinite(table["flip_time"])
+    for k in table:
+        if k.startswith("poincare_") and isinstance(table[k], list):
+            bad_columns[k] = np.array([not np.all(np.isfinite(v)) for v in table[k]], dtype=bool)
+    any_bad = np.any(np.array(list(bad_columns.values())), axis=0) & (status == "ok")
+    for r in np.flatnonzero(any_bad):
+        bad = [k for k, mask in bad_columns.items() if mask[r]]
+        status[r] = "failed"
+        reason[r] = (f"{', '.join(bad)} {'is' if len(bad) == 1 else 'are'} not finite at the end of the run "
+                     "(an expression was evaluated outside its domain, or the motion diverged)")
+    quiet = "no flip" if angular else "ok"
+    flipped = np.where(table["flipped"], "flipped", quiet)
+    table["outcome"] = np.where(status == "failed", "failed", flipped).astype(object)
