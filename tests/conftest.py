@@ -8,10 +8,16 @@ derives on its own.
 
 from __future__ import annotations
 
+import os
+import tempfile
 from collections.abc import Callable
 from pathlib import Path
 
 import pytest
+
+# the compiled sweep's machine code, kept between the test processes (a user opts in the same way; unset, lagsolve
+# writes nothing outside the output folder and compiles in memory)
+os.environ.setdefault("LAGSOLVE_CACHE", str(Path(tempfile.gettempdir()) / f"lagsolve-test-cache-{os.getuid()}"))
 
 from lagsolve.app.pipeline import Reports, derive_file
 from lagsolve.mechanics import stages

@@ -160,3 +160,28 @@ def test_the_other_explicit_methods_take_the_numpy_paths_steps(method: str) -> N
     assert fast["poincare_count"].tolist() == slow["poincare_count"].tolist() and fast["poincare_count"].sum() > 0
     for ours, theirs in zip(fast["poincare_t"], slow["poincare_t"], strict=True):
         np.testing.assert_allclose(ours, theirs, atol=1e-9)
+
+
+def test_nothing_is_written_without_a_cache_folder_named(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """With $LAGSOLVE_CACHE unset, the compiled path keeps its module in memory (nothing in the home or temporary
+    folder), and ``auto`` keeps sweeps on the NumPy path until the compilation in each process is won back; a
+    symbolic link in the cache folder is not followed."""
+    from lagsolve.sweep import api, native
+
+    monkeypatch.delenv("LAGSOLVE_CACHE", raising=False)
+    monkeypatch.setenv("HOME", str(tmp_path))
+    monkeypatch.setattr(native.tempfile, "tempdir", str(tmp_path))
+    assert native.cache_folder() is None and native._written("x = 1\n", "lagsolve_sweep_test") is None
+    module = native._module("def f(a):\n    return 2 * a\n", "lagsolve_sweep_memory", None)
+    assert module.f(3) == 6
+    assert list(tmp_path.iterdir()) == []
+    if native.numba_available():
+        assert api._engine("auto", 10_000, "DOP853") == "numpy"
+        assert api._engine("auto", api.UNCACHED_FROM, "DOP853") == "compiled"
+    folder = tmp_path / "cache"
+    monkeypatch.setenv("LAGSOLVE_CACHE", str(folder))
+    assert native._written("x = 1\n", "lagsolve_sweep_a") == folder / "sweep" / "lagsolve_sweep_a.py"
+    (folder / "sweep" / "lagsolve_sweep_b.py").symlink_to(tmp_path / "elsewhere.py")
+    assert native._written("x = 1\n", "lagsolve_sweep_b") is None
+    if native.numba_available():
+        assert api._engine("auto", 10_000, "DOP853") == "compiled"

@@ -26,6 +26,9 @@ ProgressCallback = Callable[[int, int], None]  # (runs done, runs in all)
 #: runs from which ``engine="auto"`` takes the compiled path (below, the NumPy batch is done before Numba
 #: would have loaded its cached machine code, let alone compiled it the first time)
 COMPILED_FROM = 1000
+#: the same without a cache of the compiled code (``$LAGSOLVE_CACHE`` unset): the compilation, in each process, is
+#: won back (about 0.4 ms saved per double pendulum against about a minute) only past this many runs
+UNCACHED_FROM = 100_000
 
 #: runs from which the default ``workers`` on the compiled path is one thread per core (below, a chunk per
 #: thread is too short to pay for the split)
@@ -59,9 +62,12 @@ def _engine(engine: str, runs: int, method: str) -> str:
     if engine != "auto":
         return engine
     from lagsolve.problem.methods import EXPLICIT
-    from lagsolve.sweep.native import numba_available
+    from lagsolve.sweep.native import cache_folder, numba_available
 
-    return "compiled" if runs >= COMPILED_FROM and method in EXPLICIT and numba_available() else "numpy"
+    # the first compilation takes about a minute: without a cache of the machine code ($LAGSOLVE_CACHE) it is won
+    # back only over very many runs
+    least = COMPILED_FROM if cache_folder() is not None else UNCACHED_FROM
+    return "compiled" if runs >= least and method in EXPLICIT and numba_available() else "numpy"
 
 
 def _text(path_or_text: str | Path | bytes) -> tuple[str, str]:

@@ -5,10 +5,11 @@ The problem's mass matrix, forcing, energy and conserved quantities (SymPy objec
 (:class:`sympy.printing.pycode.PythonCodePrinter`, after :func:`sympy.cse`), with the arguments renamed
 by :func:`lagsolve.numeric.compile.private_arguments`: the text is made from SymPy objects, never from
 the problem file's text. That text follows the kernel's (:mod:`lagsolve.sweep.kernel`) in one module,
-which Numba compiles with ``nogil=True`` and ``cache=True``. The module is written to a file named by the
-hash of its text in the user's cache folder (``$LAGSOLVE_CACHE``, else ``$XDG_CACHE_HOME/lagsolve``, else
-``~/.cache/lagsolve``), so a second process (a later sweep, a Dask worker) loads the machine code from
-Numba's cache instead of compiling it again (a few seconds the first time, about 0.1 s afterwards).
+which Numba compiles with ``nogil=True``. Nothing is written unless the user names a folder for the compiled
+code: with ``$LAGSOLVE_CACHE`` set, the module is written there to a file named by the hash of its text and
+compiled with ``cache=True``, so a second process (a later sweep, a Dask worker) loads the machine code from
+Numba's cache instead of compiling it again (about a minute the first time on a loaded machine, 0.1–0.4 s
+afterwards); without it, the module lives in memory and is compiled in each process that needs it.
 
 Numba is optional (in the ``sweep`` extra): without it, or for a problem this path does not cover
 (constraints, friction contacts, an expression the printer cannot write), :func:`native_system`
@@ -40,13 +41,11 @@ INLINED = ("matrices", "derivative", "_finite", "_worst", "_ulp", "_combine", "_
 _LOCK = threading.Lock()
 
 
-def cache_folder() -> Path:
-    """Where the generated modules (and Numba's cache of their machine code) are kept."""
+def cache_folder() -> Path | None:
+    """Where the generated modules (and Numba's cache of their machine code) are kept: the folder the user named
+    in ``$LAGSOLVE_CACHE``, or None (nothing is written; a command writes only into its output folder)."""
     given = os.environ.get("LAGSOLVE_CACHE")
-    if given:
-        return Path(given)
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "lagsolve"
+    return Path(given) if given else None
 
 
 @dataclass(frozen=True)
@@ -196,36 +195,52 @@ def load(text: str) -> ModuleType:
         if found is not None:
             return found
         path = _written(text, name)
-        spec = importlib.util.spec_from_file_location(name, path)
-        assert spec is not None and spec.loader is not None
-        module = importlib.util.module_from_spec(spec)
-        spec.loader.exec_module(module)  # the kernel's text and SymPy's printing of SymPy objects only
+        module = _module(text, name, path)  # the kernel's text and SymPy's printing of SymPy objects only
         functions = [k for k, v in vars(module).items() if isinstance(v, FunctionType) and v.__module__ == name]
         for function in functions:
             inline: Literal["always", "never"] = "always" if function in INLINED else "never"
-            jit = numba.njit(cache=True, nogil=True, inline=inline, error_model="numpy")
+            jit = numba.njit(cache=path is not None, nogil=True, inline=inline, error_model="numpy")
             setattr(module, function, jit(getattr(module, function)))
         sys.modules[name] = module
         return module
 
 
-def _written(text: str, name: str) -> Path:
-    """The file holding ``text`` (written atomically if it is not there yet), in the cache folder or, where that
-    cannot be written, in the temporary folder."""
-    for folder in (cache_folder() / "sweep", Path(tempfile.gettempdir()) / f"lagsolve-{os.getuid()}" / "sweep"):
-        path = folder / f"{name}.py"
-        try:
-            if path.exists() and path.read_text(encoding="utf-8") == text:
-                return path
-            folder.mkdir(parents=True, exist_ok=True)
-            handle, temporary = tempfile.mkstemp(dir=folder, suffix=".tmp")
-            with os.fdopen(handle, "w", encoding="utf-8") as out:
-                out.write(text)
-            os.replace(temporary, path)
+def _module(text: str, name: str, path: Path | None) -> ModuleType:
+    """The module of ``text``: loaded from its file in the cache folder, or (no folder) made in memory."""
+    if path is not None:
+        spec = importlib.util.spec_from_file_location(name, path)
+        assert spec is not None and spec.loader is not None
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        return module
+    module = ModuleType(name)
+    module.__dict__["__name__"] = name
+    exec(compile(text, f"<{name}>", "exec"), module.__dict__)  # noqa: S102 - printed from SymPy objects, not file text
+    return module
+
+
+def _written(text: str, name: str) -> Path | None:
+    """The file holding ``text`` in the cache folder the user named (written atomically if it is not there yet, and
+    never through a symbolic link), or None: no folder named, or it cannot be written (the module is then made in
+    memory)."""
+    folder = cache_folder()
+    if folder is None:
+        return None
+    folder = folder / "sweep"
+    path = folder / f"{name}.py"
+    try:
+        if path.is_symlink():
+            return None
+        if path.exists() and path.read_text(encoding="utf-8") == text:
             return path
-        except OSError:
-            continue
-    raise OSError("no folder to write the compiled sweep's module to")
+        folder.mkdir(parents=True, exist_ok=True)
+        handle, temporary = tempfile.mkstemp(dir=folder, suffix=".tmp")
+        with os.fdopen(handle, "w", encoding="utf-8") as out:
+            out.write(text)
+        os.replace(temporary, path)
+        return path
+    except OSError:
+        return None
 
 
 def native_system(system: Any) -> tuple[NativeSystem | None, str]:
