@@ -117,27 +117,19 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
         A section such as ``"theta2=0, theta2_dot>0"`` (grammar in :mod:`lagsolve.sweep.spec`):
         each run's crossings, located on the dense output.
     workers : int, optional
-        0 runs in this process. N > 0: on the compiled path, N threads of this process (the compiled
-        integrator releases the GIL: nothing to start, nothing to ship); otherwise a local Dask cluster of
-        N worker processes. None (the default) takes the fastest for the sweep (:func:`default_workers`):
-        one thread per core on the compiled path for at least :data:`THREADS_FROM` runs, a Dask process
-        per core on the batched NumPy path for at least :data:`PROCESSES_FROM` runs, else in process.
+        0: in this process; N > 0: N threads on the compiled path, else a local Dask cluster of N processes;
+        None: the fastest for the sweep (:func:`default_workers`).
     scheduler : str, optional
-        Address of an existing Dask scheduler (``tcp://host:8786``) to run on instead. It is checked first,
-        with a time-out: it must answer as a Dask scheduler and have a worker (else SpecError).
+        Address of an existing Dask scheduler (``tcp://host:8786``), checked first (SpecError if none answers).
     chunk_size : int, optional
         Runs per chunk (default: about four chunks per worker, at most 1024 runs each).
-    progress : callable, optional
-        Called as ``progress(done, total)`` as chunks finish.
-    before : callable, optional
-        Called with the table's columns (each mapped to whether it is numeric) once the input is checked and
-        before any run starts: a caller checks what it will ask of the table (``lagsolve sweep --color``).
+    progress, before : callable, optional
+        ``progress(done, total)`` as chunks finish; ``before(columns)`` once the input is checked, before any
+        run (the table's columns, each mapped to whether it is numeric: ``lagsolve sweep --color``).
     engine : str
-        ``"compiled"``: each run integrated by machine code (:mod:`lagsolve.sweep.native`, Numba) where the
-        problem allows it (no constraint, no friction contact, an explicit method); ``"numpy"``: the batched
-        NumPy integrator (:mod:`lagsolve.sweep.rk`); ``"auto"`` (the default): compiled for at least
-        :data:`COMPILED_FROM` runs when Numba is installed, else NumPy. The route depends on these inputs
-        only, never on the chunking or the workers; the ``path`` column names it.
+        ``"auto"``, ``"compiled"`` (machine code, :mod:`lagsolve.sweep.native`) or ``"numpy"``
+        (:mod:`lagsolve.sweep.rk`): the route, by these inputs and ``$LAGSOLVE_CACHE`` only, never by chunking
+        or workers (docs/api.md, "Speed of sweeps"); the ``path`` column names it.
 
     Returns
     -------
@@ -150,10 +142,8 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     Raises
     ------
     SpecError
-        Bad input: an unknown name, a malformed range or section, no end time, a number outside its range,
-        a scheduler address where no Dask scheduler answers.
-    ImportError
-        pandas (or, with workers or a scheduler, Dask) is not installed.
+        Bad input (an unknown name, a malformed range or section, no end time, a number out of range, no
+        scheduler answering); ImportError: pandas (or, for workers or a scheduler, Dask) missing.
 
     Examples
     --------
