@@ -111,8 +111,7 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
         Names to ``(low, high)``, or ``"NAME=LOW:HIGH"`` strings: ``runs`` uniform draws
         (per grid point) from ``numpy.random.default_rng(seed)``.
     t_end, method, rtol, atol
-        End time (default the file's ``simulation.t_end``), integrator (DOP853, RK45, RK23 are
-        batched; Radau, BDF, LSODA run one by one) and tolerances (those of ``simulate``).
+        End time (default the file's), integrator and tolerances (those of ``simulate``).
     poincare : str, optional
         A section such as ``"theta2=0, theta2_dot>0"`` (grammar in :mod:`lagsolve.sweep.spec`):
         each run's crossings, located on the dense output.
@@ -144,12 +143,6 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     SpecError
         Bad input (an unknown name, a malformed range or section, no end time, a number out of range, no
         scheduler answering); ImportError: pandas (or, for workers or a scheduler, Dask) missing.
-
-    Examples
-    --------
-    >>> frame = sweep("problems/double_pendulum.yaml", grid={"theta1": "0.1:0.5:3"}, t_end=1.0)  # doctest: +SKIP
-    >>> len(frame), frame["status"].unique().tolist()                                            # doctest: +SKIP
-    (3, ['ok'])
     """
     pandas = _pandas()
     from lagsolve.sweep.run import columns, compiled
