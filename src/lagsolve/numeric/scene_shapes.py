@@ -140,7 +140,7 @@ class Builder:
         run = self.run
         arguments = [run.arguments["time"], *run.arguments["coordinates"], *run.arguments["velocities"],
                      *run.arguments["parameters"]]
-        prepared = [substitute_functions(sympy.sympify(e), run.concrete) for e in exprs]
+        prepared = [substitute_functions(sympy.sympify(e, strict=True), run.concrete) for e in exprs]
         fn = sympy.lambdify(arguments, prepared, modules=[{"sign": np.sign, "Heaviside": lambda x: (x > 0) * 1.0},
                                                            "numpy"])
         rows = slice(None) if sample is None else slice(sample, sample + 1)

@@ -237,7 +237,7 @@ def sliding_sign(w: np.ndarray, qd: np.ndarray, direction: np.ndarray | None, c:
     crosses zero there, not stalls at it with ever smaller steps; without one, the sign of the rate."""
     if direction is not None and direction[c] != 0:
         return float(np.sign(direction[c]))
-    return rate_sign(w, qd, direction[c] if direction is not None else 0.0)
+    return rate_sign(w, qd, 0.0)
 
 
 def rate_sign(w: np.ndarray, qd: np.ndarray, fallback: float) -> float:

@@ -137,7 +137,7 @@ def _function(name: str, signature: str, flat: Sequence[Any], n: int, targets: l
 
     from lagsolve.numeric.compile import private_arguments
 
-    renamed, exprs = private_arguments(flat, [sympy.sympify(e) if isinstance(e, int | float) else e
+    renamed, exprs = private_arguments(flat, [sympy.sympify(e, strict=True) if isinstance(e, int | float) else e
                                               for _, e in targets])
     printer = _printer(PythonCodePrinter)
     lines = [f"def {name}{signature}:  # noqa: F811, ANN001, ANN202, E501"]

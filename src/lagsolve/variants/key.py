@@ -83,7 +83,7 @@ class StateNumbers:
 
     def __call__(self, expr: Any) -> float:
         try:
-            value = complex(sympy.sympify(expr).xreplace(self.signs).xreplace(self.map).evalf(17))
+            value = complex(sympy.sympify(expr, strict=True).xreplace(self.signs).xreplace(self.map).evalf(17))
         except TypeError:  # a symbol without a value (a conserved momentum p_phi): no number
             return math.nan
         return value.real if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) else math.nan

@@ -338,7 +338,7 @@ def _eliminable(C: Any, others: tuple[Any, ...], model: Any, q: Any) -> Any:
     or the momenta) to write through the condition: ``g`` for gravity, ``k`` for a central force."""
     variables = {*model.coordinates, *model.velocities, model.time, q}
     kinetic = model.kinetic.free_symbols
-    taken = set().union(*(sympy.sympify(o).free_symbols for o in others))
+    taken = set().union(*(sympy.sympify(o, strict=True).free_symbols for o in others))
     for s in sorted(C.free_symbols - variables - taken - kinetic, key=sympy.default_sort_key):
         if s.name.startswith("p_"):
             continue

@@ -263,7 +263,7 @@ def _random_point(rows: list[tuple[list[Any], Any]]) -> dict[Any, Any]:
     symbols: set[Any] = set()
     for row, b in rows:
         for e in (*row, b):
-            symbols |= sympy.sympify(e).free_symbols
+            symbols |= sympy.sympify(e, strict=True).free_symbols
     rng = random.Random(7)
     ordered = sorted(symbols, key=sympy.default_sort_key)
     return {s: sympy.Rational(rng.randint(5, 20) if s.is_positive else rng.choice((-1, 1)) * rng.randint(5, 20), 13)
@@ -272,7 +272,7 @@ def _random_point(rows: list[tuple[list[Any], Any]]) -> dict[Any, Any]:
 
 def _number(expr: Any, point: dict[Any, Any]) -> float:
     """``expr`` at ``point`` as a float (a declared function replaced by a smooth stand-in); NaN where undefined."""
-    expr = sympy.sympify(expr)
+    expr = sympy.sympify(expr, strict=True)
     for i, fn in enumerate(sorted({f.func for f in expr.atoms(sympy.core.function.AppliedUndef)}, key=str)):
         u = sympy.Dummy("u")
         expr = expr.replace(fn, sympy.Lambda(u, (sympy.sin(u) + u**2 / 3, sympy.exp(u / 2) - u)[i % 2])).doit()

@@ -217,7 +217,7 @@ def _rolling(problem: Problem, body: Any, coordinates: list[Any]) -> tuple[Any, 
         solutions = sympy.linsolve(equations, [n1, n2, m])
         if not isinstance(solutions, sympy.FiniteSet) or not solutions.args:
             continue
-        values = [sympy.sympify(e).subs({n1: 0, n2: 0, m: 0}) for e in solutions.args[0]]
+        values = [sympy.sympify(e, strict=True).subs({n1: 0, n2: 0, m: 0}) for e in solutions.args[0]]
         n = values[:2]
         size = sympy.simplify(n[0] ** 2 + n[1] ** 2)
         if size == 0 or any(x.free_symbols & set(coordinates) for x in n):
