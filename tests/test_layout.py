@@ -18,8 +18,9 @@ MAX_LINES = 750
 #: the layers, first to last (docs/architecture.md): a module imports its own package and earlier layers
 #: only. The data flows problem → mechanics → numeric → render; check reads a derivation (render shows its
 #: reports), app runs the commands, sweep many runs; the library (api), the CLI and the package come last.
-LAYERS = ("errors", "enums", "caches", "notebook", "ranges", "files", "problem", "mechanics", "numeric", "check",
-          "grade", "render", "app", "sweep", "variants", "schemas", "api", "prepare", "cli", "__main__", "")
+LAYERS = ("errors", "enums", "caches", "pint_import", "notebook", "ranges", "files", "problem", "mechanics",
+          "numeric", "check", "grade", "render", "app", "sweep", "variants", "schemas", "api", "prepare", "cli",
+          "__main__", "")
 
 
 def _module_name(path: Path) -> str:

@@ -8,9 +8,10 @@ from pathlib import Path
 
 def prepare_units() -> Path:
     """Parse pint's definitions into this pint version's cache folder and mark it complete; the folder."""
-    import pint
-
     from lagsolve.caches import MARKER, pint_folder
+    from lagsolve.pint_import import import_pint
+
+    pint = import_pint()
 
     folder = pint_folder(pint.__version__)
     folder.mkdir(parents=True, exist_ok=True)

@@ -40,10 +40,10 @@ DEFAULT_TIME_UNIT = "s"
 @cache
 def registry() -> Any:
     """pint's unit registry, made once per process (loading it takes about 0.4 s, so only when a file has units)."""
-    import pint
-
     from lagsolve.caches import pint_cache
+    from lagsolve.pint_import import import_pint
 
+    pint = import_pint()
     folder = pint_cache(pint.__version__)  # definitions parsed by make, read only; else parsed here
     return pint.UnitRegistry(autoconvert_offset_to_baseunit=False,
                              cache_folder=str(folder) if folder is not None else None)
@@ -154,8 +154,9 @@ def _check_grammar(text: str) -> None:
 
 
 def _parse(text: str) -> Any:
-    import pint
+    from lagsolve.pint_import import import_pint
 
+    pint = import_pint()
     ureg = registry()
     try:
         unit = ureg.parse_units(text)
