@@ -122,7 +122,7 @@ def internal(first: sympy.Matrix, second: sympy.Matrix, a: sympy.Matrix, model: 
     if any(m.has(sympy.core.function.AppliedUndef, sympy.Derivative) for m in (first, second, a)):
         return False
     rng = np.random.default_rng(3)
-    compiled = sympy.lambdify(symbols, [first - second, first, a], modules="numpy")
+    compiled = sympy.lambdify(symbols, [(first - second).tolist(), first.tolist(), a.tolist()], modules="math")
     for _ in range(states):
         point = [rng.uniform(0.5, 2.0) if s.is_positive else rng.uniform(-2.0, 2.0) for s in symbols]
         try:

@@ -163,15 +163,20 @@ class _Sampler:
             concrete.append((e if isinstance(e, sympy.Basic) else sympy.Integer(e)).doit())
         if not concrete:
             return lambda *args: np.zeros(0)
-        values = sympy.lambdify(self.arguments, concrete, modules="numpy")
+        # the math module: floats in, floats out (NumPy's namespace would import most of NumPy on first use)
+        values = sympy.lambdify(self.arguments, concrete, modules="math")
         gradient = values
         if derivative:
             jac = [[sympy.diff(e, q) for q in self.coordinates] for e in concrete]
-            gradient = sympy.lambdify(self.arguments, jac, modules="numpy")
+            gradient = sympy.lambdify(self.arguments, jac, modules="math")
+        sizes = {False: len(concrete), True: len(concrete) * len(self.coordinates)}
 
         def call(*args: Any, derivative: bool = False) -> Any:
             fn = gradient if derivative else values
-            return np.array(fn(*args), dtype=float)
+            try:
+                return np.array(fn(*args), dtype=float)
+            except (ArithmeticError, TypeError, ValueError):  # outside a domain (a complex result): not a number
+                return np.full(sizes[derivative], np.nan)
 
         return call
 
