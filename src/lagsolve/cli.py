@@ -573,7 +573,8 @@ def _sweep_progress() -> Callable[[int, int], None]:
               help="compiled: machine code per run (Numba, in the sweep extra); numpy: the batched NumPy integrator; "
                    "auto: compiled for 1000 runs or more when Numba is installed.")
 @click.option("--scheduler", metavar="ADDRESS", help="Run on an existing Dask cluster, e.g. tcp://10.0.0.1:8786.")
-@_number("--chunk-size", key="chunk_size", help="Runs per chunk (default: about 4 chunks per worker).")
+@_number("--chunk-size", key="chunk_size",
+         help="Runs per chunk (default: about 4 chunks per worker process, 16 per thread).")
 @click.option("-o", "--output", type=click.Path(path_type=Path), required=True,
               help="The table: FILE.parquet or FILE.csv (one row per run).")
 @click.option("--plot", is_flag=True, help="Also write the regime map (two inputs) or bifurcation scatter (one).")

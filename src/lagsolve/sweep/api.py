@@ -33,6 +33,10 @@ UNCACHED_FROM = 100_000
 #: runs from which the default ``workers`` on the compiled path is one thread per core (below, a chunk per
 #: thread is too short to pay for the split)
 THREADS_FROM = 512
+#: chunks per worker by default: a Dask worker process, a thread of the compiled path
+PROCESS_CHUNKS, THREAD_CHUNKS = 4, 16
+#: the fewest runs in a thread's chunk by default (a chunk's table costs about 2 ms to build)
+THREAD_CHUNK_LEAST = 64
 
 #: runs from which the default ``workers`` on the batched NumPy path is a local Dask cluster, one process per core
 PROCESSES_FROM = 5000
@@ -121,7 +125,8 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     scheduler : str, optional
         Address of an existing Dask scheduler (``tcp://host:8786``), checked first (SpecError if none answers).
     chunk_size : int, optional
-        Runs per chunk (default: about four chunks per worker, at most 1024 runs each).
+        Runs per chunk (default: about four chunks per worker process, sixteen per thread but at least 64
+        runs, at most 1024 runs each).
     progress, before : callable, optional
         ``progress(done, total)`` as chunks finish; ``before(columns)`` once the input is checked, before any
         run (the table's columns, each mapped to whether it is numeric: ``lagsolve sweep --color``).
@@ -236,16 +241,25 @@ def _end_time(t_end: float | None, problem: Any, source: str) -> float:
     return end
 
 
+def default_chunk_size(total: int, workers: int, threads: bool) -> int:
+    """Runs per chunk when ``--chunk-size`` is not given: about :data:`PROCESS_CHUNKS` chunks per worker process,
+    :data:`THREAD_CHUNKS` per thread (but at least :data:`THREAD_CHUNK_LEAST` runs), at most 1024 runs."""
+    per_worker, least = (THREAD_CHUNKS, THREAD_CHUNK_LEAST) if threads else (PROCESS_CHUNKS, 1)
+    return min(1024, max(least, math.ceil(total / (per_worker * max(1, workers)))))
+
+
 def _run_chunks(text: str, source: str, settings: Any, inputs: dict[str, Any], chunk_size: int | None,
                 workers: int, scheduler: str | None, progress: ProgressCallback | None,
                 threads: bool = False) -> list[Any]:
-    """The runs cut into chunks (about four per worker, at most 1024 runs each, unless ``chunk_size`` is
-    given), each run here, on threads of this process (``threads``: the compiled path) or on a Dask cluster:
-    one frame per chunk, in input order."""
+    """The runs cut into chunks (about four per worker process, sixteen per thread but at least 64 runs, at most
+    1024 runs each, unless ``chunk_size`` is given), each run here, on threads of this process (``threads``: the
+    compiled path) or on a Dask cluster: one frame per chunk, in input order. A thread's chunk costs little to
+    hand out, and more chunks even out runs of unequal length (a chaotic corner of a grid), so the threads
+    finish together."""
     from lagsolve.sweep.run import run_chunk
 
     total = len(next(iter(inputs.values())))
-    size = chunk_size or min(1024, max(1, math.ceil(total / (4 * max(1, workers)))))
+    size = chunk_size or default_chunk_size(total, workers, threads and scheduler is None)
     chunks = [(start, {k: v[start: start + size] for k, v in inputs.items()}) for start in range(0, total, size)]
     if workers == 0 and scheduler is None:
         frames = []
