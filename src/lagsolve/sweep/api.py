@@ -125,8 +125,7 @@ def sweep(path_or_text: str | Path | bytes, *, grid: Mapping[str, Any] | Sequenc
     scheduler : str, optional
         Address of an existing Dask scheduler (``tcp://host:8786``), checked first (SpecError if none answers).
     chunk_size : int, optional
-        Runs per chunk (default: about four chunks per worker process, sixteen per thread but at least 64
-        runs, at most 1024 runs each).
+        Runs per chunk (default: :func:`default_chunk_size`).
     progress, before : callable, optional
         ``progress(done, total)`` as chunks finish; ``before(columns)`` once the input is checked, before any
         run (the table's columns, each mapped to whether it is numeric: ``lagsolve sweep --color``).
