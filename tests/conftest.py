@@ -19,7 +19,8 @@ import pytest
 # writes nothing outside the output folder and compiles in memory)
 os.environ.setdefault("LAGSOLVE_CACHE", str(Path(tempfile.gettempdir()) / f"lagsolve-test-cache-{os.getuid()}"))
 
-from lagsolve.app.pipeline import Reports, derive_file
+import mechanics_support
+from lagsolve.app.pipeline import Reports, reports_of
 from lagsolve.mechanics import stages
 from lagsolve.mechanics.derivation import Derivation
 from mechanics_support import derived_file
@@ -30,6 +31,16 @@ PROBLEMS = Path(__file__).resolve().parents[1] / "problems"
 FORMATS = ("md", "tex", "json")
 
 
+@pytest.fixture(scope="session", autouse=True)
+def _share_derivations(tmp_path_factory: pytest.TempPathFactory) -> None:
+    """Under pytest-xdist, the workers share the shipped problems' derivations through a folder of the session's
+    temporary folder (each problem is derived by one worker; pytest removes old sessions' folders)."""
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        folder = tmp_path_factory.getbasetemp().parent / "derivations"
+        folder.mkdir(exist_ok=True)
+        mechanics_support.SHARED[:] = [folder]
+
+
 @pytest.fixture(scope="session")
 def shipped_derivation() -> Callable[[str], Derivation]:
     """``derive`` of ``problems/<name>.yaml`` with the default budget, computed once per session."""
@@ -38,12 +49,14 @@ def shipped_derivation() -> Callable[[str], Derivation]:
 
 @pytest.fixture(scope="session")
 def shipped_reports() -> Callable[[str], Reports]:
-    """``derive_file(problems/<name>.yaml, FORMATS)`` (what ``lagsolve derive`` writes), once per session."""
+    """What ``derive_file(problems/<name>.yaml, FORMATS)`` gives (what ``lagsolve derive`` writes), rendered once per
+    session from the shared derivation (``derive_file`` itself derives again, in a child process; the command-line
+    tests run it)."""
     cache: dict[str, Reports] = {}
 
     def reports(name: str) -> Reports:
         if name not in cache:
-            cache[name] = derive_file(PROBLEMS / f"{name}.yaml", FORMATS)
+            cache[name] = reports_of(derived_file(name), PROBLEMS / f"{name}.yaml", FORMATS)
         return cache[name]
 
     return reports

@@ -54,10 +54,40 @@ def problem_file(name: str) -> Problem:
     return load_problem(PROBLEMS / f"{name}.yaml")
 
 
+def unpickled(blob: bytes) -> Any:
+    """A pickled derivation, read back as it was: without evaluation, since pickle rebuilds each expression with
+    its class's constructor, which would rewrite a display form such as (a + b)/2 as a/2 + b/2."""
+    import pickle
+
+    from sympy.core.parameters import evaluate
+
+    with evaluate(False):
+        return pickle.loads(blob)
+
+
+#: a folder the test processes of one session share (pytest-xdist's workers; set by conftest.py), or None
+SHARED: list[Path] = []
+
+
 @functools.cache
 def derived_file(name: str) -> Derivation:
-    """``derive`` of ``problems/<name>.yaml``, computed once per session."""
-    return derive(problem_file(name))
+    """``derive`` of ``problems/<name>.yaml``, computed once per session: by this process, or under pytest-xdist by
+    whichever worker asks first (the others wait for it and read its pickle from :data:`SHARED`)."""
+    if not SHARED:
+        return derive(problem_file(name))
+    import fcntl
+    import pickle
+
+    path = SHARED[0] / f"{name}.pickle"
+    with open(SHARED[0] / f"{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+        if path.exists():
+            return unpickled(path.read_bytes())
+        derivation = derive(problem_file(name))
+        partial = path.with_suffix(".partial")
+        partial.write_bytes(pickle.dumps(derivation))
+        partial.replace(path)
+        return derivation
 
 
 @functools.cache

@@ -183,9 +183,20 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = DEFAULT_FORMATS, *,
     ranges.check(timeout=timeout)
     problem = load_problem(path)
     _preload()
-    text, outputs, files = run_with_budget(_derive_and_render, (problem, formats, templates, simulate, timeout),
-                                           timeout, f"the derivation of {path}",
-                                           on_partial=_render_core(formats, templates, timeout))
+    rendered = run_with_budget(_derive_and_render, (problem, formats, templates, simulate, timeout), timeout,
+                               f"the derivation of {path}", on_partial=_render_core(formats, templates, timeout))
+    return _reports(path, problem, rendered)
+
+
+def reports_of(derivation: Derivation, path: str | Path, formats: tuple[str, ...] = DEFAULT_FORMATS, *,
+               templates: Path | None = None) -> Reports:
+    """The reports :func:`derive_file` gives for the file at ``path``, rendered here from its ``derivation`` made
+    already (no budget, no second derivation)."""
+    return _reports(path, derivation.problem, _render(derivation, formats, templates, None))
+
+
+def _reports(path: str | Path, problem: Problem, rendered: tuple[str, dict[str, str], dict[str, bytes]]) -> Reports:
+    text, outputs, files = rendered
     return Reports(str(path), safe_slug(path), problem.name, text, outputs, files,
                    _unit_warnings(problem) + _warnings(outputs, text))
 
