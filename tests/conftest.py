@@ -113,3 +113,17 @@ def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item
         if len(group) >= LIBRARY:
             for item in group:
                 item.add_marker(pytest.mark.slow)
+    items.sort(key=lambda item: getattr(item, "originalname", item.name) not in LONGEST)  # stable: the rest keep order
+
+
+#: the tests that take longest (10-60 s each on the 2-core machine): run first, so that under pytest-xdist no
+#: worker is left running one of them alone at the end (a scheduling hint only: a name not found changes nothing)
+LONGEST = frozenset({
+    "test_200_tube_variants_pass_their_keys_and_the_closed_form",
+    "test_cartesian_pendulum_stays_on_its_rod_for_1000_periods",
+    "test_animate_and_show", "test_tables_do_not_depend_on_hash_seed", "test_two_workers_give_the_table_of_one_process",
+    "test_same_seed_same_bytes_whatever_the_hash_seed", "test_bench_simulate_reports_a_baseline_timeout",
+    "test_several_coupled_contacts_state_the_system_they_solve", "test_small_pendulum_period",
+    "test_frictionless_bead_conserves_energy_for_100_periods", "test_without_projection_the_rod_drifts",
+    "test_a_large_chain_reads_as_a_textbook_writes_it", "test_summary_does_not_depend_on_hash_seed",
+})
