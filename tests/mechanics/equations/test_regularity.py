@@ -95,3 +95,17 @@ def test_every_shipped_problem_passes(stem: str) -> None:
 def test_derive_refuses_a_degenerate_constraint():
     with pytest.raises(SpecError, match="the gradient of rod vanishes where rod = 0"):
         derive(load_text(PENDULUM.replace("CONSTRAINT", "(x**2 + y**2 - L**2)**2"), "p.yaml"))
+
+
+@pytest.mark.parametrize("constraint", ["sqrt(x**2 + y**2 - 1) - L", "log(y) - x", "acos(x/L) - y",
+                                        "sqrt(y - x**2)**2 - L"])
+def test_constraints_outside_their_domain_at_some_states_still_pass(constraint: str) -> None:
+    """Random states where a square root, logarithm or arccosine has no real value count as not a number (the
+    checks evaluate with the math module, which raises there): a good constraint still passes."""
+    passes(PENDULUM.replace("CONSTRAINT", constraint))
+
+
+def test_a_squared_root_constraint_outside_its_domain_is_still_found_degenerate() -> None:
+    """Where some states have no real value, the degenerate constraint is still found from the others."""
+    (issue,) = issues(PENDULUM.replace("CONSTRAINT", "(sqrt(x**2 + y**2) - L)**2"))
+    assert issue.message == "the gradient of rod vanishes where rod = 0"
