@@ -18,6 +18,7 @@ of a derivation always comes out.
 from __future__ import annotations
 
 import contextlib
+import gc
 import math
 import multiprocessing
 import os
@@ -114,6 +115,9 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
     receiver, sender = ctx.Pipe(duplex=False)
     # not a daemon: a simulation runs its analysis in a child of its own
     process = ctx.Process(target=_child, args=(sender, fn, args, seconds, os.getpid()), daemon=False)
+    # this process's objects are set aside from collection while the child runs, so that neither process's
+    # collections write to them and no page of them is copied on write (Python's advice for fork without exec)
+    gc.freeze()
     process.start()
     with contextlib.suppress(OSError):
         os.setpgid(process.pid, process.pid)
@@ -147,6 +151,7 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
             _kill_group(process.pid)
         process.join()
         receiver.close()
+        gc.unfreeze()
     if final is None:
         reason = (f"{what} used up its {seconds:g} s CPU budget; raise it with --timeout or simplify the problem")
         if partial and on_partial is not None:
