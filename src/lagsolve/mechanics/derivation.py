@@ -57,6 +57,11 @@ from lagsolve.problem.schema import Problem
 #: above this many operations the magnitude of a contact's force is not simplified
 CONTACT_LIMIT = 60
 
+#: the note of a bulk system's display forms (more than ``n`` coordinates), which are written once each, not searched
+LIGHT_FORM = ("light form, for a system of more than {n} coordinates: each expression is expanded, with sin² + cos² "
+              "and products of sines and cosines contracted and common factors taken out, without the search for "
+              "its shortest form")
+
 #: up to this many coordinates and constraints q̈ and λ are given explicitly however long they are, when the bound
 #: on their size lets the solve run (:mod:`~lagsolve.mechanics.symbolic.ringsolve`); whether a report prints one is
 #: decided
@@ -105,6 +110,8 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     shown = stages.run("display simplification", _display, form, elimination, raw_acc, raw_lam, tidy, show_sum)
     if shown is None:
         shown = _display(form, elimination, raw_acc, raw_lam, _plain, _plain)
+    elif len(model.coordinates) > BULK_SYSTEM:
+        stages.notes.append(StageNote("display simplification", LIGHT_FORM.format(n=BULK_SYSTEM), "size"))
     display, accelerations, multipliers = shown
     # the forces of constraint are found from the multipliers with a coupled N still a symbol (compact: |λ| |d|),
     # and the closed form is put in afterwards, like everywhere else

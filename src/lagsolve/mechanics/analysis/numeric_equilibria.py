@@ -19,6 +19,7 @@ from lagsolve.mechanics.analysis.linearize import MAX_EQUILIBRIA, Linearization,
 from lagsolve.mechanics.analysis.mode_shapes import numeric_shapes
 from lagsolve.mechanics.equations.lagrange import lagrange_terms
 from lagsolve.mechanics.stages import StageSkipped
+from lagsolve.mechanics.symbolic.partials import to_engine
 
 #: how many starting points the numeric search for equilibria tries
 STARTS = 64
@@ -111,9 +112,9 @@ def _engine_functions(forcing: Any, mass: Any, q: list[Any], qd: list[Any],
         eq, ev = [sympy2symengine(x) for x in q], [sympy2symengine(v) for v in qd]
         values = {sympy2symengine(k): symengine.RealDouble(float(v)) for k, v in params.items()}
         at_rest = dict.fromkeys(ev, 0)
-        engine_forcing = [sympy2symengine(e).subs(values) for e in forcing]
+        engine_forcing = [to_engine(e).subs(values) for e in forcing]
         f_static = symengine.Matrix([f.subs(at_rest) for f in engine_forcing])
-        f_mass = symengine.Matrix(mass.shape[0], mass.shape[1], [sympy2symengine(e).subs(values) for e in mass])
+        f_mass = symengine.Matrix(mass.shape[0], mass.shape[1], [to_engine(e).subs(values) for e in mass])
         free = set().union(*(e.free_symbols for e in [*f_static, *f_mass]))
         f_jac = f_static.jacobian(symengine.Matrix(eq))
         f_damp = symengine.Matrix(len(forcing), len(qd), [(-f.diff(v)).subs(at_rest) for f in engine_forcing

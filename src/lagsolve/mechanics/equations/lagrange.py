@@ -56,6 +56,7 @@ class LagrangeTerms:
     constraint_rhs: sympy.ImmutableMatrix
 
 
+@functools.lru_cache(maxsize=16)
 def lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...],
                    generalized_forces: tuple[Any, ...], *, engine: str = "sympy") -> LagrangeTerms:
     r"""Build each Lagrange equation and the matrix form :math:`M\ddot q = F + A^T\lambda`.
@@ -63,7 +64,8 @@ def lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...],
     ``engine="symengine"`` takes the derivatives with SymEngine (tens of times faster on a large
     Lagrangian) and converts them back; the results are the same expressions up to SymPy's
     automatic ordering (the reports show them tidied, which writes both alike). Where SymEngine is
-    missing or cannot express the Lagrangian (declared functions), SymPy is used.
+    missing or cannot express the Lagrangian (declared functions), SymPy is used. Remembered: the minimal
+    coordinates and the numeric equilibria ask for those of the same model again.
     """
     q, qd, qdd = model.coordinates, model.velocities, model.accelerations
     parts = _symengine_parts(model) if engine == "symengine" else None

@@ -102,7 +102,9 @@ def build_model(problem: Problem, *, tidy: bool | None = True) -> Model:
     # so a compact L keeps the whole derivation small (an identity, not an approximation).
     if tidy or (tidy is None and ops(kinetic) + ops(potential) <= TIDY_ENERGY_LIMIT):
         kinetic, potential = tidy_sum(kinetic), tidy_sum(potential)
-    return Model(problem.time, q, qd, qdd, kinetic, potential, kinetic - potential)
+    # a bulk system's L by SymEngine, which keeps its form for the stages that differentiate L
+    lagrangian = engine_sum(((1, kinetic), (-1, potential))) if len(q) > BULK_SYSTEM else kinetic - potential
+    return Model(problem.time, q, qd, qdd, kinetic, potential, lagrangian)
 
 
 def _energies(problem: Problem, bare: Model) -> tuple[Any, Any]:

@@ -57,22 +57,26 @@ def partial(expr: Any, *wrt: Any) -> Any:
 def _partial(expr: Any, wrt: tuple[Any, ...]) -> Any:
     if not wrt:
         return expr
-    if not set(wrt) <= expr.free_symbols:
-        return sympy.Integer(0)
     engine = _engine(expr) if all(w.is_Symbol for w in wrt) else None
     if engine is None:
-        return sympy.diff(expr, *wrt)
+        return sympy.diff(expr, *wrt) if set(wrt) <= expr.free_symbols else sympy.Integer(0)
     form, own = engine
+    if any(own.get(w.name) != w for w in wrt):
+        return sympy.Integer(0)  # a symbol expr does not have
     try:
         from symengine.lib.symengine_wrapper import sympy2symengine
 
-        value = form
-        for symbol in wrt:
-            value = value.diff(sympy2symengine(symbol))
-        back = from_engine(value, own)
+        back = from_engine(_engine_diff(form, tuple(sympy2symengine(w) for w in wrt)), own)
     except (RuntimeError, TypeError, ValueError, NotImplementedError, AttributeError, KeyError):
         return sympy.diff(expr, *wrt)
     return sympy.diff(expr, *wrt) if back is None else back
+
+
+@functools.lru_cache(maxsize=1024)
+def _engine_diff(form: Any, wrt: tuple[Any, ...]) -> Any:
+    """SymEngine's derivative of ``form`` by each of ``wrt`` in turn, the first ones remembered (the n² entries of a
+    Hessian differentiate the whole expression n times, not n²)."""
+    return form.diff(wrt[0]) if len(wrt) == 1 else _engine_diff(form, wrt[:-1]).diff(wrt[-1])
 
 
 def from_engine(value: Any, own: dict[str, Any]) -> Any | None:
@@ -118,6 +122,17 @@ def _remember(back: Any, form: Any, own: dict[str, Any]) -> None:
         if len(_SOURCES) >= _SOURCES_LIMIT:
             _SOURCES.clear()
         _SOURCES.setdefault(back, (form, own))
+
+
+def to_engine(expr: Any) -> Any:
+    """``expr`` as SymEngine's: the form it was converted from when it was (:data:`_SOURCES`), else
+    ``sympy2symengine``'s."""
+    known = _SOURCES.get(expr) if isinstance(expr, sympy.Basic) else None
+    if known is not None:
+        return known[0]
+    from symengine.lib.symengine_wrapper import sympy2symengine
+
+    return sympy2symengine(expr)
 
 
 def engine_sum(parts: Any) -> Any:
