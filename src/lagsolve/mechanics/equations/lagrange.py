@@ -31,7 +31,7 @@ from lagsolve.mechanics.equations.constraints import ConstraintTerms
 from lagsolve.mechanics.equations.model import Model
 from lagsolve.mechanics.symbolic.linsolve import solve_linear as linear_solve
 from lagsolve.mechanics.symbolic.linsolve import solve_structured
-from lagsolve.mechanics.symbolic.partials import BULK_SYSTEM, engine_converter, engine_sum
+from lagsolve.mechanics.symbolic.partials import BULK_SYSTEM, engine_converter, engine_sum, to_engine
 
 
 @dataclass(frozen=True)
@@ -112,7 +112,8 @@ def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
     try:
         t, q, qd = (sympy2symengine(model.time), [sympy2symengine(x) for x in model.coordinates],
                     [sympy2symengine(x) for x in model.velocities])
-        lagrangian = sympy2symengine(L)
+        bulk = len(q) > BULK_SYSTEM
+        lagrangian = to_engine(L)
         momenta = [lagrangian.diff(v) for v in qd]
         mass = [[p.diff(v) for v in qd] for p in momenta]
         drift = [p.diff(t) + sum((p.diff(c) * v for c, v in zip(q, qd, strict=True)), symengine.Integer(0))
@@ -120,10 +121,12 @@ def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
         gradients = [lagrangian.diff(c) for c in q]
         own = {s.name: s for s in L.free_symbols | {model.time, *model.coordinates, *model.velocities,
                                                     *model.accelerations}}
-        convert = engine_converter(own, remember=len(q) > BULK_SYSTEM)
+        convert = engine_converter(own, remember=bulk)
 
         def back(expr: Any) -> Any:
-            value = convert(expr)
+            # a bulk system's pieces multiplied out first: a sum of plain products is built in SymPy without its
+            # flattening (partials._canonical_mul), where the products of sums the derivatives give are not
+            value = convert(expr.expand() if bulk else expr)
             if value is None:  # an unevaluated derivative (of an Abs, say): SymPy differentiates the whole L
                 raise KeyError("not expressible")
             return value
@@ -131,7 +134,7 @@ def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
         momenta_back = tuple(back(p) for p in momenta)
         mass_back = sympy.Matrix([[back(e) for e in row] for row in mass])
         drift_back = [back(d) for d in drift]
-        if len(q) > BULK_SYSTEM:  # the n² products of the rates summed by SymEngine, converted once
+        if bulk:  # the n² products of the rates summed by SymEngine, converted once
             accelerations = [sympy2symengine(a) for a in model.accelerations]
             rates = tuple(back(d + sum((row[k] * a for k, a in enumerate(accelerations)), symengine.Integer(0)))
                           for d, row in zip(drift, mass, strict=True))

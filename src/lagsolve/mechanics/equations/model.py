@@ -103,7 +103,8 @@ def build_model(problem: Problem, *, tidy: bool | None = True) -> Model:
     if tidy or (tidy is None and ops(kinetic) + ops(potential) <= TIDY_ENERGY_LIMIT):
         kinetic, potential = tidy_sum(kinetic), tidy_sum(potential)
     # a bulk system's L by SymEngine, which keeps its form for the stages that differentiate L
-    lagrangian = engine_sum(((1, kinetic), (-1, potential))) if len(q) > BULK_SYSTEM else kinetic - potential
+    lagrangian = (engine_sum(((1, kinetic), (-1, potential)), expand=False) if len(q) > BULK_SYSTEM
+                  else kinetic - potential)
     return Model(problem.time, q, qd, qdd, kinetic, potential, lagrangian)
 
 
@@ -140,4 +141,5 @@ def _bulk_energies(problem: Problem, bare: Model, masses: list[tuple[Any, Any]])
         kinetic += [i * w**2 / 2 for i, w in zip(body.inertia, body.angular_velocity, strict=True)]
     kinetic += [problem.kinetic] if problem.kinetic is not None else []
     potential += [problem.potential] if problem.potential is not None else []
-    return engine_sum((1, t) for t in kinetic), engine_sum((1, v) for v in potential)
+    # not multiplied out: T stays a sum of ½ m |v|², whose second derivatives are the particles' m Jᵢ·Jⱼ
+    return engine_sum(((1, t) for t in kinetic), expand=False), engine_sum(((1, v) for v in potential), expand=False)

@@ -108,8 +108,9 @@ def engine_converter(own: dict[str, Any], *, remember: bool = False) -> Callable
     return convert
 
 
-#: SymEngine's functions (a sine, a cosine, ...) → the SymPy function built from one (:meth:`_Back._function`)
-_FUNCTIONS: dict[Any, Any] = {}
+#: SymEngine's functions (a sine, a cosine, ...) → the SymPy function built from one (:meth:`_Back._function`) and
+#: its symbols
+_FUNCTIONS: dict[Any, tuple[Any, tuple[Any, ...]]] = {}
 
 #: SymPy expressions converted from SymEngine → (that SymEngine form, the symbols by name), so that taking one to
 #: SymEngine again (:func:`_engine`) needs no walk of a long SymPy tree; bounded, emptied when full
@@ -135,9 +136,11 @@ def to_engine(expr: Any) -> Any:
     return sympy2symengine(expr)
 
 
-def engine_sum(parts: Any) -> Any:
-    """``Σ c·e`` over ``parts`` of (integer c, SymPy e), added by SymEngine and converted once when each e is known to
-    SymEngine (:func:`_engine`), else by SymPy: a bulk system's equations and forcing from their pieces."""
+def engine_sum(parts: Any, *, expand: bool = True) -> Any:
+    """``Σ c·e`` over ``parts`` of (integer c, SymPy e), added (and with ``expand`` multiplied out) by SymEngine and
+    converted once when each e is known to SymEngine (:func:`_engine`), else by SymPy: a bulk system's equations and
+    forcing from their pieces. Multiplied out, a sum of plain products is built in SymPy without its flattening
+    (:func:`_canonical_mul`), where the products of sums the derivatives give are not."""
     parts = [(c, e) for c, e in parts if e != 0]
     forms = [_engine(e) if isinstance(e, sympy.Basic) else None for _, e in parts]
     if not parts or any(f is None for f in forms):
@@ -150,7 +153,7 @@ def engine_sum(parts: Any) -> Any:
         form, names = found  # type: ignore[misc]
         own.update(names)
         total += c * form
-    back = engine_converter(own, remember=True)(total)
+    back = engine_converter(own, remember=True)(total.expand() if expand else total)
     return sympy.Add(*[c * e for c, e in parts]) if back is None else back
 
 
@@ -194,12 +197,15 @@ class _Back:
         keys) in about a millisecond, and a chain's n² of them come back in every expression, so each is built once
         in a process (:data:`_FUNCTIONS`), and used again while its symbols are this walk's."""
         known = _FUNCTIONS.get(node)
-        if known is not None and all(self.own.get(s.name) is s for s in known.free_symbols):
-            return known
-        built = kind(*[self.convert(a) for a in node.args])
+        if known is not None and all(self.own.get(s.name) is s for s in known[1]):
+            return known[0]
+        args = [self.convert(a) for a in node.args]
+        built = _sine_or_cosine(kind, args[0]) if len(args) == 1 else None
+        if built is None:
+            built = kind(*args)
         if len(_FUNCTIONS) >= _SOURCES_LIMIT:
             _FUNCTIONS.clear()
-        _FUNCTIONS[node] = built
+        _FUNCTIONS[node] = (built, tuple(built.free_symbols))
         return built
 
     def _other(self, node: Any) -> Any:
@@ -207,6 +213,21 @@ class _Back:
         if back.has(sympy.Derivative, sympy.Subs) or {s.name for s in back.free_symbols} - self.own.keys():
             raise _Foreign
         return back.xreplace({s: self.own[s.name] for s in back.free_symbols})
+
+
+def _sine_or_cosine(kind: Any, arg: Any) -> Any | None:
+    """``sin(arg)`` or ``cos(arg)`` of a sum of symbols with coefficients ±1 (``θ₁ − θ₂``), as SymPy evaluates it:
+    where nothing else of its rules applies (no number, no π, no imaginary unit), ``sin(−a) = −sin(a)`` and
+    ``cos(−a) = cos(a)`` when SymPy takes the minus sign out of ``arg``; None for any other function or argument
+    (SymPy evaluates it)."""
+    if kind not in (sympy.sin, sympy.cos) or not arg.is_Add or not all(
+            t.is_Symbol or (t.is_Mul and len(t.args) == 2 and t.args[0] is sympy.S.NegativeOne and t.args[1].is_Symbol)
+            for t in arg.args) or not all(s.is_extended_real for s in arg.free_symbols):
+        return None
+    if not arg.could_extract_minus_sign():
+        return kind(arg, evaluate=False)
+    flipped = kind(-arg, evaluate=False)
+    return -flipped if kind is sympy.sin else flipped
 
 
 def _plain(factor: Any) -> Any | None:
