@@ -141,7 +141,12 @@ def engine_sum(parts: Any, *, expand: bool = True) -> Any:
     converted once when each e is known to SymEngine (:func:`_engine`), else by SymPy: a bulk system's equations and
     forcing from their pieces. Multiplied out, a sum of plain products is built in SymPy without its flattening
     (:func:`_canonical_mul`), where the products of sums the derivatives give are not."""
-    parts = [(c, e) for c, e in parts if e != 0]
+    return _engine_sum(tuple((c, e) for c, e in parts if e != 0), expand)
+
+
+@functools.lru_cache(maxsize=1024)
+def _engine_sum(parts: tuple[tuple[int, Any], ...], expand: bool) -> Any:
+    """:func:`engine_sum`, remembered (the core a derivation sends first and its display add the same sides)."""
     forms = [_engine(e) if isinstance(e, sympy.Basic) else None for _, e in parts]
     if not parts or any(f is None for f in forms):
         return sympy.Add(*[c * e for c, e in parts])
