@@ -56,7 +56,6 @@ class LagrangeTerms:
     constraint_rhs: sympy.ImmutableMatrix
 
 
-@functools.lru_cache(maxsize=16)
 def lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...],
                    generalized_forces: tuple[Any, ...], *, engine: str = "sympy") -> LagrangeTerms:
     r"""Build each Lagrange equation and the matrix form :math:`M\ddot q = F + A^T\lambda`.
@@ -67,6 +66,12 @@ def lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...],
     missing or cannot express the Lagrangian (declared functions), SymPy is used. Remembered: the minimal
     coordinates and the numeric equilibria ask for those of the same model again.
     """
+    return _lagrange_terms(model, tuple(constraints), tuple(generalized_forces), engine)
+
+
+@functools.lru_cache(maxsize=16)
+def _lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...], generalized_forces: tuple[Any, ...],
+                    engine: str) -> LagrangeTerms:
     q, qd, qdd = model.coordinates, model.velocities, model.accelerations
     parts = _symengine_parts(model) if engine == "symengine" else None
     if parts is None:
