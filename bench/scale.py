@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Benchmark: how lagsolve scales with the size of the system (issue 11 item 6).
 
-For a planar n-link pendulum (n = 2, 3, 4, 6, 8, 12: n equal particles of mass m on
-massless rods of length l, angles th1..thn from the downward vertical, gravity) this
-measures, each in a fresh process with a cap on its time:
+For a planar n-link pendulum (n = 2, 3, 4, 6, 8, 12, 20, and 50 with ``--large``: n equal particles of mass m
+on massless rods of length l, angles th1..thn from the downward vertical, gravity) this measures, each in a fresh
+process with a cap on its time:
 
 * the whole ``lagsolve derive FILE`` as a command (wall time, start-up included) and as a
   library call (``load_problem`` + ``derive``, CPU time);
@@ -13,8 +13,9 @@ measures, each in a fresh process with a cap on its time:
 * SymPy's ``LagrangesMethod`` (``form_lagranges_equations()`` + ``rhs()``) and
   ``KanesMethod`` (``kanes_equations()``, the core, then ``rhs()``), CPU time;
 
-then the ratios and the targets (PASS/MISS), and the library derive CPU time of every
-problem in ``problems/`` (target: each under 5 s).
+then the ratios and the targets (PASS/MISS), among them issue 33's (the whole ``lagsolve derive`` of the 20- and
+50-link pendulum within 5 s and 60 s, the 20-link simulation within 5 s, beside KanesMethod and LagrangesMethod of
+the same run), and the library derive CPU time of every problem in ``problems/`` (target: each under 5 s).
 
 A measurement that has not finished after ``--cap`` seconds of wall time is stopped (its
 whole process group is killed) and its cell shows "> cap"; a measurement stopped at one n
@@ -23,6 +24,7 @@ before it gave any figure is not tried at a larger n. The exit status is always 
     .venv/bin/python bench/scale.py                          # the whole table (up to ~40 min)
     .venv/bin/python bench/scale.py --only-n 2 --only-n 3 --repeat 1 --skip-problems
     .venv/bin/python bench/scale.py --cap 60 --json
+    .venv/bin/python bench/scale.py --only-n 20 --large --repeat 1 --skip-problems   # issue 33's sizes alone
 """
 
 from __future__ import annotations
@@ -45,7 +47,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from pendulum import pendulum_yaml as shared_pendulum  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
-SIZES = (2, 3, 4, 6, 8, 12)
+LM_SIZES = (2, 3, 4, 6, 8, 12)  # the sizes of the target against LagrangesMethod
+SIZES = (*LM_SIZES, 20)
+LARGE_N = 50  # added with --large: its derive takes most of a minute, the references are capped
 DEFAULT_CAP = 120.0  # seconds of wall time for one measurement (one fresh process)
 DEFAULT_REPEAT = 3
 SLOW_RUN = 15.0  # a measurement slower than this is not repeated (its figure is from one run)
@@ -56,6 +60,11 @@ SIMULATE_TARGET = 3.0  # wall seconds for `lagsolve simulate` of the 6-link pend
 SIMULATE_TARGET_N = 6
 CORE_TARGET = 2.0  # KanesMethod core / lagsolve core, at n = 12
 CORE_TARGET_N = 12
+# issue 33, target 2: the whole `lagsolve derive` (wall, start-up included) at these n, and the simulation of the
+# 20-link pendulum for 10 s; the reference is SymEngine-backed KanesMethod's published form-only time
+ISSUE33_DERIVE = {20: 5.0, 50: 60.0}
+ISSUE33_SIMULATE_N, ISSUE33_SIMULATE = 20, 5.0
+PUBLISHED_KANE = {20: 0.95, 50: 14.0}
 # a fixed hash seed makes SymPy's term order, and so its run time, repeatable between runs
 CHILD_ENV = {**os.environ, "PYTHONHASHSEED": "0"}
 
@@ -451,9 +460,9 @@ def targets(rows: list[dict[str, Any]], problems: list[dict[str, Any]] | None, c
 
     # lagsolve's whole derive faster than LagrangesMethod at every n <= 12
     checks: list[bool | None] = []
-    unmeasured = [n for n in SIZES if n not in by_n]
+    unmeasured = [n for n in LM_SIZES if n not in by_n]
     notes = [f"n = {', '.join(map(str, unmeasured))} not measured"] if unmeasured else []
-    for n in SIZES:
+    for n in LM_SIZES:
         if n not in by_n:
             checks.append(None)
             continue
@@ -470,7 +479,7 @@ def targets(rows: list[dict[str, Any]], problems: list[dict[str, Any]] | None, c
         else:
             checks.append(None)
             notes.append(f"n = {n}: undecided ({_ratio_text(ratio)})")
-    misses = [n for n, ok in zip(SIZES, checks, strict=True) if ok is False]
+    misses = [n for n, ok in zip(LM_SIZES, checks, strict=True) if ok is False]
     found.append({"name": "derive_vs_lm", "verdict": _verdict(checks),
                   "detail": "; ".join(([f"slower at n = {', '.join(map(str, misses))}"] if misses else []) + notes),
                   "text": "whole n-link derive faster than LagrangesMethod derive+solve at every n <= 12"})
@@ -507,6 +516,54 @@ def targets(rows: list[dict[str, Any]], problems: list[dict[str, Any]] | None, c
     found.append({"name": "simulate", "verdict": _verdict([ok]), "detail": detail,
                   "text": f"simulate of the {SIMULATE_TARGET_N}-link pendulum for {T_END:g} s < {SIMULATE_TARGET:g} s "
                           "including start-up"})
+    return found + issue33_targets(by_n, cap)
+
+
+def _seconds(cell: dict[str, Any] | None) -> str:
+    """A cell as the targets' details write it: its figure, "> cap" with the time it had run, or why not."""
+    if cell is None:
+        return "not measured"
+    if cell["seconds"] is not None:
+        return f"{cell['seconds']:.2f} s"
+    if cell["capped"]:
+        return f"> {cell['at_least']:.0f} s (capped)" if cell.get("at_least") else "> cap"
+    return cell["error"] or "no figure"
+
+
+def _references(row: dict[str, Any], n: int) -> str:
+    """SymPy's KanesMethod and LagrangesMethod in the same run, and the published SymEngine-backed KanesMethod."""
+    cells = row["cells"]
+    published = (f"; SymEngine KanesMethod, published: {PUBLISHED_KANE[n]:g} s (form only)" if n in PUBLISHED_KANE
+                 else "")
+    return (f"this run: KanesMethod core {_seconds(cells.get('kane_core'))}, LagrangesMethod derive + solve "
+            f"{_seconds(cells.get('lm_total'))}{published}")
+
+
+def _within(cell: dict[str, Any], limit: float, cap: float) -> bool | None:
+    """The figure is within ``limit``; False when capped past it; None when not decided."""
+    if cell["seconds"] is not None:
+        return bool(cell["seconds"] <= limit)
+    return False if cell["capped"] and cap >= limit else None
+
+
+def issue33_targets(by_n: dict[int, dict[str, Any]], cap: float) -> list[dict[str, Any]]:
+    """Issue 33, target 2: the whole `lagsolve derive` of the 20- and 50-link pendulum within 5 s and 60 s, and
+    `lagsolve simulate` of the 20-link one for 10 s within 5 s (wall, start-up included), each beside the references
+    of the same run."""
+    found = []
+    for n, limit in ISSUE33_DERIVE.items():
+        row = by_n.get(n)
+        ok = None if row is None else _within(row["cells"]["cli_derive"], limit, cap)
+        detail = (f"n = {n} not measured" + (" (--large)" if n == LARGE_N else "") if row is None
+                  else f"{_seconds(row['cells']['cli_derive'])}; {_references(row, n)}")
+        found.append({"name": f"issue33_derive_{n}", "verdict": _verdict([ok]), "detail": detail,
+                      "text": f"issue 33: the whole `lagsolve derive` of the {n}-link pendulum <= {limit:g} s"})
+    row = by_n.get(ISSUE33_SIMULATE_N)
+    ok = None if row is None else _within(row["cells"]["sim_run"], ISSUE33_SIMULATE, cap)
+    detail = f"n = {ISSUE33_SIMULATE_N} not measured" if row is None else _seconds(row["cells"]["sim_run"])
+    found.append({"name": "issue33_simulate", "verdict": _verdict([ok]), "detail": detail,
+                  "text": f"issue 33: `lagsolve simulate` of the {ISSUE33_SIMULATE_N}-link pendulum for {T_END:g} s "
+                          f"<= {ISSUE33_SIMULATE:g} s, start-up included"})
     return found
 
 
@@ -608,6 +665,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--repeat", type=int, default=DEFAULT_REPEAT, metavar="K",
                         help=f"runs per measurement, the best is reported (default {DEFAULT_REPEAT}); a run "
                              f"slower than {SLOW_RUN:g} s is not repeated")
+    parser.add_argument("--large", action="store_true",
+                        help=f"also n = {LARGE_N} (issue 33's second size; about a minute per run, the references "
+                             "capped)")
     parser.add_argument("--cap", type=float, default=DEFAULT_CAP, metavar="S",
                         help=f"stop a measurement after S seconds of wall time (default {DEFAULT_CAP:g})")
     parser.add_argument("--skip-problems", action="store_true",
@@ -626,6 +686,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.only_n and any(n < 1 for n in args.only_n):
         parser.error("--only-n must be at least 1")
     sizes = sorted(set(args.only_n)) if args.only_n else list(SIZES)
+    if args.large:
+        sizes = sorted({*sizes, LARGE_N})
 
     quiet = args.json or not sys.stderr.isatty()
 

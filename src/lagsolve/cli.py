@@ -29,6 +29,10 @@ from lagsolve.render.formats import DEFAULT_FORMATS, REGISTRY
 # threads would otherwise inflate (and the arrays here are small); set before NumPy is first imported
 for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_variable, "1")
+# SymPy's own caches (each function's LRU, ``sort_key`` among them) hold 1000 entries by default; a large system's
+# report sorts the terms and factors of thousands of expressions, which a larger cache sorts once (read by SymPy
+# when it is first imported, after this)
+os.environ.setdefault("SYMPY_CACHE_SIZE", "50000")
 
 if TYPE_CHECKING:
     from lagsolve.app.pipeline import Reports

@@ -22,6 +22,7 @@ import gc
 import math
 import multiprocessing
 import os
+import pickle
 import signal
 import sys
 import time
@@ -39,10 +40,12 @@ _channel: list[Any] = []
 
 
 def report_partial(payload: Any) -> None:
-    """Send a partial result to the parent (inside a child of :func:`run_with_budget`; no-op elsewhere)."""
+    """Send a partial result to the parent (inside a child of :func:`run_with_budget`; no-op elsewhere), pickled
+    here: the parent keeps the bytes and unpickles them only if it needs them (a large core takes longer to build
+    back in SymPy than to derive)."""
     if _channel:
         with contextlib.suppress(Exception):
-            _channel[0].send(("partial", payload))
+            _channel[0].send(("partial", pickle.dumps(payload)))
 
 
 def _die_with_parent(parent: int) -> None:
@@ -155,7 +158,7 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
     if final is None:
         reason = (f"{what} used up its {seconds:g} s CPU budget; raise it with --timeout or simplify the problem")
         if partial and on_partial is not None:
-            return on_partial(partial[0], reason)
+            return on_partial(pickle.loads(partial[0]), reason)  # our own child's, as recv() unpickled it before
         raise DerivationError(reason)
     status, payload = final
     if status == "ok":

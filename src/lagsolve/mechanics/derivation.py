@@ -42,21 +42,25 @@ from lagsolve.mechanics.stages import DEFAULT_BUDGET, STAGES, StageNote, Stages,
 from lagsolve.mechanics.symbolic.algebra import ops
 from lagsolve.mechanics.symbolic.identities import proved_zero
 from lagsolve.mechanics.symbolic.linsolve import SIZE_LIMIT
+from lagsolve.mechanics.symbolic.partials import BULK_SYSTEM, engine_sum
 from lagsolve.mechanics.symbolic.ringsolve import too_coupled
 from lagsolve.mechanics.symbolic.simplify import (
-    LARGE_SYSTEM,
     compound_angles,
+    display_forms,
     measure,
     norm,
     reproducible,
     tidy,
-    tidy_sum,
-    tidy_sum_light,
 )
 from lagsolve.problem.schema import Problem
 
 #: above this many operations the magnitude of a contact's force is not simplified
 CONTACT_LIMIT = 60
+
+#: the note of a bulk system's display forms (more than ``n`` coordinates), which are written once each, not searched
+LIGHT_FORM = ("light form, for a system of more than {n} coordinates: each expression is expanded, with sin² + cos² "
+              "and products of sines and cosines contracted and common factors taken out, without the search for "
+              "its shortest form")
 
 #: up to this many coordinates and constraints q̈ and λ are given explicitly however long they are, when the bound
 #: on their size lets the solve run (:mod:`~lagsolve.mechanics.symbolic.ringsolve`); whether a report prints one is
@@ -100,11 +104,14 @@ def derive(problem: Problem, *, budget: float | None = None, analysis: bool = Tr
     # after it, into the tidied results, which keeps them readable: λ = λ₀ + Λ N with N written out.
     substituted, decoupled = _substitutions(found, frictions)
     raw_acc, raw_lam = _put_in(raw_acc, raw_lam, decoupled)
-    # a large system gets a lighter display simplification of its many equation pieces (one rewriting each)
-    show_sum = tidy_sum if len(model.coordinates) <= LARGE_SYSTEM else tidy_sum_light
+    # a large system gets a lighter display simplification of its many equation pieces (one rewriting each), a bulk
+    # one that rewriting by SymEngine
+    _, show_sum = display_forms(len(model.coordinates))
     shown = stages.run("display simplification", _display, form, elimination, raw_acc, raw_lam, tidy, show_sum)
     if shown is None:
         shown = _display(form, elimination, raw_acc, raw_lam, _plain, _plain)
+    elif len(model.coordinates) > BULK_SYSTEM:
+        stages.notes.append(StageNote("display simplification", LIGHT_FORM.format(n=BULK_SYSTEM), "size"))
     display, accelerations, multipliers = shown
     # the forces of constraint are found from the multipliers with a coupled N still a symbol (compact: |λ| |d|),
     # and the closed form is put in afterwards, like everywhere else
@@ -334,7 +341,11 @@ def _display(form: MatrixForm, elimination: Elimination, raw_acc: tuple[Any, ...
         c.name: show(elimination.apply(lam)) for c, lam in zip(constraints, raw_lam, strict=True)}
     accelerations = None if raw_acc is None else {
         c.name: show(elimination.apply(a)) for c, a in zip(problem.coordinates, raw_acc, strict=True)}
-    lhs = tuple(r - g for r, g in zip(lagrange.momenta_rates, lagrange.gradients, strict=True))
+    if len(model.coordinates) > BULK_SYSTEM:  # added by SymEngine, whose forms of the pieces are kept
+        lhs = tuple(engine_sum(((1, r), (-1, g))) for r, g in zip(lagrange.momenta_rates, lagrange.gradients,
+                                                                   strict=True))
+    else:
+        lhs = tuple(r - g for r, g in zip(lagrange.momenta_rates, lagrange.gradients, strict=True))
     rhs = tuple(q + c for q, c in zip(form.generalized_forces, lagrange.constraint_forces, strict=True))
     kinetic, potential = show_sum(model.kinetic), show_sum(model.potential)
     display = Display(

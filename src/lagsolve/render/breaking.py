@@ -14,6 +14,7 @@ which is enough to decide where to break.
 
 from __future__ import annotations
 
+import functools
 import re
 
 #: glyphs on a line of the LaTeX report (A4, 2.2 cm margins, 11 pt: about 490 pt; a glyph is about 6 pt)
@@ -24,8 +25,10 @@ _SILENT = {"left", "right", "Bigl", "Bigr", "bigl", "bigr", "mathbf", "dot", "dd
            "begin", "end", "boxed", ",", ";", "!", " "}
 
 
+@functools.lru_cache(maxsize=65536)
 def width(tex: str) -> float:
-    r"""Estimated width of LaTeX math ``tex`` in glyphs (``\frac`` counts its wider part).
+    r"""Estimated width of LaTeX math ``tex`` in glyphs (``\frac`` counts its wider part), remembered (the Markdown
+    and LaTeX reports break the same equations, term by term).
 
     >>> width(r"\frac{a + b}{c}") < width("a + b + c")
     True
@@ -163,11 +166,21 @@ def _terms(tex: str) -> list[str]:
 
 
 def tex_lines(tex: str, room: float = LINE) -> list[str]:
-    r"""``tex`` as lines of at most about ``room`` glyphs, each a complete TeX group.
+    r"""``tex`` as lines of at most about ``room`` glyphs, each a complete TeX group (remembered: the Markdown and
+    LaTeX reports break the same equations).
 
     >>> tex_lines("a + b + c", room=6)
     ['a + b', '+ c']
     """
+    return list(_tex_lines(tex, room))
+
+
+@functools.lru_cache(maxsize=8192)
+def _tex_lines(tex: str, room: float) -> tuple[str, ...]:
+    return tuple(_lines(tex, room))
+
+
+def _lines(tex: str, room: float) -> list[str]:
     tex = tex.strip()
     if width(tex) <= room:
         return [tex]

@@ -63,7 +63,43 @@ def _single_function_derivative(expr: Any) -> tuple[Any, int] | None:
     return (inner, int(order)) if var == inner.args[0] else None
 
 
-class MechanicsLatexPrinter(LatexPrinter):
+#: the subexpressions one printer remembers (:class:`_RememberedOrder`) before it starts again
+PRINTED_LIMIT = 100_000
+
+
+@functools.lru_cache(maxsize=16384)
+def _ordered_terms(expr: Any, order: str | None) -> tuple[Any, ...]:
+    """``expr.as_ordered_terms(order=order)``, remembered: sorting a sum's terms evaluates each coefficient, and
+    the same sums are printed by the LaTeX, text and JSON printers (a chain's equations hold hundreds)."""
+    return tuple(expr.as_ordered_terms(order=order))
+
+
+class _RememberedOrder:
+    """A printer mixin: the terms of a sum ordered once per process (:func:`_ordered_terms`), and each subexpression
+    printed once per printer (its text does not depend on where it stands: the caller adds the brackets), as a
+    chain's sines, cosines and products come back in every equation."""
+
+    _settings: dict[str, Any]
+
+    def _print(self, expr: Any, **kwargs: Any) -> str:
+        if kwargs or not isinstance(expr, sympy.Basic):
+            return str(super()._print(expr, **kwargs))  # type: ignore[misc]
+        memo: dict[Any, str] = self.__dict__.setdefault("_printed", {})
+        text = memo.get(expr)
+        if text is None:
+            if len(memo) >= PRINTED_LIMIT:
+                memo.clear()
+            text = memo[expr] = str(super()._print(expr))  # type: ignore[misc]
+        return text
+
+    def _as_ordered_terms(self, expr: Any, order: str | None = None) -> list[Any]:
+        order = order or self._settings["order"]
+        if order in ("old", "none"):
+            return super()._as_ordered_terms(expr, order=order)  # type: ignore[misc]
+        return list(_ordered_terms(expr, order))
+
+
+class MechanicsLatexPrinter(_RememberedOrder, LatexPrinter):
     """LaTeX with dots for rates and primes for declared functions of one variable."""
 
     def __init__(self, rates: frozenset[str] = frozenset(), settings: dict | None = None) -> None:
@@ -130,7 +166,7 @@ def _greek(name: str, mark: str = "") -> str:
     return _GREEK.get(letters, letters) + mark + name[len(letters):]
 
 
-class MechanicsTextPrinter(StrPrinter):
+class MechanicsTextPrinter(_RememberedOrder, StrPrinter):
     """One-line text for terminals: ``ẋ``, ``θ̈``, ``f'(x)``, Greek letters."""
 
     def __init__(self, rates: frozenset[str] = frozenset()) -> None:
@@ -282,9 +318,17 @@ def _latex_of(coordinates: tuple[str, ...], expr: Any) -> str:
     return str(_latex_printer(coordinates).doprint(expr))
 
 
+class _JsonPrinter(_RememberedOrder, StrPrinter):
+    """SymPy's ``sstr`` (its ``StrPrinter``), the terms of each sum ordered once per process."""
+
+
+_JSON = _JsonPrinter({"order": None})
+
+
 def to_json(expr: Any) -> str:
-    """SymPy's ``str()`` syntax with the input's names (``x_dot``, ``Derivative(f(x), x)``)."""
-    return sympy.sstr(expr, order=None)
+    """SymPy's ``str()`` syntax with the input's names (``x_dot``, ``Derivative(f(x), x)``): ``sympy.sstr(expr,
+    order=None)``."""
+    return str(_JSON.doprint(expr))
 
 
 _TEX_ESCAPES = {

@@ -39,7 +39,8 @@ from lagsolve.mechanics.equations.lagrange import LagrangeTerms, lagrange_terms,
 from lagsolve.mechanics.equations.model import Model
 from lagsolve.mechanics.symbolic.identities import Zero, zero_status
 from lagsolve.mechanics.symbolic.linsolve import SIZE_LIMIT
-from lagsolve.mechanics.symbolic.simplify import tidy, tidy_sum
+from lagsolve.mechanics.symbolic.partials import BULK_SYSTEM
+from lagsolve.mechanics.symbolic.simplify import tidy, tidy_sum, tidy_sum_bulk
 
 
 @dataclass(frozen=True)
@@ -206,8 +207,9 @@ def _reduced_model(model: Model, elimination: Elimination) -> tuple[tuple[int, .
     the eliminated coordinates put in."""
     kept = tuple(i for i, q in enumerate(model.coordinates) if q not in elimination.positions)
     q_ind = tuple(model.coordinates[i] for i in kept)
-    kinetic = tidy_sum(elimination.apply(model.kinetic))
-    potential = tidy_sum(elimination.apply(model.potential))
+    show = tidy_sum_bulk if len(model.coordinates) > BULK_SYSTEM else tidy_sum  # a bulk one's by SymEngine
+    kinetic = show(elimination.apply(model.kinetic))
+    potential = show(elimination.apply(model.potential))
     return kept, Model(model.time, q_ind, tuple(model.velocities[i] for i in kept),
                        tuple(model.accelerations[i] for i in kept), kinetic, potential, kinetic - potential)
 

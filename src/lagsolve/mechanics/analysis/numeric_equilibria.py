@@ -19,9 +19,11 @@ from lagsolve.mechanics.analysis.linearize import MAX_EQUILIBRIA, Linearization,
 from lagsolve.mechanics.analysis.mode_shapes import numeric_shapes
 from lagsolve.mechanics.equations.lagrange import lagrange_terms
 from lagsolve.mechanics.stages import StageSkipped
+from lagsolve.mechanics.symbolic.partials import BULK_SYSTEM, to_engine
 
-#: how many starting points the numeric search for equilibria tries
+#: how many starting points the numeric search for equilibria tries (:data:`BULK_STARTS` for a bulk system)
 STARTS = 64
+BULK_STARTS = 16
 
 
 class NoEquilibriumFound(StageSkipped):  # noqa: N818 - a reason, not an error
@@ -111,9 +113,9 @@ def _engine_functions(forcing: Any, mass: Any, q: list[Any], qd: list[Any],
         eq, ev = [sympy2symengine(x) for x in q], [sympy2symengine(v) for v in qd]
         values = {sympy2symengine(k): symengine.RealDouble(float(v)) for k, v in params.items()}
         at_rest = dict.fromkeys(ev, 0)
-        engine_forcing = [sympy2symengine(e).subs(values) for e in forcing]
+        engine_forcing = [to_engine(e).subs(values) for e in forcing]
         f_static = symengine.Matrix([f.subs(at_rest) for f in engine_forcing])
-        f_mass = symengine.Matrix(mass.shape[0], mass.shape[1], [sympy2symengine(e).subs(values) for e in mass])
+        f_mass = symengine.Matrix(mass.shape[0], mass.shape[1], [to_engine(e).subs(values) for e in mass])
         free = set().union(*(e.free_symbols for e in [*f_static, *f_mass]))
         f_jac = f_static.jacobian(symengine.Matrix(eq))
         f_damp = symengine.Matrix(len(forcing), len(qd), [(-f.diff(v)).subs(at_rest) for f in engine_forcing
@@ -133,25 +135,63 @@ def _engine_functions(forcing: Any, mass: Any, q: list[Any], qd: list[Any],
 
 def _search(functions: _Lambdified, initial: dict[str, float]) -> list[Any]:
     """The distinct equilibria Newton's method reaches from :data:`STARTS` starting points: the ``initial`` state,
-    then points around it (each coordinate moved by up to π, the same points on every run)."""
+    then points around it (each coordinate moved by up to π, the same points on every run). A bulk system has
+    equilibria in every combination of its coordinates' (2ⁿ for a chain), which random starts land on at random: it
+    tries :data:`BULK_STARTS`, the origin (where a chain hangs) second, by Newton's own steps (:func:`_newton`)
+    rather than SciPy's ``root``, whose import alone costs more than the search."""
     import numpy as np
-    from scipy.optimize import root
 
     q = functions.coordinates
+    bulk = len(q) > BULK_SYSTEM
+    solve = _newton if bulk else _hybrid
     rng = np.random.default_rng(0)
     centre = np.array([float(initial.get(c.name, 0.0)) for c in q])
     found: list[np.ndarray] = []
-    for k in range(STARTS):
-        start = centre if k == 0 else centre + rng.uniform(-np.pi, np.pi, len(q))
+    for k in range(BULK_STARTS if bulk else STARTS):
+        start = centre if k == 0 else np.zeros(len(q)) if bulk and k == 1 else centre + rng.uniform(-np.pi, np.pi,
+                                                                                                      len(q))
         with np.errstate(all="ignore"):
-            sol = root(lambda x: np.asarray(functions.static(x), dtype=float), start,
-                       jac=lambda x: np.asarray(functions.jacobian(x), dtype=float), method="hybr")
-        if not sol.success or not np.all(np.isfinite(sol.x)):
+            x = solve(functions, start)
+        if x is None or not np.all(np.isfinite(x)):
             continue
-        point = _tidy(sol.x, functions.angles)
+        point = _tidy(x, functions.angles)
         if _new_equilibrium(functions, point, found):
             found.append(point)
     return found
+
+
+def _hybrid(functions: _Lambdified, start: Any) -> Any | None:
+    """A root of F(q, 0) from ``start`` by SciPy's ``root`` (Powell's hybrid method), or None."""
+    import numpy as np
+    from scipy.optimize import root
+
+    sol = root(lambda x: np.asarray(functions.static(x), dtype=float), start,
+               jac=lambda x: np.asarray(functions.jacobian(x), dtype=float), method="hybr")
+    return sol.x if sol.success else None
+
+
+#: Newton steps (:func:`_newton`) before a start is given up, and the longest step (radians or lengths)
+NEWTON_STEPS = 50
+NEWTON_STRIDE = 1.0
+
+
+def _newton(functions: _Lambdified, start: Any) -> Any | None:
+    """A root of F(q, 0) from ``start`` by Newton's method, each step at most :data:`NEWTON_STRIDE` long, or None
+    (no convergence in :data:`NEWTON_STEPS` steps, a singular Jacobian); :func:`_new_equilibrium` checks it."""
+    import numpy as np
+
+    x = np.array(start, dtype=float)
+    for _ in range(NEWTON_STEPS):
+        residual = np.asarray(functions.static(x), dtype=float)
+        if np.max(np.abs(residual)) < 1e-12:
+            return x
+        try:
+            step = np.linalg.solve(np.asarray(functions.jacobian(x), dtype=float), -residual)
+        except np.linalg.LinAlgError:
+            return None
+        size = float(np.max(np.abs(step)))
+        x = x + (step if size <= NEWTON_STRIDE else step * (NEWTON_STRIDE / size))
+    return x if np.max(np.abs(np.asarray(functions.static(x), dtype=float))) < 1e-9 else None
 
 
 def _tidy(x: Any, angles: list[bool]) -> Any:

@@ -30,6 +30,8 @@ class Elimination:
 
     def apply(self, expr: Any) -> Any:
         """``expr`` written without the eliminated coordinates and velocities."""
+        if not self.positions and not self.velocities:
+            return expr
         for _ in range(len(self.positions) + len(self.velocities) + 1):
             new = expr.xreplace(self.velocities).xreplace(self.positions)
             if new == expr:

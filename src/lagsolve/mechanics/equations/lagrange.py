@@ -31,7 +31,7 @@ from lagsolve.mechanics.equations.constraints import ConstraintTerms
 from lagsolve.mechanics.equations.model import Model
 from lagsolve.mechanics.symbolic.linsolve import solve_linear as linear_solve
 from lagsolve.mechanics.symbolic.linsolve import solve_structured
-from lagsolve.mechanics.symbolic.partials import from_engine
+from lagsolve.mechanics.symbolic.partials import BULK_SYSTEM, engine_converter, engine_sum, to_engine
 
 
 @dataclass(frozen=True)
@@ -63,8 +63,15 @@ def lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...],
     ``engine="symengine"`` takes the derivatives with SymEngine (tens of times faster on a large
     Lagrangian) and converts them back; the results are the same expressions up to SymPy's
     automatic ordering (the reports show them tidied, which writes both alike). Where SymEngine is
-    missing or cannot express the Lagrangian (declared functions), SymPy is used.
+    missing or cannot express the Lagrangian (declared functions), SymPy is used. Remembered: the minimal
+    coordinates and the numeric equilibria ask for those of the same model again.
     """
+    return _lagrange_terms(model, tuple(constraints), tuple(generalized_forces), engine)
+
+
+@functools.lru_cache(maxsize=16)
+def _lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...], generalized_forces: tuple[Any, ...],
+                    engine: str) -> LagrangeTerms:
     q, qd, qdd = model.coordinates, model.velocities, model.accelerations
     parts = _symengine_parts(model) if engine == "symengine" else None
     if parts is None:
@@ -79,8 +86,14 @@ def lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...],
         momenta, rates, gradients, M, drift = parts
     C = tuple(sum((c.multiplier * c.coefficients[i] for c in constraints), sympy.Integer(0))
               for i in range(len(q)))
-    equations = tuple(rates[i] - gradients[i] - generalized_forces[i] - C[i] for i in range(len(q)))
-    F = sympy.Matrix([gradients[i] + generalized_forces[i] - drift[i] for i in range(len(q))])
+    if len(q) > BULK_SYSTEM:  # added by SymEngine, whose forms of the pieces are kept (engine_sum)
+        equations = tuple(engine_sum(((1, rates[i]), (-1, gradients[i]), (-1, generalized_forces[i]), (-1, C[i])))
+                          for i in range(len(q)))
+        F = sympy.Matrix([engine_sum(((1, gradients[i]), (1, generalized_forces[i]), (-1, drift[i])))
+                          for i in range(len(q))])
+    else:
+        equations = tuple(rates[i] - gradients[i] - generalized_forces[i] - C[i] for i in range(len(q)))
+        F = sympy.Matrix([gradients[i] + generalized_forces[i] - drift[i] for i in range(len(q))])
     A = sympy.Matrix(len(constraints), len(q), lambda j, i: constraints[j].coefficients[i])
     beta = sympy.Matrix([c.acceleration_rhs for c in constraints])
     return LagrangeTerms(momenta, rates, gradients, tuple(generalized_forces), C, equations,
@@ -104,7 +117,8 @@ def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
     try:
         t, q, qd = (sympy2symengine(model.time), [sympy2symengine(x) for x in model.coordinates],
                     [sympy2symengine(x) for x in model.velocities])
-        lagrangian = sympy2symengine(L)
+        bulk = len(q) > BULK_SYSTEM
+        lagrangian = to_engine(L)
         momenta = [lagrangian.diff(v) for v in qd]
         mass = [[p.diff(v) for v in qd] for p in momenta]
         drift = [p.diff(t) + sum((p.diff(c) * v for c, v in zip(q, qd, strict=True)), symengine.Integer(0))
@@ -112,9 +126,12 @@ def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
         gradients = [lagrangian.diff(c) for c in q]
         own = {s.name: s for s in L.free_symbols | {model.time, *model.coordinates, *model.velocities,
                                                     *model.accelerations}}
+        convert = engine_converter(own, remember=bulk)
 
         def back(expr: Any) -> Any:
-            value = from_engine(expr, own)
+            # a bulk system's pieces multiplied out first: a sum of plain products is built in SymPy without its
+            # flattening (partials._canonical_mul), where the products of sums the derivatives give are not
+            value = convert(expr.expand() if bulk else expr)
             if value is None:  # an unevaluated derivative (of an Abs, say): SymPy differentiates the whole L
                 raise KeyError("not expressible")
             return value
@@ -122,8 +139,13 @@ def _symengine_parts(model: Model) -> tuple[Any, ...] | None:
         momenta_back = tuple(back(p) for p in momenta)
         mass_back = sympy.Matrix([[back(e) for e in row] for row in mass])
         drift_back = [back(d) for d in drift]
-        rates = tuple(d + sum((mass_back[i, k] * a for k, a in enumerate(model.accelerations)), sympy.Integer(0))
-                      for i, d in enumerate(drift_back))
+        if bulk:  # the n² products of the rates summed by SymEngine, converted once
+            accelerations = [sympy2symengine(a) for a in model.accelerations]
+            rates = tuple(back(d + sum((row[k] * a for k, a in enumerate(accelerations)), symengine.Integer(0)))
+                          for d, row in zip(drift, mass, strict=True))
+        else:
+            rates = tuple(d + sum((mass_back[i, k] * a for k, a in enumerate(model.accelerations)), sympy.Integer(0))
+                          for i, d in enumerate(drift_back))
         return (momenta_back, rates, tuple(back(g) for g in gradients), sympy.ImmutableMatrix(mass_back),
                 tuple(drift_back))
     except (RuntimeError, TypeError, ValueError, NotImplementedError, AttributeError, KeyError):

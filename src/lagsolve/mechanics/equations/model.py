@@ -14,6 +14,7 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.symbolic.algebra import ops
+from lagsolve.mechanics.symbolic.partials import BULK_SYSTEM, engine_sum, total_rate
 from lagsolve.mechanics.symbolic.simplify import tidy_sum
 from lagsolve.problem.schema import Problem
 
@@ -56,7 +57,14 @@ def time_derivative(expr: Any, model: Model, *, second_order: bool = False) -> A
     >>> m = Model(t, (x,), (xd,), (xdd,), 0, 0, 0)
     >>> time_derivative(f(x), m)
     x_dot*Derivative(f(x), x)
+
+    A bulk system's (:data:`~lagsolve.mechanics.symbolic.partials.BULK_SYSTEM`) first derivatives are taken by
+    SymEngine where the expression allows.
     """
+    if not second_order and len(model.coordinates) > BULK_SYSTEM:
+        found = total_rate(expr, model.time, tuple(zip(model.coordinates, model.velocities, strict=True)))
+        if found is not None:
+            return found
     result = sympy.diff(expr, model.time)
     for q, qd in zip(model.coordinates, model.velocities, strict=True):
         result += sympy.diff(expr, q) * qd
@@ -89,9 +97,25 @@ def build_model(problem: Problem, *, tidy: bool | None = True) -> Model:
     qdd = tuple(c.acceleration for c in problem.coordinates)
     bare = Model(problem.time, q, qd, qdd, 0, 0, 0)
 
+    kinetic, potential = _energies(problem, bare)
+    # Simplify the energies once, here: every later expression is built from them,
+    # so a compact L keeps the whole derivation small (an identity, not an approximation).
+    if tidy or (tidy is None and ops(kinetic) + ops(potential) <= TIDY_ENERGY_LIMIT):
+        kinetic, potential = tidy_sum(kinetic), tidy_sum(potential)
+    # a bulk system's L by SymEngine, which keeps its form for the stages that differentiate L
+    lagrangian = (engine_sum(((1, kinetic), (-1, potential)), expand=False) if len(q) > BULK_SYSTEM
+                  else kinetic - potential)
+    return Model(problem.time, q, qd, qdd, kinetic, potential, lagrangian)
+
+
+def _energies(problem: Problem, bare: Model) -> tuple[Any, Any]:
+    """T and V as built (:func:`build_model`); a bulk system's summed by SymEngine term by term (its velocities
+    are SymEngine's already, :func:`time_derivative`), a smaller one's by SymPy as always."""
+    masses = [(p.mass, p.position) for p in problem.particles] + [(b.mass, b.position) for b in problem.bodies]
+    if len(bare.coordinates) > BULK_SYSTEM:
+        return _bulk_energies(problem, bare, masses)
     kinetic = sympy.Integer(0)
     potential = sympy.Integer(0)
-    masses = [(p.mass, p.position) for p in problem.particles] + [(b.mass, b.position) for b in problem.bodies]
     for mass, position in masses:
         velocity = [time_derivative(component, bare) for component in position]
         kinetic += mass * sum(v**2 for v in velocity) / 2
@@ -103,8 +127,19 @@ def build_model(problem: Problem, *, tidy: bool | None = True) -> Model:
         kinetic += problem.kinetic
     if problem.potential is not None:
         potential += problem.potential
-    # Simplify the energies once, here: every later expression is built from them,
-    # so a compact L keeps the whole derivation small (an identity, not an approximation).
-    if tidy or (tidy is None and ops(kinetic) + ops(potential) <= TIDY_ENERGY_LIMIT):
-        kinetic, potential = tidy_sum(kinetic), tidy_sum(potential)
-    return Model(problem.time, q, qd, qdd, kinetic, potential, kinetic - potential)
+    return kinetic, potential
+
+
+def _bulk_energies(problem: Problem, bare: Model, masses: list[tuple[Any, Any]]) -> tuple[Any, Any]:
+    kinetic: list[Any] = []
+    potential: list[Any] = []
+    for mass, position in masses:
+        kinetic += [mass * time_derivative(component, bare) ** 2 / 2 for component in position]
+        if problem.gravity is not None:
+            potential += [-mass * g * r for g, r in zip(problem.gravity, position, strict=True)]
+    for body in problem.bodies:
+        kinetic += [i * w**2 / 2 for i, w in zip(body.inertia, body.angular_velocity, strict=True)]
+    kinetic += [problem.kinetic] if problem.kinetic is not None else []
+    potential += [problem.potential] if problem.potential is not None else []
+    # not multiplied out: T stays a sum of ½ m |v|², whose second derivatives are the particles' m Jᵢ·Jⱼ
+    return engine_sum(((1, t) for t in kinetic), expand=False), engine_sum(((1, v) for v in potential), expand=False)

@@ -16,6 +16,8 @@ from typing import Any
 import sympy
 
 from lagsolve.mechanics.symbolic.algebra import _plain_base, cancel, expand, factor, factor_terms, ops
+from lagsolve.mechanics.symbolic.bulk import light
+from lagsolve.mechanics.symbolic.partials import BULK_SYSTEM
 from lagsolve.mechanics.symbolic.signs import sign_core
 
 
@@ -265,8 +267,18 @@ LARGE_SYSTEM = 4
 
 def display_forms(size: int) -> tuple[Any, Any]:
     """(tidy, tidy_sum) for a system of ``size`` coordinates: the searches, or for a large system the one
-    rewriting of :func:`tidy_sum_light` for both."""
+    rewriting of :func:`tidy_sum_light` for both, done by SymEngine for a bulk one (:func:`tidy_sum_bulk`)."""
+    if size > BULK_SYSTEM:
+        return tidy_sum_bulk, tidy_sum_bulk
     return (tidy, tidy_sum) if size <= LARGE_SYSTEM else (tidy_sum_light, tidy_sum_light)
+
+
+@functools.lru_cache(maxsize=4096)
+def tidy_sum_bulk(expr: Any) -> Any:
+    """:func:`tidy_sum_light` of a bulk system's expression, written by SymEngine
+    (:func:`~lagsolve.mechanics.symbolic.bulk.light`) where it can take ``expr``."""
+    found = light(expr)
+    return tidy_sum_light(expr) if found is None else found
 
 
 @functools.lru_cache(maxsize=4096)

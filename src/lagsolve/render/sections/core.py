@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any, Literal
 
 import sympy
 
+from lagsolve.mechanics.symbolic.partials import BULK_SYSTEM
 from lagsolve.problem.schema import ConstraintKind
 from lagsolve.render.model import Expr, Rows, shown
 
@@ -409,9 +410,10 @@ def _matrix_form(derivation: Derivation, coords: tuple[Coordinate, ...]) -> Matr
         part = lagrange.constraint_forces[i]
         rows.append(MatrixRow(coordinate, lhs, forcing[i], part, forcing[i] + part))
     constrained = bool(derivation.constraints)
+    # a bulk system's M and F are display forms already, their common factors out (bulk.light): not again
+    shown = (lambda m: m) if len(coords) > BULK_SYSTEM else (lambda m: m.applyfunc(sympy.factor_terms))
     return MatrixForm(
-        mass=mass, forcing=tuple(forcing),
-        mass_shown=mass.applyfunc(sympy.factor_terms), forcing_shown=forcing.applyfunc(sympy.factor_terms),
+        mass=mass, forcing=tuple(forcing), mass_shown=shown(mass), forcing_shown=shown(forcing),
         jacobian=lagrange.constraint_jacobian if constrained else None,
         rhs_shown=lagrange.constraint_rhs.applyfunc(sympy.factor_terms) if constrained else None,
         unknowns=sympy.Matrix(list(accelerations) + list(derivation.multiplier_symbols)),

@@ -1,0 +1,96 @@
+"""The n-link pendulum's equations against an independent route, SymPy's ``LagrangesMethod``.
+
+lagsolve takes a chain of more than ``BULK_SYSTEM`` coordinates through SymEngine (velocities, energies, the rates
+and the display forms, :mod:`lagsolve.mechanics.symbolic.bulk`); a smaller one through SymPy. Both must give the
+accelerations ``LagrangesMethod`` gives, from its own vector kinematics, at random states; the display forms the
+reports print must equal the matrix form they are written from.
+"""
+
+from __future__ import annotations
+
+import random
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy
+from sympy.physics.mechanics import LagrangesMethod, Lagrangian, Particle, Point, ReferenceFrame, dynamicsymbols
+
+from lagsolve.mechanics.derivation import derive
+from lagsolve.mechanics.symbolic.partials import BULK_SYSTEM
+from lagsolve.problem.load import load_text
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "bench"))
+from pendulum import pendulum_yaml  # noqa: E402 - the benchmarks' chain, the one the issue measures
+
+VALUES = {"m": 1.3, "l": 0.7, "g": 9.81}
+
+
+def _lagranges_method(n: int) -> tuple[list, list, object]:
+    """``LagrangesMethod``'s M and F of the planar chain, numbers put in, as a function of (q, q̇)."""
+    q = dynamicsymbols(f"q1:{n + 1}")
+    u = [qi.diff() for qi in q]
+    m, length, g = (sympy.Float(VALUES[k]) for k in ("m", "l", "g"))
+    frame, origin = ReferenceFrame("N"), Point("O")
+    origin.set_vel(frame, 0)
+    particles, previous = [], origin
+    for i in range(n):
+        point = previous.locatenew(f"P{i}", length * sympy.sin(q[i]) * frame.x - length * sympy.cos(q[i]) * frame.y)
+        point.set_vel(frame, point.pos_from(origin).dt(frame))
+        particle = Particle(f"p{i}", point, m)
+        particle.potential_energy = m * g * point.pos_from(origin).dot(frame.y)
+        particles.append(particle)
+        previous = point
+    method = LagrangesMethod(Lagrangian(frame, *particles), q, frame=frame)
+    method.form_lagranges_equations()
+    return q, u, sympy.lambdify([q, u], [method.mass_matrix, method.forcing], "numpy")
+
+
+def _accelerations(mass: object, forcing: object, symbols: list, values: list[float]) -> np.ndarray:
+    f = sympy.lambdify([symbols], [sympy.Matrix(mass), sympy.Matrix(forcing)], "numpy")
+    m, rhs = f(values)
+    return np.linalg.solve(np.asarray(m, dtype=float), np.asarray(rhs, dtype=float).ravel())
+
+
+def _check(n: int, states: int = 3) -> None:
+    derivation = derive(load_text(pendulum_yaml(n, 1.0, "a test"), f"chain{n}.yaml"), budget=600)
+    form = derivation.form
+    lagrange, model = form.lagrange, form.model
+    params = sorted((s for s in lagrange.mass_matrix.free_symbols | lagrange.forcing.free_symbols
+                     if s.name in VALUES), key=lambda s: s.name)
+    symbols = [*model.coordinates, *model.velocities, *params]
+    q, u, reference = _lagranges_method(n)
+    rng = random.Random(n)
+    display = derivation.display
+    for _ in range(states):
+        angles = [rng.uniform(-np.pi, np.pi) for _ in range(n)]
+        rates = [rng.uniform(-2.0, 2.0) for _ in range(n)]
+        values = [*angles, *rates, *(VALUES[s.name] for s in params)]
+        ours = _accelerations(lagrange.mass_matrix, lagrange.forcing, symbols, values)
+        m_ref, f_ref = reference(angles, rates)
+        theirs = np.linalg.solve(np.asarray(m_ref, dtype=float), np.asarray(f_ref, dtype=float).ravel())
+        np.testing.assert_allclose(ours, theirs, rtol=1e-9, atol=1e-9)
+        # what the reports print: the display forms of M and F give the same accelerations
+        shown = _accelerations(display.mass_matrix, display.forcing, symbols, values)
+        np.testing.assert_allclose(shown, theirs, rtol=1e-9, atol=1e-9)
+        # and each equation as shown (d/dt ∂L/∂q̇ − ∂L/∂q = Q) vanishes along those accelerations
+        point = dict(zip(symbols, values, strict=True)) | dict(zip(model.accelerations, theirs, strict=True))
+        for lhs, rhs in display.equation_sides:
+            assert abs(float((lhs - rhs).xreplace(point))) < 1e-8
+
+
+@pytest.mark.parametrize("n", [3, 6, BULK_SYSTEM + 2])
+def test_chain_accelerations_agree_with_lagranges_method(n: int) -> None:
+    _check(n)
+
+
+@pytest.mark.slow
+def test_twelve_link_chain_agrees_with_lagranges_method() -> None:
+    _check(12, states=2)
+
+
+def test_bulk_chain_notes_the_light_display_form() -> None:
+    derivation = derive(load_text(pendulum_yaml(BULK_SYSTEM + 2, 1.0, "a test"), "chain.yaml"), budget=600)
+    [note] = [n for n in derivation.notes if n.stage == "display simplification"]
+    assert note.kind == "size" and "light" in note.reason
