@@ -392,13 +392,46 @@ def blades(problem: Problem, coordinates: list[Any]) -> list[Blade]:
 
 def _across(position: tuple[Any, ...], coordinates: list[Any], a: sympy.Matrix) -> Any:
     """The n with Jᵀ n = a (J the Jacobian of ``position``): the velocity constraint a·q̇ = 0 is n·v = 0 of that
-    point; None when there is none."""
+    point; None when there is none. n = (J Jᵀ)⁻¹ J a is left unsimplified: the sketch only evaluates it. Whether it
+    exists is tested at random states (J Jᵀ regular, Jᵀ n = a), symbolically where a declared function is in it
+    (simplifying n symbolically took the differential drive's sketch 12 s)."""
     J = sympy.Matrix(position).jacobian(coordinates)
-    gram = (J * J.T).applyfunc(sympy.trigsimp)
-    if gram.det() == 0:
-        return None
-    n = (gram.LUsolve(J * a)).applyfunc(sympy.trigsimp)
-    return n if all(_zero(e) for e in (J.T * n - a)) else None
+    gram = J * J.T
+    if any(m.has(sympy.core.function.AppliedUndef, sympy.Derivative) for m in (J, a)):
+        gram = gram.applyfunc(sympy.trigsimp)
+        if gram.det() == 0:
+            return None
+        n = (gram.LUsolve(J * a)).applyfunc(sympy.trigsimp)
+        return n if all(_zero(e) for e in (J.T * n - a)) else None
+    return gram.LUsolve(J * a) if _solvable(gram, J, a) else None
+
+
+#: random states at which a knife edge's n is tested
+ACROSS_STATES = 4
+
+
+def _solvable(gram: sympy.Matrix, J: sympy.Matrix, a: sympy.Matrix) -> bool:
+    """Whether J Jᵀ is regular and Jᵀ n = a has a solution, at :data:`ACROSS_STATES` random states (numbers)."""
+    import random
+
+    import numpy as np
+
+    symbols = sorted(gram.free_symbols | J.free_symbols | a.free_symbols, key=sympy.default_sort_key)
+    values = sympy.lambdify(symbols, [gram.tolist(), J.tolist(), a.tolist()], modules="math")
+    rng = random.Random(11)
+    for _ in range(ACROSS_STATES):
+        point = [rng.uniform(0.5, 2.0) if s.is_positive else rng.uniform(-2.0, 2.0) for s in symbols]
+        try:
+            g, j, coefficients = (np.array(m, dtype=float) for m in values(*point))
+        except (ArithmeticError, TypeError, ValueError):  # outside a domain: no decision from here
+            return False
+        scale = max(1.0, float(np.abs(g).max()))
+        if abs(float(np.linalg.det(g))) <= 1e-12 * scale ** len(g):
+            return False
+        n = np.linalg.solve(g, j @ coefficients)
+        if float(np.abs(j.T @ n - coefficients).max()) > 1e-9 * max(1.0, float(np.abs(coefficients).max())):
+            return False
+    return True
 
 
 def supports(problem: Problem, coordinates: list[Any], holding: set[str | None],
