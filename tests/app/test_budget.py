@@ -57,6 +57,27 @@ def test_partial_result_answers_when_the_budget_runs_out() -> None:
     assert "CPU budget" in answer[1]
 
 
+def _display_form_then_burn() -> int:
+    import sympy
+
+    from lagsolve.app.budget import report_partial
+
+    a, b = sympy.symbols("a b")
+    report_partial(sympy.Mul(sympy.Rational(1, 2), a + b, evaluate=False))  # as a display form writes (a + b)/2
+    return _busy_integer_power()
+
+
+def test_a_partial_result_keeps_its_display_form() -> None:
+    """The partial result comes back as the child built it: (a + b)/2, not a/2 + b/2 (a plain pickle round trip
+    rebuilds SymPy's expressions with evaluation on)."""
+    import sympy
+
+    answer = run_with_budget(_display_form_then_burn, (), 0.5, "x", on_partial=lambda payload, why: payload)
+    a, b = sympy.symbols("a b")
+    assert sympy.srepr(answer) == sympy.srepr(sympy.Mul(sympy.Rational(1, 2), a + b, evaluate=False))
+    assert sympy.srepr(answer) != sympy.srepr((a + b) / 2)
+
+
 def _grandchild_pid() -> int:
     import multiprocessing
     import os

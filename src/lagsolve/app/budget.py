@@ -48,6 +48,18 @@ def report_partial(payload: Any) -> None:
             _channel[0].send(("partial", pickle.dumps(payload)))
 
 
+def _rebuilt(blob: bytes) -> Any:
+    """A partial result (our own child's pickle) as the child had it: SymPy's expressions rebuilt without
+    evaluation, since pickle rebuilds each with its class's constructor, which would rewrite a display form such as
+    (a + b)/2 as a/2 + b/2."""
+    if "sympy" not in sys.modules:
+        return pickle.loads(blob)
+    from sympy.core.parameters import evaluate
+
+    with evaluate(False):
+        return pickle.loads(blob)
+
+
 def _die_with_parent(parent: int) -> None:
     """Ask the kernel to kill this process when its parent dies (Linux), and start a process group."""
     with contextlib.suppress(OSError):
@@ -158,7 +170,7 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
     if final is None:
         reason = (f"{what} used up its {seconds:g} s CPU budget; raise it with --timeout or simplify the problem")
         if partial and on_partial is not None:
-            return on_partial(pickle.loads(partial[0]), reason)  # our own child's, as recv() unpickled it before
+            return on_partial(_rebuilt(partial[0]), reason)
         raise DerivationError(reason)
     status, payload = final
     if status == "ok":
