@@ -57,3 +57,11 @@ def test_the_differential_drive_has_a_blade_on_each_wheel() -> None:
     problem = problem_file("differential_drive")
     found = blades(problem, [c.symbol for c in problem.coordinates])
     assert sorted((b.constraint, b.particle) for b in found) == [("lateral", "left"), ("lateral", "right")]
+
+
+def test_a_skate_whose_position_has_no_real_value_at_some_states_is_still_found() -> None:
+    """√θ in the position has no real value where θ < 0: those random states are skipped, not taken as no blade
+    (the constraint is the sideways velocity n·v of the point (x + √θ, y), n = (−sin θ, cos θ))."""
+    constraint = "-sin(theta)*x_dot + cos(theta)*y_dot - sin(theta)*theta_dot/(2*sqrt(theta))"
+    assert [b.constraint for b in _blades("x + sqrt(theta), y", constraint)] == ["skate"]
+    assert _blades("x + sqrt(theta), y", "theta_dot") == []

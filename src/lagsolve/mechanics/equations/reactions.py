@@ -39,6 +39,7 @@ from lagsolve.mechanics.equations.forces import position_jacobian
 from lagsolve.mechanics.equations.lagrange import solve_linear
 from lagsolve.mechanics.equations.model import Model
 from lagsolve.mechanics.equations.pair import relative_jacobian
+from lagsolve.mechanics.symbolic.points import random_point
 from lagsolve.mechanics.symbolic.simplify import norm, tidy
 from lagsolve.problem.schema import Problem
 
@@ -124,7 +125,7 @@ def internal(first: sympy.Matrix, second: sympy.Matrix, a: sympy.Matrix, model: 
     rng = np.random.default_rng(3)
     compiled = sympy.lambdify(symbols, [(first - second).tolist(), first.tolist(), a.tolist()], modules="math")
     for _ in range(states):
-        point = [rng.uniform(0.5, 2.0) if s.is_positive else rng.uniform(-2.0, 2.0) for s in symbols]
+        point = random_point(symbols, rng)
         try:
             with np.errstate(all="raise"):
                 difference, moved, coefficients = (np.array(m, dtype=float) for m in compiled(*point))

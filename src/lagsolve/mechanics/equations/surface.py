@@ -27,6 +27,7 @@ import sympy
 from lagsolve.mechanics.equations.constraints import ConstraintTerms, velocity_form
 from lagsolve.mechanics.equations.elimination import Elimination
 from lagsolve.mechanics.equations.model import Model
+from lagsolve.mechanics.symbolic.points import random_point
 from lagsolve.mechanics.symbolic.simplify import tidy
 
 
@@ -103,7 +104,7 @@ def _numerically_zero(expr: Any, model: Model, points: int = 6) -> bool:
     compiled = sympy.lambdify(symbols, concrete, modules="mpmath")
     seen = 0
     for _ in range(4 * points):
-        values = [rng.uniform(0.5, 2.0) if s.is_positive else rng.uniform(-2.0, 2.0) for s in symbols]
+        values = random_point(symbols, rng)
         try:
             value = complex(compiled(*values))
         except (ZeroDivisionError, ValueError, TypeError, OverflowError):

@@ -40,6 +40,7 @@ from lagsolve.mechanics.geometry.records import (
     fixed_distance,
     free_part,
 )
+from lagsolve.mechanics.symbolic.points import random_point
 from lagsolve.problem.schema import ConstraintKind, Problem
 
 
@@ -398,20 +399,29 @@ def _across(position: tuple[Any, ...], coordinates: list[Any], a: sympy.Matrix) 
     J = sympy.Matrix(position).jacobian(coordinates)
     gram = J * J.T
     if any(m.has(sympy.core.function.AppliedUndef, sympy.Derivative) for m in (J, a)):
-        gram = gram.applyfunc(sympy.trigsimp)
-        if gram.det() == 0:
-            return None
-        n = (gram.LUsolve(J * a)).applyfunc(sympy.trigsimp)
-        return n if all(_zero(e) for e in (J.T * n - a)) else None
-    return gram.LUsolve(J * a) if _solvable(gram, J, a) else None
+        return _across_symbolic(gram, J, a)
+    solvable = _solvable(gram, J, a)
+    if solvable is None:  # no random state could be evaluated: decide symbolically
+        return _across_symbolic(gram, J, a)
+    return gram.LUsolve(J * a) if solvable else None
 
 
-#: random states at which a knife edge's n is tested
+def _across_symbolic(gram: sympy.Matrix, J: sympy.Matrix, a: sympy.Matrix) -> Any:
+    gram = gram.applyfunc(sympy.trigsimp)
+    if gram.det() == 0:
+        return None
+    n = (gram.LUsolve(J * a)).applyfunc(sympy.trigsimp)
+    return n if all(_zero(e) for e in (J.T * n - a)) else None
+
+
+#: random states at which a knife edge's n is tested (each of up to four times as many draws may fall outside the
+#: expressions' domain and is then skipped)
 ACROSS_STATES = 4
 
 
-def _solvable(gram: sympy.Matrix, J: sympy.Matrix, a: sympy.Matrix) -> bool:
-    """Whether J Jᵀ is regular and Jᵀ n = a has a solution, at :data:`ACROSS_STATES` random states (numbers)."""
+def _solvable(gram: sympy.Matrix, J: sympy.Matrix, a: sympy.Matrix) -> bool | None:
+    """Whether J Jᵀ is regular and Jᵀ n = a has a solution, at :data:`ACROSS_STATES` random states (numbers); None
+    when no state could be evaluated."""
     import random
 
     import numpy as np
@@ -419,19 +429,22 @@ def _solvable(gram: sympy.Matrix, J: sympy.Matrix, a: sympy.Matrix) -> bool:
     symbols = sorted(gram.free_symbols | J.free_symbols | a.free_symbols, key=sympy.default_sort_key)
     values = sympy.lambdify(symbols, [gram.tolist(), J.tolist(), a.tolist()], modules="math")
     rng = random.Random(11)
-    for _ in range(ACROSS_STATES):
-        point = [rng.uniform(0.5, 2.0) if s.is_positive else rng.uniform(-2.0, 2.0) for s in symbols]
+    seen = 0
+    for _ in range(4 * ACROSS_STATES):
         try:
-            g, j, coefficients = (np.array(m, dtype=float) for m in values(*point))
-        except (ArithmeticError, TypeError, ValueError):  # outside a domain: no decision from here
-            return False
+            g, j, coefficients = (np.array(m, dtype=float) for m in values(*random_point(symbols, rng)))
+        except (ArithmeticError, TypeError, ValueError):  # outside a domain (a complex value): another state
+            continue
         scale = max(1.0, float(np.abs(g).max()))
         if abs(float(np.linalg.det(g))) <= 1e-12 * scale ** len(g):
             return False
         n = np.linalg.solve(g, j @ coefficients)
         if float(np.abs(j.T @ n - coefficients).max()) > 1e-9 * max(1.0, float(np.abs(coefficients).max())):
             return False
-    return True
+        seen += 1
+        if seen == ACROSS_STATES:
+            return True
+    return None if seen == 0 else True
 
 
 def supports(problem: Problem, coordinates: list[Any], holding: set[str | None],
