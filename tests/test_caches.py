@@ -50,3 +50,16 @@ def test_the_problems_units_are_read_with_the_installed_cache() -> None:
     assert registry is not None
     if folder is not None:  # make prepared it (make test does, .ci/run too)
         assert any(folder.iterdir())
+
+
+def test_prepare_compiles_the_package_bytecode() -> None:
+    """make's prepare step leaves every module of the package compiled (what Python reads at each command, even
+    where PYTHONDONTWRITEBYTECODE keeps it from writing them), and says how many modules there are."""
+    import importlib.util
+
+    import lagsolve.cli
+
+    count = prepare.compile_package()
+    sources = list(Path(lagsolve.cli.__file__).parent.rglob("*.py"))
+    assert count == len(sources) > 100
+    assert all(Path(importlib.util.cache_from_source(str(s))).is_file() for s in sources)

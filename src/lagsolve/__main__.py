@@ -1,3 +1,3 @@
-from lagsolve.cli import main
+from lagsolve.cli import run
 
-main()
+run()

@@ -134,6 +134,59 @@ def test_spec_errors_are_picklable() -> None:
     assert str(again.issues[0]) == "f.yaml:3: name: bad; fix it"
 
 
+_WARMED: list[str] = []
+
+
+def _warm_up() -> None:
+    _WARMED.append("warm")
+
+
+def _first_and_warmed(first: object, second: int) -> tuple[str, int, list[str], int]:
+    import os
+
+    import sympy
+
+    return sympy.srepr(first), second, list(_WARMED), os.getpid()  # as the child has it
+
+
+def test_the_first_argument_is_made_here_while_the_child_warms_up() -> None:
+    """With ``first``, the child runs ``warm`` and then fn(first(), *args); first() runs in this process, after
+    the child has started, and a display form reaches the child as it was built (no evaluation on the way)."""
+    import os
+
+    import sympy
+
+    a, b = sympy.symbols("a b")
+    form = sympy.Mul(sympy.Rational(1, 2), a + b, evaluate=False)
+    made: list[int] = []
+
+    def first() -> object:
+        made.append(os.getpid())
+        return form
+
+    value, second, warmed, child = run_with_budget(_first_and_warmed, (7,), 10, "x", first=first, warm=_warm_up)
+    assert value == sympy.srepr(form) != sympy.srepr((a + b) / 2)
+    assert (second, warmed) == (7, ["warm"])
+    assert made == [os.getpid()] != [child]
+    assert _WARMED == []  # warm ran in the child only
+
+
+def test_a_first_argument_that_fails_ends_the_child() -> None:
+    """When first() raises (an invalid file), its error is raised here and the child, started already, is gone."""
+    import multiprocessing
+    import os
+
+    before = _descendants(os.getpid())
+
+    def first() -> object:
+        raise SpecError([])
+
+    with pytest.raises(SpecError):
+        run_with_budget(_first_and_warmed, (7,), 10, "x", first=first, warm=_warm_up)
+    assert multiprocessing.active_children() == []
+    assert not {pid for pid in _descendants(os.getpid()) - before if _alive(pid)}
+
+
 def _descendants(pid: int) -> set[int]:
     """Every process below ``pid`` (read from /proc)."""
     import os

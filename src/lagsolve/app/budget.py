@@ -13,6 +13,10 @@ result is in, and on any exception (a signal included), so no worker outlives th
 A child may send a partial result first (:func:`report_partial`): when it is then stopped at
 its limit, the caller turns that partial result into the answer (``on_partial``), so the core
 of a derivation always comes out.
+
+The child can be started before its first argument exists (``first``): it warms up (imports
+what it will need) while this process makes that argument (loads the problem file), and receives
+it when it is made. The two run side by side on two cores: the start-up of one command.
 """
 
 from __future__ import annotations
@@ -76,7 +80,8 @@ def _die_with_parent(parent: int) -> None:
         os._exit(1)
 
 
-def _child(conn: Any, fn: Callable[..., Any], args: tuple, seconds: float, parent: int) -> None:
+def _child(conn: Any, fn: Callable[..., Any], args: tuple, seconds: float, parent: int,
+           inbox: Any = None, warm: Callable[[], None] | None = None) -> None:
     _die_with_parent(parent)
     try:
         import resource
@@ -90,6 +95,14 @@ def _child(conn: Any, fn: Callable[..., Any], args: tuple, seconds: float, paren
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     _channel[:] = [conn]
     try:
+        if inbox is not None:  # the first argument is made by the parent while this child warms up
+            if warm is not None:
+                warm()
+            try:
+                args = (_rebuilt(inbox.recv_bytes()), *args)
+            except EOFError:  # the parent could not make it (an invalid file): it reports that, not this child
+                os._exit(0)
+            inbox.close()
         result = ("ok", fn(*args))
     except LagsolveError as exc:
         result = ("error", exc)
@@ -111,12 +124,29 @@ def _kill_group(pid: int) -> None:
             kill()
 
 
+def _send_first(first: Callable[[], Any], inbox: Any, outbox: Any) -> None:
+    """``first()`` made here and sent to the child, which is warming up meanwhile."""
+    inbox.close()  # the child's end: a child that died is then a broken pipe here, not a write that waits
+    try:
+        outbox.send_bytes(pickle.dumps(first()))
+    except BrokenPipeError:  # the child is gone: its exit code says why
+        pass
+    finally:
+        outbox.close()
+
+
 def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: str, *,
-                    on_partial: Callable[[Any, str], Any] | None = None) -> Any:
+                    on_partial: Callable[[Any, str], Any] | None = None, first: Callable[[], Any] | None = None,
+                    warm: Callable[[], None] | None = None) -> Any:
     """``fn(*args)`` in a child process with ``seconds`` of CPU time.
 
     When the child is stopped at its limit after sending a partial result, ``on_partial(payload,
     reason)`` gives the answer instead of an error.
+
+    With ``first``, the child computes ``fn(first(), *args)``: ``first()`` is called here after the child has
+    started, while the child runs ``warm()`` (imports; its CPU counts in the budget), and its result is sent to
+    the child (pickled, read back without evaluation like a partial result). When it raises, the child is ended
+    and the exception raised here.
 
     Raises
     ------
@@ -128,8 +158,9 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
     method = "fork" if sys.platform.startswith("linux") else "spawn"
     ctx: Any = multiprocessing.get_context(method)
     receiver, sender = ctx.Pipe(duplex=False)
+    inbox, outbox = ctx.Pipe(duplex=False) if first is not None else (None, None)  # the first argument's way
     # not a daemon: a simulation runs its analysis in a child of its own
-    process = ctx.Process(target=_child, args=(sender, fn, args, seconds, os.getpid()), daemon=False)
+    process = ctx.Process(target=_child, args=(sender, fn, args, seconds, os.getpid(), inbox, warm), daemon=False)
     # this process's objects are set aside from collection while the child runs, so that neither process's
     # collections write to them and no page of them is copied on write (Python's advice for fork without exec)
     gc.freeze()
@@ -140,8 +171,10 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
     partial: list[Any] = []
     final: tuple[str, Any] | None = None
     out_of_time = False
-    started = time.monotonic()
     try:
+        if first is not None:
+            _send_first(first, inbox, outbox)
+        started = time.monotonic()
         while final is None:
             if time.monotonic() - started > WALL_BACKSTOP * seconds + 60:
                 out_of_time = True

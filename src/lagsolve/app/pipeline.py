@@ -178,14 +178,13 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = DEFAULT_FORMATS, *,
         The derivation failed or ran out of time.
     """
     from lagsolve.app.budget import run_with_budget
-    from lagsolve.problem.load import load_problem
 
     ranges.check(timeout=timeout)
-    problem = load_problem(path)
-    _preload()
-    rendered = run_with_budget(_derive_and_render, (problem, formats, templates, simulate, timeout), timeout,
-                               f"the derivation of {path}", on_partial=_render_core(formats, templates, timeout))
-    return _reports(path, problem, rendered)
+    loaded = _Loading(path)
+    rendered = run_with_budget(_derive_and_render, (formats, templates, simulate, timeout), timeout,
+                               f"the derivation of {path}", on_partial=_render_core(formats, templates, timeout),
+                               first=loaded.problem_loaded, warm=loaded.warm(_warm_derive))
+    return _reports(path, loaded.problem, rendered)
 
 
 def reports_of(derivation: Derivation, path: str | Path, formats: tuple[str, ...] = DEFAULT_FORMATS, *,
@@ -243,19 +242,67 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
         The derivation failed or ran out of time.
     """
     from lagsolve.app.budget import run_with_budget
-    from lagsolve.problem.load import load_problem
 
     ranges.check(timeout=timeout)
-    problem = load_problem(path)
-    _preload()
-    table, counts, rows = run_with_budget(_derive_and_check, (problem, timeout), timeout, f"the check of {path}")
-    return Checked(str(path), problem.name, table, counts, rows, _unit_warnings(problem))
+    loaded = _Loading(path)
+    table, counts, rows = run_with_budget(_derive_and_check, (timeout,), timeout, f"the check of {path}",
+                                          first=loaded.problem_loaded, warm=loaded.warm(_warm_derive))
+    return Checked(str(path), loaded.problem.name, table, counts, rows, _unit_warnings(loaded.problem))
 
 
-def _preload() -> None:
-    """Import the heavy modules here, before the budgeted child is forked, so that the child inherits them and
-    its CPU budget goes to the problem, not to importing SymPy (and several files share one import)."""
+#: the warm-ups this process has had a child run: the next file's warms up here instead (see :class:`_Loading`)
+_WARMED: set[Callable[[], None]] = set()
+
+
+class _Loading:
+    """One problem file loaded *while* its budgeted child starts (:func:`lagsolve.app.budget.run_with_budget` with
+    arguments made later): the child imports what it needs (``warm``: the mechanics, the renderers, the modules
+    SymPy imports on first use) as this process loads and validates the file, on the machine's second core.
+
+    SymPy and the loader are imported here first, so that both processes share them. From a command's second file
+    on, this process has imported the warm-up itself, before the fork, so that every later child inherits it
+    instead of importing it again."""
+
+    def __init__(self, path: str | Path) -> None:
+        from lagsolve.problem.load import load_problem
+
+        self.path, self.load = path, load_problem
+        self.loaded: list[Problem] = []
+
+    @property
+    def problem(self) -> Problem:
+        """The problem, once :meth:`problem_loaded` has loaded it."""
+        return self.loaded[0]
+
+    def problem_loaded(self) -> Problem:
+        """The file loaded (raises :class:`SpecError` for an invalid one), kept for :attr:`problem`."""
+        self.loaded[:] = [self.load(self.path)]
+        return self.loaded[0]
+
+    def warm(self, imports: Callable[[], None]) -> Callable[[], None] | None:
+        """``imports`` for the child to run, or None once a child has run them (they are then imported here)."""
+        if imports in _WARMED:
+            imports()
+            return None
+        _WARMED.add(imports)
+        return imports
+
+
+def _warm_derive() -> None:
+    """What a derivation's child needs besides SymPy: the mechanics, the renderers, and ``sympy.physics.units``,
+    which SymPy's ``simplify`` imports at its first call (about 0.1 s)."""
+    import sympy.physics.units  # noqa: F401
+
+    import lagsolve.mechanics.derivation  # noqa: F401
+    import lagsolve.render.report  # noqa: F401
+    import lagsolve.render.sections  # noqa: F401
+
+
+def _warm_simulate() -> None:
+    """What a simulation's child needs besides SymPy: the derivation and the numerical integration."""
     import lagsolve.app.simulation  # noqa: F401
+    import lagsolve.mechanics.equations.matrix_form  # noqa: F401
+    import lagsolve.numeric.integrate  # noqa: F401
 
 
 def golden_differences(reports: Reports, folder: Path) -> list[str]:
@@ -307,13 +354,12 @@ def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: floa
     DerivationError, SimulationError
         The derivation or the integration failed, or ran out of time.
     """
-    from lagsolve.app.budget import run_with_budget
-    from lagsolve.problem.load import load_problem
-
-    ranges.check(timeout=timeout)
-    problem = load_problem(path)
-    _preload()
     from dataclasses import replace
 
-    result = run_with_budget(_simulate, (problem, options, progress), timeout, f"the simulation of {path}")
-    return replace(result, warnings=_unit_warnings(problem))
+    from lagsolve.app.budget import run_with_budget
+
+    ranges.check(timeout=timeout)
+    loaded = _Loading(path)
+    result = run_with_budget(_simulate, (options, progress), timeout, f"the simulation of {path}",
+                             first=loaded.problem_loaded, warm=loaded.warm(_warm_simulate))
+    return replace(result, warnings=_unit_warnings(loaded.problem))

@@ -4,6 +4,7 @@ polynomials and quotients, and on every expression the derivation of a shipped p
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -150,16 +151,41 @@ EXPAND_SAMPLES = [
 
 
 @pytest.mark.parametrize("text", EXPAND_SAMPLES)
-def test_expand_by_symengine_is_sympys_expand(text):
+def test_expand_by_symengine_is_sympys_expand(text, monkeypatch):
     """algebra.expand, by SymEngine for polynomials in symbols, sines and cosines, is SymPy's expand tree for tree,
-    with the expression's own symbols (their assumptions kept); other expressions go to SymPy."""
+    with the expression's own symbols (their assumptions kept); other expressions go to SymPy. (SymEngine is made
+    to take the small samples too, which it leaves to SymPy by default.)"""
+    from lagsolve.mechanics.symbolic import algebra
     from lagsolve.mechanics.symbolic.algebra import _engine_polynomial, expand
 
+    monkeypatch.setattr(algebra, "ENGINE_FROM", 1)
+    expand.cache_clear()
     names = {"x": x, "g": g, "m": m, "th": th, "l": sympy.Symbol("l", positive=True)}
     expr = sympy.sympify(text, locals=names)  # test data, not a problem file
     assert _engine_polynomial(expr)
     assert sympy.srepr(expand(expr)) == sympy.srepr(sympy.expand(expr))
     assert expand(expr).free_symbols <= expr.free_symbols
+
+
+def test_small_expressions_do_not_load_symengine():
+    """Deriving the bead (every expansion under ENGINE_FROM nodes) in a fresh interpreter loads neither SymEngine
+    nor NumPy (about 0.09 s of its start-up), and a large polynomial is still expanded by SymEngine."""
+    import subprocess
+    import sys
+
+    code = ("import sys\n"
+            "from lagsolve.mechanics.derivation import derive\n"
+            "from lagsolve.problem.load import load_problem\n"
+            "derive(load_problem('problems/bead.yaml'))\n"
+            "print(sorted({'symengine', 'numpy'} & set(sys.modules)))\n"
+            "import sympy\n"
+            "from lagsolve.mechanics.symbolic.algebra import expand\n"
+            "x, y = sympy.symbols('x y')\n"
+            "assert expand((x + y + 1)**6) == sympy.expand((x + y + 1)**6)\n"
+            "print('symengine' in sys.modules)\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                         cwd=Path(__file__).resolve().parents[3]).stdout.split("\n")
+    assert out[:2] == ["[]", "True"]
 
 
 def test_expand_leaves_other_expressions_to_sympy():

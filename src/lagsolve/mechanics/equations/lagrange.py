@@ -29,6 +29,7 @@ import sympy
 from lagsolve.errors import DerivationError
 from lagsolve.mechanics.equations.constraints import ConstraintTerms
 from lagsolve.mechanics.equations.model import Model
+from lagsolve.mechanics.symbolic.algebra import small
 from lagsolve.mechanics.symbolic.linsolve import solve_linear as linear_solve
 from lagsolve.mechanics.symbolic.linsolve import solve_structured
 from lagsolve.mechanics.symbolic.partials import BULK_SYSTEM, engine_converter, engine_sum, to_engine
@@ -63,8 +64,9 @@ def lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...],
     ``engine="symengine"`` takes the derivatives with SymEngine (tens of times faster on a large
     Lagrangian) and converts them back; the results are the same expressions up to SymPy's
     automatic ordering (the reports show them tidied, which writes both alike). Where SymEngine is
-    missing or cannot express the Lagrangian (declared functions), SymPy is used. Remembered: the minimal
-    coordinates and the numeric equilibria ask for those of the same model again.
+    missing or cannot express the Lagrangian (declared functions), or the Lagrangian is small (fewer than
+    ``algebra.ENGINE_FROM`` nodes: loading SymEngine would cost more than it saves), SymPy is used.
+    Remembered: the minimal coordinates and the numeric equilibria ask for those of the same model again.
     """
     return _lagrange_terms(model, tuple(constraints), tuple(generalized_forces), engine)
 
@@ -73,7 +75,7 @@ def lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...],
 def _lagrange_terms(model: Model, constraints: tuple[ConstraintTerms, ...], generalized_forces: tuple[Any, ...],
                     engine: str) -> LagrangeTerms:
     q, qd, qdd = model.coordinates, model.velocities, model.accelerations
-    parts = _symengine_parts(model) if engine == "symengine" else None
+    parts = _symengine_parts(model) if engine == "symengine" and not small(model.lagrangian) else None
     if parts is None:
         L = model.lagrangian
         momenta = tuple(sympy.diff(L, v) for v in qd)

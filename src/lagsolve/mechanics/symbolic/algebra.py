@@ -15,10 +15,15 @@ operations of an expression are counted as integers. Each route says why it is e
 from __future__ import annotations
 
 import functools
+import itertools
 from typing import Any
 
 import sympy
 from sympy.core.function import _coeff_isneg
+
+#: expressions of fewer nodes than this are expanded by SymPy: a few tenths of a millisecond each, where loading
+#: SymEngine (and NumPy, which it imports) costs about 0.09 s, more than a small problem's every expansion
+ENGINE_FROM = 24
 
 
 @functools.lru_cache(maxsize=8192, typed=True)
@@ -377,8 +382,9 @@ def expand(expr: Any) -> Any:
     symbols and in sines and cosines of a symbol or a sum of symbols, a rational number at most in each term
     (energies, numerators of accelerations): there the expanded form is one sum of monomials, SymEngine multiplies
     it out many times faster, and SymPy builds it back into the same tree (a test holds the two equal on every
-    expression the shipped problems expand). Anything else is expanded by SymPy."""
-    if not isinstance(expr, sympy.Basic) or not _engine_polynomial(expr):
+    expression the shipped problems expand). Anything else, and any expression of fewer than :data:`ENGINE_FROM`
+    nodes, is expanded by SymPy."""
+    if not isinstance(expr, sympy.Basic) or small(expr) or not _engine_polynomial(expr):
         return sympy.expand(expr)
     from lagsolve.mechanics.symbolic.partials import from_engine
 
@@ -389,6 +395,11 @@ def expand(expr: Any) -> Any:
     except (ImportError, RuntimeError, TypeError, ValueError, NotImplementedError, AttributeError):
         return sympy.expand(expr)
     return sympy.expand(expr) if back is None else back
+
+
+def small(expr: Any) -> bool:
+    """``expr`` has fewer than :data:`ENGINE_FROM` nodes (counted only that far)."""
+    return next(itertools.islice(sympy.preorder_traversal(expr), ENGINE_FROM - 1, None), None) is None
 
 
 def _engine_polynomial(expr: Any) -> bool:
