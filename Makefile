@@ -17,15 +17,17 @@ run: $(STAMP)
 	$(BIN)/lagsolve derive problems/bead.yaml -o out/
 	$(BIN)/lagsolve simulate problems/bead.yaml --plot -o out/
 
+# PYTHONDONTWRITEBYTECODE emptied for the tests: each pytest worker would otherwise compile, and rewrite the
+# assertions of, every test module at every run (about 6 s of each worker's start); the caches go in __pycache__
 test: $(STAMP)
 	$(BIN)/ruff check src tests bench
 	$(BIN)/mypy
-	$(BIN)/python -m pytest -q -n auto
+	PYTHONDONTWRITEBYTECODE= $(BIN)/python -m pytest -q -n auto
 
 test-fast: $(STAMP)
 	$(BIN)/ruff check src tests bench
 	$(BIN)/mypy
-	$(BIN)/python -m pytest -q -n auto -m "not slow"
+	PYTHONDONTWRITEBYTECODE= $(BIN)/python -m pytest -q -n auto -m "not slow"
 
 golden: $(STAMP)
 	$(BIN)/lagsolve derive problems/*.yaml --golden tests/golden --update-golden

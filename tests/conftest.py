@@ -18,6 +18,9 @@ import pytest
 # the compiled sweep's machine code, kept between the test processes (a user opts in the same way; unset, lagsolve
 # writes nothing outside the output folder and compiles in memory)
 os.environ.setdefault("LAGSOLVE_CACHE", str(Path(tempfile.gettempdir()) / f"lagsolve-test-cache-{os.getuid()}"))
+# SymPy's caches as the command sizes them (lagsolve/cli.py), read when SymPy is first imported, after this: the
+# tests derive as the command does, and a worker that derives hundreds of problems finds more in them
+os.environ.setdefault("SYMPY_CACHE_SIZE", "50000")
 
 import mechanics_support
 from lagsolve.app.pipeline import Reports, reports_of

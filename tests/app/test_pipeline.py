@@ -90,3 +90,28 @@ def test_a_derivation_stopped_after_its_core_names_each_missing_stage() -> None:
     notes = json.loads(outputs["json"])["notes"]
     assert [n["stage"] for n in notes][:3] == ["explicit solve", "forces of constraint", "display simplification"]
     assert "The explicit solution is not written out: did not finish within" in outputs["md"]
+
+
+def test_the_child_warms_up_for_the_first_file_and_inherits_for_the_next(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The first file's budgeted child imports the mechanics itself while this process loads the file; from the
+    next file on this process has imported them before the fork (no warm-up sent), and the reports are the same."""
+    import sys
+
+    from lagsolve.app import budget, pipeline
+
+    monkeypatch.setattr(pipeline, "_WARMED", set())
+    sent: list[object] = []
+    real = budget.run_with_budget
+
+    def spy(*args: object, **kwargs: object) -> object:
+        sent.append(kwargs.get("warm"))
+        return real(*args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(budget, "run_with_budget", spy)
+    first = derive_file(ROOT / "problems" / "bead.yaml", ("md",))
+    second = derive_file(ROOT / "problems" / "bead.yaml", ("md",))
+    assert sent == [pipeline._warm_derive, None]
+    assert "lagsolve.mechanics.derivation" in sys.modules and "sympy.physics.units" in sys.modules
+    assert first.outputs == second.outputs and first.summary == second.summary
+    with pytest.raises(SpecError):  # a file that does not load: its error, whichever process is warm
+        derive_file(ROOT / "problems" / "no such file.yaml")

@@ -301,3 +301,25 @@ def test_several_formats_without_a_folder_are_refused(runner: CliRunner, args: l
     """Several formats cannot share stdout, and jsonl is a stream: exit 2 with the fix."""
     result = runner.invoke(main, ["derive", BEAD, *args])
     assert result.exit_code == 2 and words in result.stderr
+
+
+def test_the_program_flushes_its_output_and_keeps_its_status(tmp_path: Path) -> None:
+    """The program as installed (cli.run, which ends the process without the interpreter's teardown) writes all of
+    its output to a pipe, its files in full, and exits with main's status: 0, and 2 for an invalid file."""
+    import tomllib
+
+    scripts = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["project"]["scripts"]
+    assert scripts["lagsolve"] == "lagsolve.cli:run"
+    done = subprocess.run([sys.executable, "-m", "lagsolve", "derive", BEAD, "--format", "json"], capture_output=True,
+                          text=True, timeout=300, cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout)["name"] == "Bead on a wire"  # the whole document came through
+    done = subprocess.run([sys.executable, "-m", "lagsolve", "derive", BEAD, "-o", str(tmp_path)], capture_output=True,
+                          text=True, timeout=300, cwd=tmp_path)
+    assert done.returncode == 0 and done.stdout.count("wrote") == 3
+    assert (tmp_path / "bead" / "bead.md").read_text(encoding="utf-8").endswith("\n")
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("name: x\ncoordinates: 3\n", encoding="utf-8")
+    done = subprocess.run([sys.executable, "-m", "lagsolve", "derive", str(bad)], capture_output=True, text=True,
+                          timeout=300, cwd=tmp_path)
+    assert done.returncode == 2 and "bad.yaml:2: coordinates" in done.stderr and not done.stdout
