@@ -65,15 +65,17 @@ def lap(label):
     t = time.process_time(); out.append((label, t - t0)); t0 = t
 import lagsolve.cli; lap("import the command line")
 from lagsolve.problem.load import load_problem; lap("import SymPy and the loader")
-problem = load_problem(sys.argv[1]); lap("load the file (pint for its units)")
-from lagsolve.mechanics.derivation import derive; lap("import the mechanics")
-derivation = derive(problem); lap("derive (every stage)")
+problem = load_problem(sys.argv[1]); lap("parent: load the file (pint for its units)")
+from lagsolve.app.pipeline import _warm_derive
+_warm_derive(); lap("child: import the mechanics and renderers")
+from lagsolve.mechanics.derivation import derive
+derivation = derive(problem); lap("child: derive (every stage)")
 from lagsolve.render.sections import build
 from lagsolve.render.report import render_sections, sections_summary
-sections = build(derivation); lap("build the sections")
-sections_summary(sections); lap("terminal summary")
+sections = build(derivation); lap("child: build the sections")
+sections_summary(sections); lap("child: terminal summary")
 for fmt in ("md", "tex", "json"):
-    render_sections(sections, fmt); lap(f"render {fmt}")
+    render_sections(sections, fmt); lap(f"child: render {fmt}")
 import json; print(json.dumps(out))
 """
 
@@ -133,9 +135,15 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{name:44s} {w:8.2f} {c:8.2f}")
     print(f"target: lagsolve derive problems/bead.yaml ≤ {TARGET:g} s wall: {verdict} ({wall:.2f} s)")
     if detail:
-        print("\nwhere lagsolve derive's CPU goes (in one process, no fork):")
+        print("\nwhere lagsolve derive's CPU goes (the phases run one after the other in one process here; in the "
+              "command\nthe budgeted child imports the mechanics while the parent loads the file):")
         for name, seconds in detail:
-            print(f"  {name:40s} {seconds:6.3f}")
+            print(f"  {name:45s} {seconds:6.3f}")
+        parts = dict(detail)
+        path = sum(v for k, v in detail if not k.startswith(("parent:", "child: import")))
+        path += max(parts.get("parent: load the file (pint for its units)", 0.0),
+                    parts.get("child: import the mechanics and renderers", 0.0))
+        print(f"  {'the longer path (what the wall clock sees)':45s} {path:6.3f}")
     return 0
 
 
