@@ -323,3 +323,29 @@ def test_cancelled_is_sympys_cancel_of_a_reduced_fraction():
              (2 * m, sympy.Integer(4))]
     for numer, denom in pairs:
         assert sympy.srepr(cancelled(numer, denom)) == sympy.srepr(sympy.cancel(numer / denom))
+
+
+@pytest.mark.parametrize("name", ["bead", "central_force", "driven_oscillator", "pendulum_cartesian", "rolling_incline",
+                                  "sliding_off_sphere", "spring_on_rough_floor"])
+def test_a_small_lagrangian_gives_the_same_equations_by_sympy_as_by_symengine(name, monkeypatch):
+    """A Lagrangian of fewer than algebra.ENGINE_FROM nodes is differentiated by SymPy (SymEngine is not loaded for
+    it); made to go through SymEngine instead, it gives the same momenta, rates, M, F and equations."""
+    from lagsolve.mechanics.equations import lagrange
+    from lagsolve.mechanics.equations.matrix_form import matrix_form
+    from lagsolve.mechanics.symbolic.algebra import small
+
+    problem = problem_file(name)
+    default = matrix_form(problem, display=False)
+    assert small(default.model.lagrangian)
+    monkeypatch.setattr(lagrange, "small", lambda expr: False)
+    lagrange._lagrange_terms.cache_clear()  # remembered: the call above has the SymPy route's answer
+    engine = lagrange.lagrange_terms(default.model, default.constraints, default.lagrange.generalized_forces,
+                                     engine="symengine")
+    ours = default.lagrange
+    assert engine is not ours and lagrange._symengine_parts(default.model) is not None  # SymEngine did take it
+    lagrange._lagrange_terms.cache_clear()
+    for a, b in [(ours.mass_matrix, engine.mass_matrix), (ours.forcing, engine.forcing),
+                 *zip(ours.momenta, engine.momenta, strict=True),
+                 *zip(ours.momenta_rates, engine.momenta_rates, strict=True),
+                 *zip(ours.equations, engine.equations, strict=True)]:
+        assert sympy.simplify(sympy.Matrix([a]) - sympy.Matrix([b])).is_zero_matrix
