@@ -171,6 +171,20 @@ def test_the_first_argument_is_made_here_while_the_child_warms_up() -> None:
     assert _WARMED == []  # warm ran in the child only
 
 
+def test_the_first_argument_reaches_a_spawned_child(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Where a child is a fresh interpreter (macOS, Windows: spawn), the warm-up runs there and the first argument
+    arrives as it was built, though that interpreter has not imported SymPy when it reads it."""
+    import sympy
+
+    from lagsolve.app import budget
+
+    monkeypatch.setattr(budget, "START_METHOD", "spawn")
+    a, b = sympy.symbols("a b")
+    form = sympy.Mul(sympy.Rational(1, 2), a + b, evaluate=False)
+    value, second, warmed, _ = run_with_budget(_first_and_warmed, (7,), 60, "x", first=lambda: form, warm=_warm_up)
+    assert (value, second, warmed) == (sympy.srepr(form), 7, ["warm"])
+
+
 def test_a_first_argument_that_fails_ends_the_child() -> None:
     """When first() raises (an invalid file), its error is raised here and the child, started already, is gone."""
     import multiprocessing

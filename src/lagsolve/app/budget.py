@@ -37,6 +37,9 @@ from typing import Any
 from lagsolve.errors import DerivationError, LagsolveError
 
 MEMORY_LIMIT = 8 * 1024**3
+#: how the child is started: a fork where there is one that is safe with threads not yet started (Linux), else a
+#: fresh interpreter (macOS, Windows), which imports what it needs itself
+START_METHOD = "fork" if sys.platform.startswith("linux") else "spawn"
 #: a child that has used little CPU but has run for this many times its budget (plus a minute) is stopped
 WALL_BACKSTOP = 20.0
 
@@ -56,7 +59,7 @@ def _rebuilt(blob: bytes) -> Any:
     """A partial result (our own child's pickle) as the child had it: SymPy's expressions rebuilt without
     evaluation, since pickle rebuilds each with its class's constructor, which would rewrite a display form such as
     (a + b)/2 as a/2 + b/2."""
-    if "sympy" not in sys.modules:
+    if "sympy" not in sys.modules and b"sympy" not in blob:  # (a spawned child has not imported SymPy yet)
         return pickle.loads(blob)
     from sympy.core.parameters import evaluate
 
@@ -155,8 +158,7 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
     LagsolveError
         Whatever lagsolve error ``fn`` raised, re-raised here.
     """
-    method = "fork" if sys.platform.startswith("linux") else "spawn"
-    ctx: Any = multiprocessing.get_context(method)
+    ctx: Any = multiprocessing.get_context(START_METHOD)
     receiver, sender = ctx.Pipe(duplex=False)
     inbox, outbox = ctx.Pipe(duplex=False) if first is not None else (None, None)  # the first argument's way
     # not a daemon: a simulation runs its analysis in a child of its own
