@@ -56,9 +56,9 @@ def report_partial(payload: Any) -> None:
 
 
 def _rebuilt(blob: bytes) -> Any:
-    """A partial result (our own child's pickle) as the child had it: SymPy's expressions rebuilt without
-    evaluation, since pickle rebuilds each with its class's constructor, which would rewrite a display form such as
-    (a + b)/2 as a/2 + b/2."""
+    """A pickle this module made (a child's partial result, or the first argument sent to a child) as it was made:
+    SymPy's expressions rebuilt without evaluation, since pickle rebuilds each with its class's constructor, which
+    would rewrite a display form such as (a + b)/2 as a/2 + b/2."""
     if "sympy" not in sys.modules and b"sympy" not in blob:  # (a spawned child has not imported SymPy yet)
         return pickle.loads(blob)
     from sympy.core.parameters import evaluate

@@ -183,7 +183,7 @@ def derive_file(path: str | Path, formats: tuple[str, ...] = DEFAULT_FORMATS, *,
     loaded = _Loading(path)
     rendered = run_with_budget(_derive_and_render, (formats, templates, simulate, timeout), timeout,
                                f"the derivation of {path}", on_partial=_render_core(formats, templates, timeout),
-                               first=loaded.problem_loaded, warm=loaded.warm(_warm_derive))
+                               first=loaded.problem_loaded, warm=_warm_once(_warm_derive))
     return _reports(path, loaded.problem, rendered)
 
 
@@ -246,46 +246,46 @@ def check_file(path: str | Path, *, timeout: float = DEFAULT_TIMEOUT) -> Checked
     ranges.check(timeout=timeout)
     loaded = _Loading(path)
     table, counts, rows = run_with_budget(_derive_and_check, (timeout,), timeout, f"the check of {path}",
-                                          first=loaded.problem_loaded, warm=loaded.warm(_warm_derive))
+                                          first=loaded.problem_loaded, warm=_warm_once(_warm_derive))
     return Checked(str(path), loaded.problem.name, table, counts, rows, _unit_warnings(loaded.problem))
 
 
-#: the warm-ups this process has had a child run: the next file's warms up here instead (see :class:`_Loading`)
+#: the warm-ups this process has had a child run: the next file's warms up here instead (:func:`_warm_once`)
 _WARMED: set[Callable[[], None]] = set()
 
 
 class _Loading:
     """One problem file loaded *while* its budgeted child starts (:func:`lagsolve.app.budget.run_with_budget` with
-    arguments made later): the child imports what it needs (``warm``: the mechanics, the renderers, the modules
-    SymPy imports on first use) as this process loads and validates the file, on the machine's second core.
-
-    SymPy and the loader are imported here first, so that both processes share them. From a command's second file
-    on, this process has imported the warm-up itself, before the fork, so that every later child inherits it
-    instead of importing it again."""
+    its first argument made later): the child imports what it needs (:func:`_warm_once`) as this process loads
+    and validates the file, on the machine's second core. SymPy and the loader are imported here first, so that
+    both processes share them."""
 
     def __init__(self, path: str | Path) -> None:
         from lagsolve.problem.load import load_problem
 
         self.path, self.load = path, load_problem
-        self.loaded: list[Problem] = []
+        self._problem: Problem | None = None
 
     @property
     def problem(self) -> Problem:
         """The problem, once :meth:`problem_loaded` has loaded it."""
-        return self.loaded[0]
+        assert self._problem is not None, "problem_loaded() first"
+        return self._problem
 
     def problem_loaded(self) -> Problem:
         """The file loaded (raises :class:`SpecError` for an invalid one), kept for :attr:`problem`."""
-        self.loaded[:] = [self.load(self.path)]
-        return self.loaded[0]
+        self._problem = self.load(self.path)
+        return self._problem
 
-    def warm(self, imports: Callable[[], None]) -> Callable[[], None] | None:
-        """``imports`` for the child to run, or None once a child has run them (they are then imported here)."""
-        if imports in _WARMED:
-            imports()
-            return None
-        _WARMED.add(imports)
-        return imports
+
+def _warm_once(imports: Callable[[], None]) -> Callable[[], None] | None:
+    """``imports`` for a budgeted child to run while the file is loaded, the first time; from a command's second
+    file on, run here before the fork instead (None for the child), so that every later child inherits them."""
+    if imports in _WARMED:
+        imports()
+        return None
+    _WARMED.add(imports)
+    return imports
 
 
 def _warm_derive() -> None:
@@ -361,5 +361,5 @@ def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: floa
     ranges.check(timeout=timeout)
     loaded = _Loading(path)
     result = run_with_budget(_simulate, (options, progress), timeout, f"the simulation of {path}",
-                             first=loaded.problem_loaded, warm=loaded.warm(_warm_simulate))
+                             first=loaded.problem_loaded, warm=_warm_once(_warm_simulate))
     return replace(result, warnings=_unit_warnings(loaded.problem))
