@@ -51,10 +51,12 @@ if TYPE_CHECKING:
     from lagsolve.mechanics.results import FrictionResult, Solution
 
 
-#: CPU seconds the symbolic equilibrium solve may take when numeric equilibria can be given instead (every
-#: shipped problem whose equilibria have a closed form finds them in under 0.1 s; a coupled trigonometric
-#: system that does not finish, the two pendulums joined by a spring, would hold the whole derivation up)
-NUMERIC_FALLBACK_CAP = 2.0
+#: CPU seconds the symbolic equilibria and modes may take when numeric equilibria can be given instead: a coupled
+#: trigonometric system whose general solve does not finish would hold the whole derivation up. The slowest shipped
+#: problem that finishes, the two pendulums joined by a spring, takes about 1 s here (0.5 s of it the capped general
+#: solve); the cap leaves six times that, since a slower or busier machine must give the same report (a 2 s cap was
+#: once exceeded on CI). ``bench/margins.py`` shows every stage's use against its slice.
+NUMERIC_FALLBACK_CAP = 6.0
 
 
 def analyse(form: MatrixForm, solution: Solution, friction_results: tuple[FrictionResult, ...] = (),
