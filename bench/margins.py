@@ -6,7 +6,7 @@ only while every stage finishes well inside its slice: a slower or busier machin
 work. This derives each problem with the default budget and lists, for every stage that ran, the CPU it used and
 the slice it had (``Stages.slice_for``, or the stage's cap), sorted by the ratio; a stage using more than
 ``1/MARGIN`` of its slice is flagged. The coupled pendulums' equilibria, at 0.95 s of a 2 s cap, once ran out
-on CI: the cap is now 6 s.
+on CI: the stage's cap is now 6 s (``analyse.LINEARIZE_CAP``).
 
 The stages are timed by wrapping :meth:`lagsolve.mechanics.stages.Stages.run` in this process (CPU time).
 

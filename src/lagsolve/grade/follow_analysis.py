@@ -13,7 +13,7 @@ import sympy
 
 from lagsolve.errors import DerivationError
 from lagsolve.grade.analysis_steps import lists_of
-from lagsolve.mechanics.analysis.analyse import NUMERIC_FALLBACK_CAP
+from lagsolve.mechanics.analysis.analyse import LINEARIZE_CAP, NUMERIC_FALLBACK_CAP
 from lagsolve.mechanics.analysis.conserved import MotionSystem
 from lagsolve.mechanics.analysis.equilibria import effective_potential
 from lagsolve.mechanics.analysis.linearize import linearize
@@ -86,13 +86,14 @@ def _own_analysis(derivation: Derivation, lagrangian: Any) -> dict[str, dict[str
 def _symbolic(own: MotionSystem, cyclic: tuple[Any, ...], values: dict[str, float] | None, *, capped: bool
               ) -> Any:
     """The closed-form equilibria and modes of the student's system; when ``capped`` (a numeric search can follow,
-    as for the key), given up after the key's own cap (:data:`~lagsolve.mechanics.analysis.analyse.
-    NUMERIC_FALLBACK_CAP` s of CPU)."""
+    as for the key), given up after the key's own caps (:data:`~lagsolve.mechanics.analysis.analyse.
+    NUMERIC_FALLBACK_CAP` s of CPU for a general solve, :data:`~lagsolve.mechanics.analysis.analyse.LINEARIZE_CAP`
+    in all)."""
     if not capped:
         return linearize(own, cyclic, False, values)[0]
     try:
-        with cpu_limit(NUMERIC_FALLBACK_CAP):
-            return linearize(own, cyclic, False, values)[0]
+        with cpu_limit(LINEARIZE_CAP):
+            return linearize(own, cyclic, False, values, NUMERIC_FALLBACK_CAP)[0]
     except StageTimeout:
         return None
 

@@ -337,3 +337,46 @@ def test_a_small_oscillation_started_in_a_mode_keeps_its_shape_and_period() -> N
         run = solve_ivp(rates, (0, times[-1]), [*(1e-4 * shape), 0.0, 0.0], t_eval=times, rtol=1e-11, atol=1e-15)
         assert _period(run.t, run.y[0]) == pytest.approx(2 * np.pi / omega, rel=1e-5)
         assert np.max(np.abs(run.y[1] - shape[1] * run.y[0])) <= 1e-8
+
+
+TORSION = """
+name: two pendulums on torsion springs
+parameters: {m: mass, g: gravity, l: length, k: torsion stiffness, a: rest angle}
+gravity: [0, -g]
+coordinates: [theta1, theta2]
+particles:
+  bob1: {mass: m, position: [l*sin(theta1), -l*cos(theta1)]}
+  bob2: {mass: m, position: [l*sin(theta2), -l*cos(theta2)]}
+potential: k*(theta1 - a)**2/2 + k*(theta2 - a)**2/2 + k*(theta1 - theta2)**2/4
+simulation: {values: {m: 0.5, g: 9.81, l: 2.0, k: 2.0, a: 0.8}, initial: {theta1: 0.3, theta2: 0.2}, t_end: 1.0}
+"""
+
+
+def test_equilibria_without_a_closed_form_are_numeric_and_say_why() -> None:
+    """m g l sin θ + k (θ - a) = 0 has no closed form: neither the cheap search nor the general solve (each
+    within its CPU cap) finds it, no stage runs out of its share, and the equilibria come from the numeric search,
+    whose sentence says why. Checked independently: the first (hanging) one is θ1 = θ2 from SciPy's brentq, its
+    ω² the eigenvalues of M₀⁻¹K with K written out by hand; every other one makes ∂V/∂θ vanish (written out by
+    hand) and is unstable (the springs are too weak to hold the pendulums up)."""
+    import numpy as np
+    from scipy.optimize import brentq
+
+    derivation = derived_text(TORSION)
+    assert derivation.notes == ()
+    linear = derivation.analysis.linearization
+    assert linear.search.startswith("No equilibrium in closed form (the general symbolic solve did not finish")
+    assert "numeric search at the simulation values" in linear.search
+    m, g, length, k, rest = 0.5, 9.81, 2.0, 2.0, 0.8
+    theta = brentq(lambda x: m * g * length * np.sin(x) + k * (x - rest), 0.0, rest)
+    mode, *others = linear.modes
+    assert [float(v) for _, v in mode.point] == pytest.approx([theta, theta], abs=1e-7)
+    diagonal = m * g * length * np.cos(theta) + 1.5 * k
+    stiffness = np.array([[diagonal, -k / 2], [-k / 2, diagonal]]) / (m * length**2)
+    assert [float(w) for w in mode.squared_frequencies] == pytest.approx(sorted(np.linalg.eigvalsh(stiffness)),
+                                                                         rel=1e-6)
+    assert mode.stable is True
+    assert others and all(other.stable is False for other in others)
+    for other in others:
+        t1, t2 = (float(v) for _, v in other.point)
+        assert m * g * length * np.sin(t1) + k * (t1 - rest) + k * (t1 - t2) / 2 == pytest.approx(0, abs=1e-6)
+        assert m * g * length * np.sin(t2) + k * (t2 - rest) + k * (t2 - t1) / 2 == pytest.approx(0, abs=1e-6)

@@ -80,3 +80,18 @@ def test_a_constant_force_leaves_no_equilibrium() -> None:
     its case out: no equilibrium is listed, and the search is complete."""
     found = static_roots([m * g, -k * y], [x, y])
     assert found.solutions == () and found.complete
+
+
+def test_a_transcendental_root_is_given_up_within_its_cap(monkeypatch) -> None:
+    """Two pendulums on torsion springs at rest: θ2 comes out of a linear equation, and the equation left in θ1
+    is transcendental (sympy.solve takes well over 18 s on it); the search gives it up after its CPU cap and says
+    it is not complete, with no solution invented."""
+    from lagsolve.mechanics.analysis import static_roots as module
+
+    monkeypatch.setattr(module, "ROOT_SOLVE_CAP", 0.2)
+    rest = sympy.Symbol("a", real=True)
+    potential = k * (a - rest) ** 2 / 2 + k * (b - rest) ** 2 / 2 + k * (a - b) ** 2 / 4 - m * g * (sympy.cos(a)
+                                                                                                 + sympy.cos(b))
+    static = [-sympy.diff(potential, q) for q in (a, b)]
+    found = static_roots(static, [a, b])
+    assert found.solutions == () and found.complete is False

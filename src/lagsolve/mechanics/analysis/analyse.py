@@ -26,6 +26,7 @@ format section 2, SymPy expressions) with :func:`contract_forms`.
 
 from __future__ import annotations
 
+import dataclasses
 from typing import TYPE_CHECKING, Any
 
 import sympy
@@ -38,7 +39,7 @@ from lagsolve.mechanics.analysis.integrability import classify_all
 from lagsolve.mechanics.analysis.linearize import Linearization, applies, linearize
 from lagsolve.mechanics.analysis.minimal import ReducedSystem, reduce_system
 from lagsolve.mechanics.analysis.minimal_chart import MinimalChart, minimal_chart
-from lagsolve.mechanics.analysis.numeric_equilibria import complete_numerically, numeric_linearization
+from lagsolve.mechanics.analysis.numeric_equilibria import NUMERIC_SEARCH, complete_numerically, numeric_linearization
 from lagsolve.mechanics.analysis.results import Analysis
 from lagsolve.mechanics.analysis.steady import SteadyMotion, steady_motions
 from lagsolve.mechanics.analysis.symmetry import symmetries
@@ -51,12 +52,15 @@ if TYPE_CHECKING:
     from lagsolve.mechanics.results import FrictionResult, Solution
 
 
-#: CPU seconds the symbolic equilibria and modes may take when numeric equilibria can be given instead: a coupled
-#: trigonometric system whose general solve does not finish would hold the whole derivation up. The slowest shipped
-#: problem that finishes, the two pendulums joined by a spring, takes about 1 s here (0.5 s of it the capped general
-#: solve); the cap leaves six times that, since a slower or busier machine must give the same report (a 2 s cap was
-#: once exceeded on CI). ``bench/margins.py`` shows every stage's use against its slice.
-NUMERIC_FALLBACK_CAP = 6.0
+#: CPU seconds the general symbolic solve of the equilibria may take, when the cheap search found none and numeric
+#: equilibria can be given instead: a coupled trigonometric system it does not finish would hold the whole
+#: derivation up (two pendulums on torsion springs)
+NUMERIC_FALLBACK_CAP = 2.0
+#: CPU seconds the whole stage (solve and modes) may take then: the slowest shipped problem, the two pendulums
+#: joined by a spring, takes about 1 s here (0.5 s of it the capped general solve); the cap leaves six times that,
+#: since a slower or busier machine must give the same report (a 2 s cap on the whole was once exceeded on CI).
+#: ``bench/margins.py`` shows every stage's use against its slice.
+LINEARIZE_CAP = 6.0
 
 
 def analyse(form: MatrixForm, solution: Solution, friction_results: tuple[FrictionResult, ...] = (),
@@ -152,9 +156,10 @@ def _linear(stages: Stages, problem: Any, system: MotionSystem, conservation: Co
         return None, why_not
     values = dict(problem.simulation.values) if problem.simulation is not None else None
     # with numbers to fall back on, a symbolic solve that has not finished in a few seconds will not help
-    cap = NUMERIC_FALLBACK_CAP if values is not None and not problem.functions else None
+    fallback = values is not None and not problem.functions
     found = stages.run("equilibria and normal modes", linearize, system, conservation.cyclic, friction, values,
-                       cap=cap, instead="numeric equilibria at the simulation values are given instead")
+                       NUMERIC_FALLBACK_CAP if fallback else None, cap=LINEARIZE_CAP if fallback else None,
+                       instead="numeric equilibria at the simulation values are given instead")
     linear, linear_note = found if found is not None else (None, _stage_reason(stages, "equilibria and normal modes"))
     if problem.simulation is None or problem.functions:
         return linear, linear_note
@@ -168,8 +173,9 @@ def _numeric_equilibria(stages: Stages, spec: Any, system: MotionSystem, linear:
     if linear is None:
         numeric = stages.run("numeric equilibria", numeric_linearization, system, dict(spec.values),
                              dict(spec.initial))
-        if numeric is not None:
-            return numeric, f"numeric: {linear_note}"
+        if numeric is not None:  # the report says why the equilibria are numeric only
+            search = f"No equilibrium in closed form ({linear_note}); {NUMERIC_SEARCH} found these"
+            return dataclasses.replace(numeric, search=search), f"numeric: {linear_note}"
         linear_note += f"; {_stage_reason(stages, 'numeric equilibria')}"
         stages.settle("numeric equilibria")  # the analysis section says it
         return None, linear_note

@@ -122,10 +122,12 @@ def applies(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool) -> st
 
 
 def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
-              values: dict[str, float] | None = None) -> tuple[Linearization | None, str]:
+              values: dict[str, float] | None = None, solve_cap: float | None = None
+              ) -> tuple[Linearization | None, str]:
     """Equilibria and normal modes of ``system`` (module docstring), solved symbolically, or None and the reason.
     Where the characteristic polynomial does not split, the squared frequencies are numeric at the
-    parameter ``values`` (when given)."""
+    parameter ``values`` (when given). ``solve_cap``: CPU seconds a general symbolic solve may take when the
+    cheap search found nothing (when numeric equilibria can be given instead); without it, all the stage has."""
     model = system.model
     n = len(model.coordinates)
     reason = applies(system, cyclic, friction)
@@ -137,7 +139,7 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
     rest = {v: 0 for v in model.velocities}
     static = [tidy(f.xreplace(rest)) for f in terms.forcing]
     coordinates = list(model.coordinates)
-    found = _equilibria(static, coordinates)
+    found = _equilibria(static, coordinates, solve_cap)
     if isinstance(found, str):
         return None, found
     solutions, complete, search = found
@@ -162,12 +164,14 @@ def linearize(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool,
     return Linearization(model.coordinates, modes, search, complete), ""
 
 
-def _equilibria(static: list[Any], coordinates: list[Any]) -> tuple[list[dict[Any, Any]], bool, str] | str:
+def _equilibria(static: list[Any], coordinates: list[Any],
+                solve_cap: float | None = None) -> tuple[list[dict[Any, Any]], bool, str] | str:
     """The solutions of F(q, 0) = 0 (``static``) in closed form, whether they are every one, and how they were
     found when not; or why none is given. Decoupled equations are solved one by one; otherwise the cheap search
     of :mod:`~lagsolve.mechanics.analysis.static_roots` goes first, and ``sympy.solve`` runs only when that search
     cannot
-    tell it found everything (for at most :data:`GENERAL_SOLVE_CAP` s of CPU once the search has found some)."""
+    tell it found everything (for at most :data:`GENERAL_SOLVE_CAP` s of CPU once the search has found some, else
+    ``solve_cap`` when given)."""
     if all(f == 0 for f in static):
         return [{}], True, ""  # no force at rest anywhere: every configuration
     try:
@@ -182,13 +186,13 @@ def _equilibria(static: list[Any], coordinates: list[Any]) -> tuple[list[dict[An
     if roots.complete:
         return list(roots.solutions), True, ""
     small = all(ops(f) <= SOLVE_LIMIT for f in static)
-    general, why = _general_solve(static, coordinates, GENERAL_SOLVE_CAP if roots.solutions else None) if small \
+    general, why = _general_solve(static, coordinates, GENERAL_SOLVE_CAP if roots.solutions else solve_cap) if small \
         else (None, "the equations are too large for a general symbolic solve")
     if general is not None:
         return general + [s for s in roots.solutions if not any(same_solution(s, g) for g in general)], True, ""
     if not roots.solutions:
         return ("the equilibrium equations are too large to solve symbolically" if not small
-                else "the equilibrium equations could not be solved symbolically")
+                else why if "did not finish" in why else "the equilibrium equations could not be solved symbolically")
     tried = ", ".join(q.name for q in roots.tried)
     how = (f"{tried} tried at {'their' if len(roots.tried) > 1 else 'its'} obvious values (the zeros of "
            f"{'their' if len(roots.tried) > 1 else 'its'} sines and cosines, 0 where it appears outside them) and "

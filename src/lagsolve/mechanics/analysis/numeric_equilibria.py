@@ -24,6 +24,8 @@ from lagsolve.mechanics.symbolic.partials import BULK_SYSTEM, to_engine
 #: how many starting points the numeric search for equilibria tries (:data:`BULK_STARTS` for a bulk system)
 STARTS = 64
 BULK_STARTS = 16
+#: how a report names that search
+NUMERIC_SEARCH = f"the numeric search at the simulation values ({STARTS} starting points)"
 
 
 class NoEquilibriumFound(StageSkipped):  # noqa: N818 - a reason, not an error
@@ -301,7 +303,7 @@ def complete_numerically(linear: Linearization, system: MotionSystem, values: di
              if not any(_same_point(m, known, values, angles) for known in linear.modes)]
     room = max(0, MAX_EQUILIBRIA - len(linear.modes))
     found = (f"finds {len(extra)} more, given numerically below" if extra else "finds no other")
-    search = f"{linear.search}; the numeric search at the simulation values ({STARTS} starting points) {found}"
+    search = f"{linear.search}; {NUMERIC_SEARCH} {found}"
     return dataclasses.replace(linear, modes=linear.modes + tuple(extra[:room]), search=search)
 
 

@@ -5,7 +5,8 @@ The exact steps, tried in this order on the equations left once the coordinates 
 
 1. **Split on a factor in one coordinate.** An equation :math:`a(q_k)\,b(q) = 0` holds where :math:`a = 0` (its
    roots: the zeros of :math:`\sin(c q_k)`, :math:`\cos(c q_k)`, :math:`\tan(c q_k)` in :math:`[0, 2\pi)`, else
-   ``sympy.solve`` in that one coordinate) or where :math:`b = 0`; each case goes on by itself.
+   ``sympy.solve`` in that one coordinate, for at most :data:`ROOT_SOLVE_CAP` s of CPU) or where :math:`b = 0`;
+   each case goes on by itself.
 2. **Solve a linear equation.** An equation linear in a coordinate, with a coefficient free of coordinates, fixes
    it in terms of the others (two masses on a spring: :math:`x_1 = x_2 - L_0`, a continuum).
 3. **Check what is left.** An equation with no coordinate left holds when it is proved zero; otherwise the case
@@ -33,6 +34,7 @@ from typing import Any
 
 import sympy
 
+from lagsolve.mechanics.stages import StageTimeout, cpu_limit
 from lagsolve.mechanics.symbolic.algebra import factor_terms, ops
 from lagsolve.mechanics.symbolic.identities import proved_zero
 
@@ -44,6 +46,11 @@ MAX_MULTIPLE = 4
 
 #: the largest equation (operations) solved in one coordinate by ``sympy.solve``
 ROOT_LIMIT = 80
+
+#: CPU seconds ``sympy.solve`` may take on one equation in one coordinate (a root it does not find in that time is
+#: not found: the search is then incomplete). A transcendental one, g sin θ + k θ = c, takes it well over 18 s;
+#: the polynomial and trigonometric ones it solves take a few hundredths.
+ROOT_SOLVE_CAP = 0.5
 
 _TRIG = (sympy.sin, sympy.cos, sympy.tan)
 
@@ -238,8 +245,9 @@ def _roots(factor: Any, q: Any) -> list[Any] | None:
     if ops(factor) > ROOT_LIMIT:
         return None
     try:
-        roots = sympy.solve(factor, q)
-    except (NotImplementedError, ValueError, TypeError, sympy.PolynomialError):
+        with cpu_limit(ROOT_SOLVE_CAP):
+            roots = sympy.solve(factor, q)
+    except (StageTimeout, NotImplementedError, ValueError, TypeError, sympy.PolynomialError):
         return None
     if any(isinstance(r, sympy.Set) or r.has(sympy.I) or r.free_symbols & {q} for r in roots):
         return None
