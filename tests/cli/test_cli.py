@@ -323,3 +323,26 @@ def test_the_program_flushes_its_output_and_keeps_its_status(tmp_path: Path) -> 
     done = subprocess.run([sys.executable, "-m", "lagsolve", "derive", str(bad)], capture_output=True, text=True,
                           timeout=300, cwd=tmp_path)
     assert done.returncode == 2 and "bad.yaml:2: coordinates" in done.stderr and not done.stdout
+
+
+def test_the_program_sets_the_collector_before_it_runs(monkeypatch: pytest.MonkeyPatch) -> None:
+    """cli.run sets the collector's thresholds (cli.COLLECTOR) before the command runs, and ends with its status."""
+    import gc
+
+    from lagsolve import cli
+
+    seen: list[tuple[int, ...]] = []
+    ended: list[int] = []
+    def main() -> None:
+        seen.append(gc.get_threshold())
+        sys.exit(0)
+
+    monkeypatch.setattr(cli, "main", main)
+    monkeypatch.setattr(cli.os, "_exit", ended.append)
+    before = gc.get_threshold()
+    try:
+        gc.set_threshold(700, 10, 10)
+        cli.run()
+    finally:
+        gc.set_threshold(*before)
+    assert seen == [cli.COLLECTOR] and ended == [0]
