@@ -32,3 +32,22 @@ def test_bench_sweep_fast_json() -> None:
     assert result["rk4"]["seconds"] > 0
     for target in result["targets"].values():
         assert target["value"] > 0 and isinstance(target["met"], bool)
+
+
+def test_bench_sweep_fast_shows_a_ratio_it_could_not_measure(capsys: pytest.CaptureFixture[str]) -> None:
+    """A sweep too short for the threads' clock (10 ms ticks) has no CPU ratio: the table says "not measured"
+    where it would divide by zero (a 16-run sweep once did, failing the test above)."""
+    import importlib.util
+
+    loaded = importlib.util.spec_from_file_location("sweep_fast_bench", SCRIPT)
+    assert loaded is not None and loaded.loader is not None
+    bench = importlib.util.module_from_spec(loaded)
+    loaded.loader.exec_module(bench)
+    figures = {"seconds": 0.1, "cpu_seconds": 0.0, "failed": 0, "path": "compiled"}
+    bench.show({"runs": 16, "t_end": 10.0, "cpus": 2, "load_before": 0.1, "load_after": 0.1, "loaded": False,
+                "first_call": {"seconds": 1.0, "cpu_seconds": 1.0}, "sweep": {"0": figures, "1": figures, "2": figures},
+                "rk4": {"seconds": 0.1, "cpu_seconds": 0.1},
+                "solve_ivp": {"seconds": 1.0, "cpu_seconds": 1.0, "max_difference": 1e-9},
+                "targets": {"seconds": {"target": 1.5, "value": 0.1, "cpu_value": 0.0, "met": True},
+                            "workers": {"target": 1.7, "value": 1.0, "cpu_value": None, "met": False}}})
+    assert "one worker's CPU over that) not measured" in capsys.readouterr().out
