@@ -250,3 +250,36 @@ def test_a_signal_to_the_command_alone_leaves_no_worker(signum: str, tmp_path) -
             break
         time.sleep(0.05)
     assert not any(_alive(pid) for pid in workers)
+
+
+def _child_pid() -> int:
+    import os
+
+    return os.getpid()
+
+
+def test_meanwhile_runs_here_while_the_child_computes() -> None:
+    """``meanwhile`` runs once, in this process (after the first argument is sent), and the child's answer still
+    comes back."""
+    import os
+
+    ran: list[int] = []
+    child = run_with_budget(_child_pid, (), 10, "x", meanwhile=lambda: ran.append(os.getpid()))
+    assert ran == [os.getpid()] != [child]
+
+
+def test_a_pickle_within_its_limit_comes_back_as_it_was_built() -> None:
+    """pickled_within gives the bytes when they fit (read back by rebuilt without evaluation: (a + b)/2 stays so),
+    and None, without finishing, when they do not, or when the object cannot be pickled."""
+    import sympy
+
+    from lagsolve.app.budget import pickled_within, rebuilt
+
+    a, b = sympy.symbols("a b")
+    form = sympy.Mul(sympy.Rational(1, 2), a + b, evaluate=False)
+    blob = pickled_within(form, 10_000)
+    assert blob is not None and sympy.srepr(rebuilt(blob)) == sympy.srepr(form)
+    assert pickled_within(form, len(blob)) == blob
+    assert pickled_within(form, len(blob) - 1) is None
+    assert pickled_within(sympy.Add(*sympy.symbols("x0:5000")), 1000) is None
+    assert pickled_within(lambda: None, 10_000) is None

@@ -115,3 +115,28 @@ def test_the_child_warms_up_for_the_first_file_and_inherits_for_the_next(monkeyp
     assert first.outputs == second.outputs and first.summary == second.summary
     with pytest.raises(SpecError):  # a file that does not load: its error, whichever process is warm
         derive_file(ROOT / "problems" / "no such file.yaml")
+
+
+@pytest.mark.parametrize("name", ["bead", "coupled_pendulums"])
+def test_a_small_derivation_rendered_here_gives_the_childs_reports(name: str, monkeypatch: pytest.MonkeyPatch
+                                                                    ) -> None:
+    """A small derivation comes back from its child to be rendered by this process (which imported the renderers
+    meanwhile); rendered in the child instead (RENDER_HERE = 0) every report and figure is byte for byte the same,
+    and both are the golden reports."""
+    from lagsolve.app import budget, pipeline
+
+    sent: list[object] = []
+    real = budget.run_with_budget
+
+    def spy(*args: object, **kwargs: object) -> object:
+        answer = real(*args, **kwargs)  # type: ignore[arg-type]
+        sent.append(type(answer).__name__)
+        return answer
+
+    monkeypatch.setattr(budget, "run_with_budget", spy)
+    here = derive_file(ROOT / "problems" / f"{name}.yaml")
+    monkeypatch.setattr(pipeline, "RENDER_HERE", 0)
+    there = derive_file(ROOT / "problems" / f"{name}.yaml")
+    assert sent == ["_Derived", "tuple"]
+    assert here.outputs == there.outputs and here.files == there.files and here.summary == there.summary
+    assert golden_differences(here, ROOT / "tests" / "golden") == []

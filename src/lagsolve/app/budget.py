@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import contextlib
 import gc
+import io
 import math
 import multiprocessing
 import os
@@ -55,8 +56,43 @@ def report_partial(payload: Any) -> None:
             _channel[0].send(("partial", pickle.dumps(payload)))
 
 
-def _rebuilt(blob: bytes) -> Any:
-    """A pickle this module made (a child's partial result, or the first argument sent to a child) as it was made:
+class _Full(Exception):  # noqa: N818 - a signal between two functions, not an error
+    """The pickle grew past its limit."""
+
+
+class _Capped(io.RawIOBase):
+    """A file that holds at most ``limit`` bytes: a write past it raises :class:`_Full`."""
+
+    def __init__(self, limit: int) -> None:
+        self.parts: list[bytes] = []
+        self.size, self.limit = 0, limit
+
+    def writable(self) -> bool:
+        return True
+
+    def write(self, data: Any) -> int:
+        self.size += len(data)
+        if self.size > self.limit:
+            raise _Full
+        self.parts.append(bytes(data))
+        return len(data)
+
+
+def pickled_within(payload: Any, limit: int) -> bytes | None:
+    """``payload`` pickled, or None when its pickle would be longer than ``limit`` bytes (given up as soon as it
+    is: a large derivation is not pickled whole to find that out) or it cannot be pickled. Read it back with
+    :func:`rebuilt`."""
+    out = _Capped(limit)
+    try:
+        pickle.Pickler(out, protocol=pickle.HIGHEST_PROTOCOL).dump(payload)
+    except (_Full, pickle.PicklingError, TypeError, AttributeError, RecursionError):
+        return None
+    return b"".join(out.parts)
+
+
+def rebuilt(blob: bytes) -> Any:
+    """A pickle this module made (a child's partial result, the first argument sent to a child, or
+    :func:`pickled_within`'s) as it was made:
     SymPy's expressions rebuilt without evaluation, since pickle rebuilds each with its class's constructor, which
     would rewrite a display form such as (a + b)/2 as a/2 + b/2."""
     if "sympy" not in sys.modules and b"sympy" not in blob:  # (a spawned child has not imported SymPy yet)
@@ -102,7 +138,7 @@ def _child(conn: Any, fn: Callable[..., Any], args: tuple, seconds: float, paren
             if warm is not None:
                 warm()
             try:
-                args = (_rebuilt(inbox.recv_bytes()), *args)
+                args = (rebuilt(inbox.recv_bytes()), *args)
             except EOFError:  # the parent could not make it (an invalid file): it reports that, not this child
                 os._exit(0)
             inbox.close()
@@ -140,7 +176,7 @@ def _send_first(first: Callable[[], Any], inbox: Any, outbox: Any) -> None:
 
 def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: str, *,
                     on_partial: Callable[[Any, str], Any] | None = None, first: Callable[[], Any] | None = None,
-                    warm: Callable[[], None] | None = None) -> Any:
+                    warm: Callable[[], None] | None = None, meanwhile: Callable[[], None] | None = None) -> Any:
     """``fn(*args)`` in a child process with ``seconds`` of CPU time.
 
     When the child is stopped at its limit after sending a partial result, ``on_partial(payload,
@@ -149,7 +185,8 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
     With ``first``, the child computes ``fn(first(), *args)``: ``first()`` is called here after the child has
     started, while the child runs ``warm()`` (imports; its CPU counts in the budget), and its result is sent to
     the child (pickled, read back without evaluation like a partial result). When it raises, the child is ended
-    and the exception raised here.
+    and the exception raised here. ``meanwhile()`` runs here once the child has what it needs, while it computes
+    (imports this process will need for the answer).
 
     Raises
     ------
@@ -176,6 +213,8 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
     try:
         if first is not None:
             _send_first(first, inbox, outbox)
+        if meanwhile is not None:
+            meanwhile()
         started = time.monotonic()
         while final is None:
             if time.monotonic() - started > WALL_BACKSTOP * seconds + 60:
@@ -205,7 +244,7 @@ def run_with_budget(fn: Callable[..., Any], args: tuple, seconds: float, what: s
     if final is None:
         reason = (f"{what} used up its {seconds:g} s CPU budget; raise it with --timeout or simplify the problem")
         if partial and on_partial is not None:
-            return on_partial(_rebuilt(partial[0]), reason)
+            return on_partial(rebuilt(partial[0]), reason)
         raise DerivationError(reason)
     status, payload = final
     if status == "ok":
