@@ -16,6 +16,9 @@ from lagsolve.errors import Issue, SpecError
 from lagsolve.mechanics.equations.surface import least_squares, newton
 from lagsolve.numeric.system import NumericSystem
 
+#: the largest residual of a constraint the initial state may have, relative to the constraint's scale (the size
+#: its residual takes for a displacement of the state's own size, :meth:`NumericSystem.surface_scales`); velocities:
+#: absolute
 TOLERANCE = 1e-9
 
 
@@ -50,7 +53,7 @@ def complete_initial(system: NumericSystem, given: Mapping[str, float], source: 
         q = _solve_positions(system, q, qd, free_q, t0, start)
     if system.holonomic:
         psi = system.position_residual(t0, q, qd, p)
-        if not np.all(np.isfinite(psi)) or np.max(np.abs(psi), initial=0.0) > TOLERANCE:
+        if not np.all(np.isfinite(psi)) or np.max(np.abs(psi) / system.surface_scales(t0, q, qd)) > TOLERANCE:
             rows = ", ".join(f"{system.constraints[j]} = {v:.3g}" for j, v in zip(system.holonomic, psi, strict=True))
             raise SpecError([Issue(source, line, field, f"the initial positions violate the constraints ({rows})",
                                    "give fewer coordinates (the others are solved from the constraints) or "
@@ -80,7 +83,9 @@ GUESSES = (0.0, -1.0, 1.0, -0.5, 0.5, -2.0, 2.0)
 def _solve_positions(system: NumericSystem, q: np.ndarray, qd: np.ndarray, free: np.ndarray,
                      t0: float, start: Mapping[str, float] | None = None) -> np.ndarray:
     """Least-norm Newton iteration (:func:`~lagsolve.mechanics.equations.surface.newton`) on the free coordinates;
-    tries several starting values, since a start such as y = 0 for x² + y² = l² has a singular Jacobian."""
+    tries several starting values, since a start such as y = 0 for x² + y² = l² has a singular Jacobian. Each
+    constraint's residual is divided by its scale (:meth:`NumericSystem.surface_scales`), rows of the Jacobian
+    alike: the steps are the same, and the iteration stops at the same relative accuracy whatever the units."""
     p, n = system.parameters, system.n
 
     def full(x: list[float]) -> np.ndarray:
@@ -89,10 +94,13 @@ def _solve_positions(system: NumericSystem, q: np.ndarray, qd: np.ndarray, free:
         return state
 
     def residual(x: list[float]) -> np.ndarray:
-        return system.position_residual(t0, full(x), qd, p)
+        state = full(x)
+        return system.position_residual(t0, state, qd, p) / system.surface_scales(t0, state, qd)
 
     def jacobian(x: list[float]) -> np.ndarray:
-        return system.position_jacobian(t0, full(x), qd, p).reshape(len(system.holonomic), n)[:, free]
+        state = full(x)
+        rows = system.position_jacobian(t0, state, qd, p).reshape(len(system.holonomic), n)[:, free]
+        return rows / system.surface_scales(t0, state, qd)[:, None]
 
     best, best_residual = q, np.inf
     first = [[float(start.get(c, 0.0)) for c, f in zip(system.coordinates, free, strict=True) if f]] if start else []
@@ -101,7 +109,7 @@ def _solve_positions(system: NumericSystem, q: np.ndarray, qd: np.ndarray, free:
         with np.errstate(all="ignore"):
             x, _ = newton(residual, jacobian, x0, step=least_squares, tolerance=1e-14)
             trial = full(x)
-            left = np.max(np.abs(system.position_residual(t0, trial, qd, p)))
+            left = np.max(np.abs(residual(x)))
         if np.isfinite(left) and left < best_residual:
             best, best_residual = trial, left
         if best_residual < 1e-13:

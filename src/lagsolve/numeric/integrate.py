@@ -44,6 +44,8 @@ from lagsolve.numeric.system import NumericSystem, rate_sign
 from lagsolve.problem.methods import DEFAULT, EXPLICIT, METHODS
 
 HOLD_TOLERANCE = 1e-12  # relative slack in |needed force| <= mu_s N when deciding to stick
+#: the residual of a holonomic constraint (of scale 1 or more) below which a state is not projected onto it
+PROJECTED = 1e-15
 
 
 class EventKind(TextEnum):
@@ -168,6 +170,9 @@ class _Run:
     project: bool
     chart: NumericChart | None = None  # set while the integrator's state is in minimal coordinates
     extended: np.ndarray = field(default_factory=lambda: np.zeros(0))  # parameters, then the chart's constants
+    #: per holonomic constraint, the residual below which a state is not projected: PROJECTED, scaled down for a
+    #: constraint whose scale (NumericSystem.surface_scales, at the start) is below 1 (a problem in micrometres)
+    floor: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def solve(self, t: float, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         n = self.system.n
@@ -218,7 +223,7 @@ class _Run:
         if rows:
             for _ in range(4):
                 psi = system.position_residual(t, q, qd, p)[rows]
-                if np.max(np.abs(psi)) < 1e-15:
+                if np.all(np.abs(psi) < self.floor[rows]):
                     break
                 jac = system.position_jacobian(t, q, qd, p).reshape(len(system.holonomic), n)[rows]
                 q -= jac.T @ np.linalg.solve(jac @ jac.T, psi)
@@ -266,7 +271,8 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
     if not (t_end > 0 and np.isfinite(t_end)):
         raise ValueError("t_end must be a positive number")
     m, k = system.m, len(system.contacts)
-    run = _Run(system, np.ones(m, dtype=bool), np.zeros(k, dtype=bool), np.zeros(k), project)
+    run = _Run(system, np.ones(m, dtype=bool), np.zeros(k, dtype=bool), np.zeros(k), project,
+               floor=PROJECTED * np.minimum(1.0, system.surface_scales(0.0, q0, qd0)))
     coordinates = _coordinates(run, q0, qd0, minimal)
     options = _Options(method, t_end, rtol, atol, max_step, project, after_release, progress)
     record = _Record(np.linspace(0.0, t_end, samples), t_end)
