@@ -200,3 +200,47 @@ simulation: {values: {m: 1.0, k: 1.0}, initial: {x: -1.0, x_dot: 0}, t_end: 1}
     with pytest.raises(SimulationError, match=r"no longer finite at t = 0 \(x = -1, x_dot = 0\): x_ddot is not a "
                                               r"finite number"):
         run(text, 1.0)
+
+
+PLATE = b"""
+name: Ball on a vibrating plate
+parameters: {m: mass, g: gravity, A: amplitude, w: angular frequency}
+coordinates: [y]
+particles:
+  ball: {mass: m, position: [0, y]}
+gravity: [0, -g]
+constraints:
+  plate: {holonomic: y - A*sin(w*t), on: ball, unilateral: true}
+simulation:
+  values: {m: 0.1, g: 9.81, A: 0.01, w: 60.0}
+  initial: {y: 0.0, y_dot: 0.6}
+  t_end: 0.2
+"""
+
+
+def test_a_ball_on_a_vibrating_plate_leaves_it_where_newton_says() -> None:
+    """No coordinate is left free (the plate prescribes y = A sin ωt): the derivation says so instead of failing
+    (the symmetry search crashed on it), N = m(g − Aω² sin ωt) as Newton gives, and the ball leaves the plate
+    where N first reaches zero, sin ωt = g/(Aω²), although the integrator takes the whole run in one step (its
+    state is empty): the watched force is looked at inside the step, where it goes negative and back."""
+    import sympy
+
+    import lagsolve
+
+    derivation = lagsolve.derive(PLATE)
+    s = {x.name: x.symbol for x in derivation.problem.parameters}
+    t = derivation.model.time
+    newton = s["m"] * (s["g"] - s["A"] * s["w"] ** 2 * sympy.sin(s["w"] * t))
+    assert sympy.simplify(derivation.multipliers["plate"] - newton) == 0
+    analysis = derivation.analysis
+    assert analysis.linearization is None and "no degrees of freedom" in analysis.linearization_note
+    assert derivation.hamiltonian is None
+    from lagsolve.render.report import render
+
+    markdown, latex = render(derivation, "md"), render(derivation, "tex")
+    assert "No coordinate is left free (no degrees of freedom)" in markdown and "$``$" not in markdown
+    assert "No coordinate is left free" in latex and "\\begin{aligned}\n\\end{aligned}" not in markdown
+    run = lagsolve.simulate(derivation)
+    [event] = run.events
+    assert event.kind == "release" and event.name == "plate"
+    assert event.time == pytest.approx(math.asin(9.81 / (0.01 * 60.0**2)) / 60.0, rel=1e-9)

@@ -400,6 +400,8 @@ INVALID = [
      "rename one of them"),
     ("multiplier-name", bead_with("m: mass", "m: mass\n  lambda_wire: oops"), 1, 4,
      "parameters.lambda_wire", "'lambda_wire' is reserved for Lagrange multipliers"),
+    ("momentum-name", bead_with("m: mass", "m: mass\n  p_x: oops"), 1, 4,
+     "parameters.p_x", "'p_x' is the name lagsolve gives the momentum conjugate to coordinate 'x'"),
     ("keyword-coordinate", bead_with("[x, y]", "[x, lambda]"), 3, 7, "coordinates[1]",
      "'lambda' is a Python keyword"),
     ("cyrillic-coordinate", bead_with("[x, y]", "[x, \u0443]"), 3, 7, "coordinates[1]",
@@ -723,3 +725,15 @@ def test_expected_steady_motions_are_read() -> None:
     assert steady is not None and (steady.coordinate, steady.rate, steady.stable) == ("theta", "phi", True)
     assert len(steady.roots) == 2 and steady.frequency.has(sympy.Symbol("p_psi", real=True))
     assert not expected.is_empty()
+
+
+def test_a_name_lagsolve_gives_a_normal_force_is_refused() -> None:
+    """A parameter N_<contact> would print as the contact's normal force in its equation (Eq(N_rub, N_rub + g*m),
+    false as written): refused with its line and field, as p_<coordinate> is (the momentum)."""
+    text = bead_with("g: gravity", "g: gravity\n  mu: friction coefficient\n  N_wall: a push") + \
+        "friction:\n  wall: {coefficient: mu, normal: [wire]}\n"
+    with pytest.raises(SpecError) as caught:
+        load_text(text, "clash.yaml")
+    message = str(caught.value)
+    assert "clash.yaml:" in message and "parameters.N_wall" in message
+    assert "'N_wall' is the name lagsolve gives the normal force of friction contact 'wall'" in message

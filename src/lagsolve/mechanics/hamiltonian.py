@@ -49,6 +49,7 @@ from typing import TYPE_CHECKING, Any
 
 import sympy
 
+from lagsolve.mechanics.analysis.linearize import NO_FREEDOM
 from lagsolve.mechanics.equations.energy import jacobi_integral
 from lagsolve.mechanics.equations.model import Model, time_derivative
 from lagsolve.mechanics.results import Canonical
@@ -191,6 +192,8 @@ def hamiltonian(analysis: Analysis, dissipation: Any = None) -> tuple[Hamiltonia
         reason = analysis.reduced_note or "there are no minimal coordinates"
         return None, f"there are no minimal coordinates: {reason}"
     model = reduced.model
+    if not model.coordinates:
+        return None, NO_FREEDOM
     L = model.lagrangian
     if any(partial(L, v, v, v) != 0 for v in model.velocities):
         return None, "L is not quadratic in the velocities, so p = dL/dq_dot cannot be inverted as a linear system"

@@ -44,6 +44,9 @@ from lagsolve.numeric.system import NumericSystem, rate_sign
 from lagsolve.problem.methods import DEFAULT, EXPLICIT, METHODS
 
 HOLD_TOLERANCE = 1e-12  # relative slack in |needed force| <= mu_s N when deciding to stick
+#: the watched event functions (a release, a stick or a slip) are looked at least this many times over a run,
+#: inside steps longer than t_end / WATCH_POINTS too
+WATCH_POINTS = 250
 #: the residual of a holonomic constraint (of scale 1 or more) below which a state is not projected onto it
 PROJECTED = 1e-15
 
@@ -354,8 +357,8 @@ def _coordinates(run: _Run, q0: np.ndarray, qd0: np.ndarray, minimal: bool) -> s
     run.chart = system.chart
     run.extended = system.chart.extended(0.0, q0, qd0, system.parameters)
     names = np.array(system.coordinates)
-    return (f"minimal: {', '.join(names[system.chart.independent])}, with "
-            f"{', '.join(names[system.chart.dependent])} from the constraints")
+    independent = ", ".join(names[system.chart.independent]) or "none (the constraints prescribe the motion)"
+    return f"minimal: {independent}, with {', '.join(names[system.chart.dependent])} from the constraints"
 
 
 def _segments(run: _Run, record: _Record, options: _Options, y0: np.ndarray) -> tuple[Any, bool]:
@@ -424,7 +427,7 @@ def _step(run: _Run, record: _Record, options: _Options, solver: Any,
     dense = _whole(run, solver.dense_output())
     y_new = run.full(t_new, solver.y)
     watch_new = _watch(run, t_new, y_new)
-    event = _first_event(run, dense, t_old, t_new, watch_old, watch_new)
+    event = _first_event(run, dense, t_old, t_new, watch_old, watch_new, options.t_end / WATCH_POINTS)
     t_stop = event[0] if event is not None else t_new
     record.take_samples(run, dense, t_stop)
     record.reached(run, t_stop, y_new if event is None else dense(t_stop))
@@ -556,8 +559,28 @@ def _watch(run: _Run, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
     return values
 
 
-def _first_event(run: _Run, dense: Any, t_old: float, t_new: float, old: dict, new: dict) -> tuple | None:
-    """The earliest (time, kind, index) at which a watched function goes from ≥ 0 to < 0 (≤ 0 for a rate)."""
+def _first_event(run: _Run, dense: Any, t_old: float, t_new: float, old: dict, new: dict,
+                 spacing: float = np.inf) -> tuple | None:
+    """The earliest (time, kind, index) at which a watched function goes from ≥ 0 to < 0 (≤ 0 for a rate).
+
+    A step longer than ``spacing`` is looked at every ``spacing`` on its dense output too: an event function can
+    go negative and back within one step that the state's error allowed (a ball on a plate that the constraint
+    moves, with no coordinate left to integrate, takes its whole run in one step)."""
+    if not old or t_new - t_old <= spacing:
+        return _crossing(run, dense, t_old, t_new, old, new)
+    pieces = int(np.ceil((t_new - t_old) / spacing))
+    for i in range(1, pieces + 1):
+        t_mid = t_new if i == pieces else t_old + i * (t_new - t_old) / pieces
+        watched = new if i == pieces else _watch(run, t_mid, dense(t_mid))
+        found = _crossing(run, dense, t_old, t_mid, old, watched)
+        if found is not None:
+            return found
+        t_old, old = t_mid, watched
+    return None
+
+
+def _crossing(run: _Run, dense: Any, t_old: float, t_new: float, old: dict, new: dict) -> tuple | None:
+    """:func:`_first_event` between two times at which the watched functions are known."""
     first = None
     for key, before in old.items():
         after = new.get(key)

@@ -96,6 +96,7 @@ class _Loader(BodiesReader, FrictionReader, AnswersReader, SimulationReader):
         constraints = self.constraints(data.get("constraints", {}), base, self.declared_particles, bodies, positions)
         friction, constraints = self.friction(data.get("friction", {}), base, positions, bodies, constraints,
                                               coordinates)
+        self.generated_names([c.name for c in coordinates], [f.name for f in friction])
         expected = self.expected(data.get("expected", {}), constraints)
         simulation = self.simulation(data["simulation"], parameters, coordinates) if "simulation" in data else None
         independent = self.independent(data["independent"], coordinates) if "independent" in data else ()

@@ -59,6 +59,8 @@ SEARCH_LIMIT = 400
 #: do not finish in 10 s)
 GENERAL_SOLVE_CAP = 0.5
 MAX_COORDINATES = 3
+#: why a part of the analysis does not apply to a system the constraints leave no freedom
+NO_FREEDOM = "no degrees of freedom: the constraints prescribe the motion"
 MAX_EQUILIBRIA = 8
 
 
@@ -112,6 +114,8 @@ def applies(system: MotionSystem, cyclic: tuple[Any, ...], friction: bool) -> st
         return "the system has cyclic coordinates: its relative equilibria are not analysed here"
     if friction:
         return "Coulomb friction acts: equilibria are not isolated points"
+    if not model.coordinates:
+        return NO_FREEDOM
     if len(model.coordinates) < 2:
         return "one coordinate: see the effective potential"
     if model.lagrangian.has(model.time) and not proved_zero(sympy.diff(model.lagrangian, model.time)):

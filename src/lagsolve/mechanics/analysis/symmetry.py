@@ -85,6 +85,8 @@ def symmetries(problem: Problem, system: MotionSystem, conservation: Conservatio
                substitution: Elimination | None = None) -> Conservation:
     """``conservation`` with the momenta of the translations and rotations that are symmetries (module
     docstring): new quantities after the cyclic momenta, and a cyclic momentum that is one of them named."""
+    if not system.model.coordinates:  # no coordinate left to move: the constraints prescribe the motion
+        return conservation
     points = _points(problem, substitution)
     quantities = list(conservation.quantities)
     found: list[Conserved] = []

@@ -36,6 +36,7 @@ class Reader:
         self.issues: list[Issue] = []
         self.symbols: dict[str, Any] = {}
         self.kinds: dict[str, str] = {}  # name -> what declared it
+        self.declared_at: dict[str, tuple] = {}  # name -> where
         self.functions: dict[str, Any] = {}
         self.velocity_names: dict[str, Any] = {}
         self.declared_particles: list[str] = []
@@ -173,7 +174,19 @@ class Reader:
             self.issue(path, f"{name!r} is reserved for Lagrange multipliers", "choose another name")
             return False
         self.kinds[name] = kind
+        self.declared_at[name] = path
         return True
+
+    def generated_names(self, coordinates: list[str], contacts: list[str]) -> None:
+        """Refuse a declared name that lagsolve gives to something it derives: ``p_<q>``, the momentum conjugate to
+        coordinate q (in the Hamiltonian, conserved quantities, Routhian), and ``N_<c>``, friction contact c's normal
+        force: a formula holding both would read as one symbol (``H = x*(k*x/2 + p_x) + p_x**2/(2*m)``)."""
+        owners = {f"p_{q}": f"the momentum conjugate to coordinate {q!r}" for q in coordinates}
+        owners |= {f"N_{c}": f"the normal force of friction contact {c!r}" for c in contacts}
+        for name, owner in owners.items():
+            if name in self.declared_at:
+                self.issue(self.declared_at[name], f"{name!r} is the name lagsolve gives {owner}, so a formula "
+                           "with both would read as one symbol", "choose another name")
 
     def velocity_symbols(self) -> list[Any]:
         return [s for n, s in self.symbols.items() if n.endswith("_dot") and n[:-4] in self.kinds]
