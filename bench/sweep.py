@@ -141,7 +141,7 @@ def time_sweep(theta1: np.ndarray, theta2: np.ndarray, t_end: float, workers: in
     from distributed import Client, LocalCluster
 
     start = time.perf_counter()
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=":0",
                       silence_logs=logging.ERROR) as cluster, Client(cluster) as client:
         startup = time.perf_counter() - start
         before = client.run(time.process_time)

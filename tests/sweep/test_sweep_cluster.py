@@ -36,6 +36,23 @@ def _children() -> set[int]:
 
 
 @pytest.mark.slow
+def test_a_sweep_on_workers_starts_while_port_8787_is_taken() -> None:
+    """Dask's usual dashboard port is taken (another sweep's cluster, a notebook's): the local cluster starts
+    anyway, on a free port, with no warning (warnings are errors in the tests), and gives the in-process table.
+    (With dashboard_address=None the scheduler still took 8787: two sweeps at once failed or warned.)"""
+    import socket
+
+    with socket.socket() as taken:
+        try:
+            taken.bind(("0.0.0.0", 8787))
+        except OSError:
+            pytest.skip("port 8787 is in use here already")
+        taken.listen()
+        options = {"grid": {"x": [0.1, 0.5]}, "t_end": 2.0}
+        pandas.testing.assert_frame_equal(sweep(SPRING, **options), sweep(SPRING, workers=2, **options),
+                                          check_exact=True)
+
+
 def test_two_workers_give_the_table_of_one_process() -> None:
     """With 2 worker processes and small chunks, batched and per-run problems give identical tables,
     progress reaches every run, and the cluster's processes are gone afterwards."""
@@ -64,7 +81,7 @@ def test_an_existing_cluster_through_the_command_line(tmp_path: Path) -> None:
 
     from lagsolve.cli import main
 
-    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None,
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0",
                       silence_logs=logging.ERROR) as cluster:
         out = tmp_path / "s.csv"
         result = CliRunner().invoke(main, ["sweep", str(DOUBLE), "--grid", "theta1=0.1:0.5:3", "--t-end", "0.5",
@@ -157,7 +174,7 @@ def test_a_real_scheduler_passes_the_check_and_one_without_workers_is_refused(
 
     cluster_module = importlib.import_module("lagsolve.sweep.cluster")
     monkeypatch.setattr(cluster_module, "CONNECT_TIMEOUT", 1.0)
-    with LocalCluster(n_workers=0, processes=False, protocol="tcp", dashboard_address=None,
+    with LocalCluster(n_workers=0, processes=False, protocol="tcp", dashboard_address=":0",
                       silence_logs=logging.ERROR) as cluster:
         address = cluster.scheduler_address
         assert cluster_module.check_scheduler(address, timeout=5.0) == address

@@ -158,8 +158,10 @@ def run_distributed(function: Callable[..., Any], tasks: Sequence[tuple[Any, ...
                               f"start workers for it (dask worker {address})") from None
         else:
             with interrupts_held():  # the workers never see a Ctrl-C: this process ends them
+                # ":0": any free port for the scheduler's HTTP server (None still takes 8787, and a second sweep
+                # at the same time then failed to start its cluster, or warned)
                 cluster = LocalCluster(n_workers=max(1, workers), threads_per_worker=1, processes=True,
-                                       dashboard_address=None, silence_logs=logging.ERROR)
+                                       dashboard_address=":0", silence_logs=logging.ERROR)
                 client = Client(cluster)
         try:
             futures = [client.submit(function, *task, pure=False) for task in tasks]

@@ -283,6 +283,7 @@ class _Watch:
         self.worst_energy = np.zeros(live)
         self.worst_conserved = np.zeros_like(self.conserved0)
         self.residual = batch.residual(t0, y0[:, :n], y0[:, n:], p)
+        self.floor = batch.floors(t0, y0[:, :n], y0[:, n:], p)
         self.flipped = np.any(np.abs(y0[:, :n][:, self.angular]) > np.pi, axis=1)
         self.flip_time = np.where(self.flipped, 0.0, np.nan)
         self.crossings: list[list[np.ndarray]] = [[] for _ in range(live)]
@@ -304,7 +305,7 @@ class _Watch:
         if self.section is not None:
             _crossings(step, self.section, self.crossings)
         if self.project:
-            q, qd = batch.project(t, q, qd, pw)
+            q, qd = batch.project(t, q, qd, pw, self.floor[which])
         with np.errstate(all="ignore"):
             energy = batch.energy(t, q, qd, pw)[:, 0]
             self.worst_energy[which] = np.maximum(self.worst_energy[which], np.abs(energy - self.energy0[which]))
