@@ -504,7 +504,7 @@ def grade(key: Path, submissions: tuple[Path, ...], fmt: str, output: Path | Non
     lagsolve grade problems/bead.yaml examples/grading/*.yaml --summary md
     """
     from lagsolve.app.grading import grade_files
-    from lagsolve.files import safe_slug, write_file
+    from lagsolve.files import write_file
     from lagsolve.render.grades import FILES, RENDER, SUMMARY, SUMMARY_FILES, gradescope_result
 
     try:
@@ -521,8 +521,10 @@ def grade(key: Path, submissions: tuple[Path, ...], fmt: str, output: Path | Non
         elif fmt == "gradescope":
             import json
 
-            for g in grades.grades:
-                write_file(output, Path(safe_slug(g.student)) / FILES[fmt],
+            from lagsolve.app.grading import gradescope_folders
+
+            for folder, g in gradescope_folders(grades.grades).items():
+                write_file(output, Path(folder) / FILES[fmt],
                            json.dumps(gradescope_result(g), indent=2, ensure_ascii=False) + "\n")
         else:
             write_file(output, FILES[fmt], text)

@@ -68,3 +68,32 @@ def test_bad_key_exits_2(tmp_path: Path) -> None:
     result = CliRunner().invoke(main, ["grade", str(key), EXAMPLES[0]])
     assert result.exit_code == 2
     assert "grading.weights.equations" in result.stderr
+
+
+def test_two_submissions_for_one_gradescope_folder_are_refused(tmp_path: Path) -> None:
+    """A second file that declares `student: ada` (or an id that gives the same folder) would replace ada's
+    results.json with its own: exit 2, naming both, and no folder written."""
+    copy = tmp_path / "mallory.yaml"
+    copy.write_text("student: ada\nsteps: {kinetic: '0'}\n")
+    result = CliRunner().invoke(main, ["grade", KEY, EXAMPLES[0], str(copy), "--format", "gradescope",
+                                       "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2
+    assert "mallory.yaml: student: the student id 'ada' gives the results folder 'ada'" in result.stderr
+    assert "ada.yaml" in result.stderr and not (tmp_path / "out").exists()
+
+
+def test_a_step_that_restates_the_multiplier_is_unreadable(tmp_path: Path) -> None:
+    """`multipliers: {wire: lambda_wire}` restates what is asked (it was graded correct): the step is unreadable,
+    with the line and the reason; the equations and a force of constraint (λ∇ψ, as in `expected:`) may still use
+    λ."""
+    student = tmp_path / "taut.yaml"
+    student.write_text("student: taut\nsteps:\n  multipliers: {wire: lambda_wire}\n"
+                       "  constraint_forces: {wire: Abs(lambda_wire)}\n"
+                       "  equations: {x: 'm*x_ddot = -lambda_wire*Derivative(f(x), x)'}\n")
+    result = CliRunner().invoke(main, ["grade", KEY, str(student), "--format", "json"])
+    grades = json.loads(result.stdout)
+    steps = {s["step"]: s for s in grades["submissions"][0]["steps"]}
+    assert steps["multipliers"]["status"] == "unreadable" and steps["constraint_forces"]["status"] != "unreadable"
+    message = steps["multipliers"]["message"]
+    assert "taut.yaml:3" in message and "a multiplier is allowed only in equations and constraint_forces" in message
+    assert steps["equations"]["status"] != "unreadable"

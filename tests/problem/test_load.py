@@ -422,6 +422,8 @@ INVALID = [
      "exponent 3.8742e+08 of '**' at column 5 is too large"),
     ("exp-tower", BEAD + "potential: sin(exp(exp(exp(3))))\n", 1, 13, "potential",
      "a constant in exp(...) at column 5 is too large to evaluate"),
+    ("power-tower", BEAD + "potential: x**x**x**x**x\n", 1, 13, "potential",
+     "a tower of powers 4 high ('**' at column 2)"),
     ("velocity-constraint-squared", bead_with("holonomic: y - f(x)",
                                               "nonholonomic: x_dot**2 + y_dot"), 1, 12,
      "constraints.wire.nonholonomic",
@@ -737,3 +739,20 @@ def test_a_name_lagsolve_gives_a_normal_force_is_refused() -> None:
     message = str(caught.value)
     assert "clash.yaml:" in message and "parameters.N_wall" in message
     assert "'N_wall' is the name lagsolve gives the normal force of friction contact 'wall'" in message
+
+
+@pytest.mark.parametrize(("answer", "message"), [
+    ("multipliers: {wire: lambda_wire}", "expected.multipliers.wire: 'lambda_wire' at column 1: a multiplier is "
+     "allowed only in constraint_forces"),
+    ("accelerations: {x: 2*lambda_wire*x/m}", "expected.accelerations.x: 'lambda_wire' at column 3"),
+    ("conserved: {c: lambda_wire}", "expected.conserved.c: 'lambda_wire'"),
+    ("conserved: {d: p_x}", "expected.conserved.d: 'p_x' at column 1: a momentum is allowed only in"),
+])
+def test_an_answer_may_not_restate_a_multiplier_or_use_a_momentum(answer: str, message: str) -> None:
+    """An expected answer in terms of the multiplier restates it (multipliers: {wire: lambda_wire} was "ok"; a
+    conserved lambda_wire was read as a constant), and a momentum outside the effective potential and steady motions
+    was read as a constant (a conserved p_x "ok" for a particle under gravity): both are refused with the field. A
+    force of constraint may still be written with λ (λ∇ψ, compared with the derived λ put in: test_check)."""
+    with pytest.raises(SpecError) as caught:
+        load_text(BEAD + "expected:\n  " + answer + "\n", "answers.yaml")
+    assert message in str(caught.value)

@@ -146,7 +146,8 @@ def _child(conn: Any, fn: Callable[..., Any], args: tuple, seconds: float, paren
     except LagsolveError as exc:
         result = ("error", exc)
     except MemoryError:
-        result = ("error", DerivationError(f"the computation needed more than {MEMORY_LIMIT // 1024**3} GiB of memory"))
+        result = ("error", DerivationError(f"the computation ran out of memory (its limit is {MEMORY_LIMIT // 1024**3} "
+                                           "GiB; a single number too large to hold does it too)"))
     except BaseException:  # noqa: BLE001 - a bug: carry its traceback to the parent
         result = ("crash", traceback.format_exc())
     try:

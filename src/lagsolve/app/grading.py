@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 from lagsolve.errors import SpecError
 
 if TYPE_CHECKING:
-    from lagsolve.grade.grader import ClassGrades
+    from lagsolve.grade.grader import ClassGrades, SubmissionGrade
 
 
 def grade_files(key: str | Path, submissions: Sequence[str | Path], *, budget: float | None = None,
@@ -50,3 +50,32 @@ def grade_files(key: str | Path, submissions: Sequence[str | Path], *, budget: f
             continue
         grades.append(grade(derivation, grading, submission, seed=seed, key=context))
     return ClassGrades(problem.name, str(key), tuple(grades))
+
+
+def gradescope_folders(grades: Sequence[SubmissionGrade]) -> dict[str, SubmissionGrade]:
+    """Each submission's folder of ``lagsolve grade --format gradescope -o DIR`` (its student id made safe for a
+    path), by folder.
+
+    Raises
+    ------
+    SpecError
+        When two submissions would write the same folder (the same ``student:``, or ids such as ``a/b`` and
+        ``c/b`` that give the same folder name): one student's results would silently replace another's.
+    """
+    from lagsolve.errors import Issue
+    from lagsolve.files import safe_slug
+
+    folders: dict[str, SubmissionGrade] = {}
+    issues = []
+    for g in grades:
+        folder = safe_slug(g.student)
+        if folder in folders:
+            first = folders[folder]
+            issues.append(Issue(g.source, 0, "student", f"the student id {g.student!r} gives the results folder "
+                                f"{folder!r}, as {first.student!r} of {first.source} does: one would replace the "
+                                "other", "give each submission a distinct student id (student: ...)"))
+            continue
+        folders[folder] = g
+    if issues:
+        raise SpecError(issues)
+    return folders

@@ -38,6 +38,8 @@ PER_CONSTRAINT = ("constraints", "multipliers", "constraint_forces")
 PER_CONTACT = ("normal_force",)
 #: steps whose entries may be written ``lhs = rhs`` (read as lhs − rhs)
 EQUATIONS = ("constraints", "equations")
+#: the steps whose answers are functions of the state (t, q, q̇): no multiplier, no momentum in them
+STATE_STEPS = ("accelerations", "multipliers", "constraint_forces", "normal_force", "conserved")
 #: lists compared as a set (equilibria) or a multiset (frequencies): entries are named 1, 2, ... in order
 LISTS = ("equilibria", "frequencies")
 #: most items in a list step
@@ -73,21 +75,39 @@ class Submission:
 
 
 def names_for(problem: Problem, contacts: tuple[str, ...] = (), normals: dict[str, Any] | None = None,
-              *, accelerations: bool = False, frame: Frame | None = None) -> gateway.Namespace:
+              *, accelerations: bool = False, frame: Frame | None = None, state: bool = False,
+              multipliers: bool = True) -> gateway.Namespace:
     """The names a submission's expressions may use: the key's own (``expected:``'s) plus, in the equations,
     the accelerations ``q_ddot``, and ``N_<contact>``; with a ``frame``, the student's coordinates too (their
-    ``_dot``, ``_ddot`` and ``p_`` names)."""
+    ``_dot``, ``_ddot`` and ``p_`` names). With ``state`` (a step whose answer is a function of the state:
+    :data:`STATE_STEPS`) the momenta ``p_<q>`` are refused (one was read as a constant), and without
+    ``multipliers`` the multipliers ``lambda_<c>`` too (``multipliers: {rod: lambda_rod}`` restated what is asked
+    and was graded correct; a force of constraint may be written λ∇ψ, as in ``expected:``)."""
     symbols = dict(problem.symbols)
+    forbidden = {}
     for c in problem.constraints:
         symbols.setdefault(f"lambda_{c.name}", sympy.Symbol(f"lambda_{c.name}", real=True))
     for q in problem.coordinates:
         symbols.setdefault(momentum_name(q.name), momentum_symbol(q.name))
+    if state and not multipliers:
+        for c in problem.constraints:
+            if symbols.pop(f"lambda_{c.name}", None) is not None:
+                forbidden[f"lambda_{c.name}"] = "a multiplier is allowed only in equations and constraint_forces; " \
+                    "write the answer in t, the parameters, coordinates and velocities"
+    if state:
+        for q in problem.coordinates:
+            if momentum_name(q.name) not in {p.name for p in problem.parameters} and \
+                    symbols.pop(momentum_name(q.name), None) is not None:
+                forbidden[momentum_name(q.name)] = "a momentum is not allowed here; write it in the velocities"
     symbols.update(normals or {})
-    forbidden = {}
     ddots = [(q.acceleration.name, q.acceleration) for q in problem.coordinates]
     if frame is not None:
         for own in frame.coordinates:
-            symbols.update({own.name: own.symbol, own.velocity.name: own.velocity, own.momentum.name: own.momentum})
+            symbols.update({own.name: own.symbol, own.velocity.name: own.velocity})
+            if state:
+                forbidden[own.momentum.name] = "a momentum is not allowed here; write it in the velocities"
+            else:
+                symbols[own.momentum.name] = own.momentum
         ddots += [(own.acceleration.name, own.acceleration) for own in frame.coordinates]
     for name, acceleration in ddots:
         if accelerations:
@@ -129,6 +149,8 @@ class _Reader:
         self.normals = normals
         self.frame: Frame | None = None
         self.plain = names_for(problem, normals=normals)
+        self.state = names_for(problem, normals=normals, state=True, multipliers=False)
+        self.forces = names_for(problem, normals=normals, state=True)
         self.with_accelerations = names_for(problem, normals=normals, accelerations=True)
         self.coordinates = tuple(q.name for q in problem.coordinates)
 
@@ -204,6 +226,8 @@ class _Reader:
             raise SpecError([self.issue(path, "the map is not a change of coordinates that can be used", example)]
                             ) from None
         self.plain = names_for(problem, normals=self.normals, frame=self.frame)
+        self.state = names_for(problem, normals=self.normals, frame=self.frame, state=True, multipliers=False)
+        self.forces = names_for(problem, normals=self.normals, frame=self.frame, state=True)
         self.with_accelerations = names_for(problem, normals=self.normals, accelerations=True, frame=self.frame)
         self.coordinates = self.frame.names
 
@@ -247,7 +271,8 @@ class _Reader:
             known, what = tuple(f.name for f in self.problem.friction), "friction contacts"
         if known:
             self.known(path, spec, known, what)
-        names = self.with_accelerations if name == "equations" else self.plain
+        names = {"equations": self.with_accelerations, "constraint_forces": self.forces}.get(
+            name, self.state if name in STATE_STEPS else self.plain)
         out = {}
         for key, text in spec.items():
             if not isinstance(key, str) or not key or len(key) > MAX_NAME:

@@ -48,6 +48,9 @@ from lagsolve.errors import ExpressionError
 MAX_LENGTH = 2000
 MAX_TOKENS = 800
 MAX_DEPTH = 40
+#: how high powers with a variable exponent may be nested (x**x**x is 2 high): x**x**x**x**x**x at x = 1.7 has
+#: ~10^(10^27) digits, and evaluating it exactly ran out of memory (check) or never ended
+MAX_TOWER = 3
 MAX_LITERAL = 40
 MAX_DECIMAL_EXPONENT = 300
 MAX_POWER = 1000
@@ -477,6 +480,10 @@ class _Builder:
                     f"powers are limited to exponents of size {MAX_POWER}",
                 )
             _check_exact(_exact_bits(a) * abs(cb), where)
+        if op == "**" and cb is None and 1 + _tower(b) > MAX_TOWER:
+            raise ExpressionError(
+                f"a tower of powers {1 + _tower(b)} high ({where}): its value at ordinary numbers has more digits "
+                "than memory holds", f"powers with a variable exponent may be nested {MAX_TOWER} high")
         if op == "/" and cb is not None and cb == 0:
             raise ExpressionError(f"division by zero ({where})")
         if ca is not None and cb is not None:
@@ -659,6 +666,15 @@ def _exact_bits(expr: Any) -> float:
     if expr.is_Add:
         return max((_exact_bits(arg) for arg in expr.args), default=0.0)
     return 0.0
+
+
+def _tower(expr: Any) -> int:
+    """How high powers with a non-constant exponent are nested in ``expr`` (x**y is 1, x**x**x is 2)."""
+    if not isinstance(expr, sympy.Basic) or not expr.args:
+        return 0
+    if isinstance(expr, sympy.Pow) and not expr.exp.is_number:
+        return max(1 + _tower(expr.exp), _tower(expr.base))
+    return max(_tower(a) for a in expr.args)
 
 
 def _check_exact(bits: float, where: str) -> None:

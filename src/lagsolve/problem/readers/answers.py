@@ -28,11 +28,26 @@ _EXPECTED_KEYS = ("accelerations", "multipliers", "constraint_forces", "reduced"
 class AnswersReader(Reader):
     """Reads ``expected`` and ``independent``."""
 
-    def answer_names(self, constraints: list[Constraint]) -> gateway.Namespace:
-        extra = {f"lambda_{c.name}": sympy.Symbol(f"lambda_{c.name}", real=True) for c in constraints}
-        extra.update({momentum_name(n): momentum_symbol(n)
-                      for n, k in self.kinds.items() if k == "a coordinate" and momentum_name(n) not in self.kinds})
-        return gateway.Namespace({**self.symbols, **extra}, self.functions, self.acceleration_names)
+    def answer_names(self, constraints: list[Constraint], *, momenta: bool = False,
+                     multipliers: bool = False) -> gateway.Namespace:
+        """The names an expected answer may use: the problem's (time, parameters, coordinates, velocities,
+        functions); with ``momenta`` the momenta ``p_<q>`` (a cyclic coordinate's constant momentum, in the
+        effective potential and the steady motions); with ``multipliers`` the multipliers ``lambda_<c>`` (a force
+        of constraint written λ∇ψ, compared with the derived λ put in). Elsewhere a multiplier restates what is
+        asked (``multipliers: {rod: lambda_rod}`` was accepted) and a momentum was read as a constant (a conserved
+        ``p_x`` "ok"): both are refused."""
+        momentum_names = {momentum_name(n): momentum_symbol(n)
+                          for n, k in self.kinds.items() if k == "a coordinate" and momentum_name(n) not in self.kinds}
+        forbidden = dict(self.acceleration_names)
+        multiplier_names = {f"lambda_{c.name}": sympy.Symbol(f"lambda_{c.name}", real=True) for c in constraints}
+        if not multipliers:
+            forbidden |= dict.fromkeys(multiplier_names, "a multiplier is allowed only in constraint_forces; write "
+                                       "the answer in t, the parameters, coordinates and velocities")
+        if not momenta:
+            forbidden |= dict.fromkeys(momentum_names, "a momentum is allowed only in effective_potential and "
+                                       "steady_motions; write it in the coordinates and velocities")
+        return gateway.Namespace({**self.symbols, **(momentum_names if momenta else {}),
+                                  **(multiplier_names if multipliers else {})}, self.functions, forbidden)
 
     def expected(self, value: Any, constraints: list[Constraint]) -> Expected:
         spec = self.mapping(("expected",), value)
@@ -40,6 +55,8 @@ class AnswersReader(Reader):
             return Expected()
         self.keys(("expected",), spec, _EXPECTED_KEYS)
         names = self.answer_names(constraints)
+        with_momenta = self.answer_names(constraints, momenta=True)
+        with_multipliers = self.answer_names(constraints, multipliers=True)
         coordinate_names = [n for n, k in self.kinds.items() if k == "a coordinate"]
         constraint_names = [c.name for c in constraints]
 
@@ -65,15 +82,15 @@ class AnswersReader(Reader):
                     return None
                 magnitude = vector = None
                 if "magnitude" in v:
-                    magnitude = self.expression((*path, "magnitude"), v["magnitude"], names)
+                    magnitude = self.expression((*path, "magnitude"), v["magnitude"], with_multipliers)
                     if magnitude is None:
                         return None
                 if "vector" in v:
-                    vector = self.vector((*path, "vector"), v["vector"], names)
+                    vector = self.vector((*path, "vector"), v["vector"], with_multipliers)
                     if vector is None:
                         return None
                 return ExpectedForce(magnitude, vector)
-            magnitude = self.expression(path, v, names)
+            magnitude = self.expression(path, v, with_multipliers)
             return None if magnitude is None else ExpectedForce(magnitude)
 
         reduced_raw = spec.get("reduced", {})
@@ -92,11 +109,11 @@ class AnswersReader(Reader):
                         reduced[k] = parsed
         effective = None
         if "effective_potential" in spec:
-            effective = self.effective_potential(spec["effective_potential"], names, coordinate_names)
+            effective = self.effective_potential(spec["effective_potential"], with_momenta, coordinate_names)
         modes = self.normal_modes(spec["normal_modes"], names, coordinate_names) if "normal_modes" in spec else ()
         steady = None
         if "steady_motions" in spec:
-            steady = self.steady_motions(spec["steady_motions"], names, coordinate_names)
+            steady = self.steady_motions(spec["steady_motions"], with_momenta, coordinate_names)
         return Expected(
             accelerations=table("accelerations", coordinate_names, "coordinate", plain),
             multipliers=table("multipliers", constraint_names, "constraint", plain),
