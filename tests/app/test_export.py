@@ -124,3 +124,19 @@ def test_a_parameter_without_value_is_nan_in_the_module(tmp_path: Path) -> None:
     from lagsolve.render.python_module import _number
 
     assert _number(float("nan")) == "float('nan')" and _number(2.5) == "2.5"
+
+
+def test_an_output_file_that_is_a_link_is_refused_as_a_write_error(tmp_path: Path) -> None:
+    """-o naming a symbolic link: refused (exit 2 through the command), the link's target untouched, and the
+    message is the writer's (the path, "cannot write"), not "the equations cannot be exported ... simulate it
+    instead", which it used to be wrapped in."""
+    target = tmp_path / "target.txt"
+    target.write_text("keep\n")
+    (tmp_path / "out").mkdir()
+    (tmp_path / "out" / "bead.py").symlink_to(target)
+    with pytest.raises(SpecError) as caught:
+        lagsolve.export(PROBLEMS / "bead.yaml", to="python", output=tmp_path / "out" / "bead.py")
+    message = str(caught.value)
+    assert "bead.py" in message and "cannot write" in message
+    assert "cannot be exported" not in message and "simulate" not in message
+    assert target.read_text() == "keep\n"

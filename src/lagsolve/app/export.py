@@ -46,18 +46,21 @@ def export_file(path: Path | str, to: str = "python", output: Path | str = "out"
                                "symbol that is neither a coordinate, a velocity, time nor a parameter with a value",
                                "give every symbol a value under simulation.values, or simulate instead")])
     source = Path(problem.source).name
+    # only the printing of the equations is caught here: a file that cannot be written says so itself
     try:
         if to == "python":
             from lagsolve.render.python_module import python_module
 
             text = python_module(system, problem.name, __version__)
-            return write_file(Path(output), f"{safe_slug(problem.source)}.py", text)
-        from lagsolve.render.c_module import c_module
+        else:
+            from lagsolve.render.c_module import c_module
 
-        header, code = c_module(system, prefix, problem.name, __version__, source)
+            header, code = c_module(system, prefix, problem.name, __version__, source)
     except ValueError as exc:
         raise SpecError([Issue(problem.source, 0, "export", f"the equations cannot be exported to {to}: {exc}",
                                "simulate it with lagsolve simulate instead")]) from None
+    if to == "python":
+        return write_file(Path(output), f"{safe_slug(problem.source)}.py", text)
     if to == "c":
         write_file(Path(output), f"{prefix}.h", header)
         return write_file(Path(output), f"{prefix}.c", code)
