@@ -83,22 +83,19 @@ def names_for(problem: Problem, contacts: tuple[str, ...] = (), normals: dict[st
     :data:`STATE_STEPS`) the momenta ``p_<q>`` are refused (one was read as a constant), and without
     ``multipliers`` the multipliers ``lambda_<c>`` too (``multipliers: {rod: lambda_rod}`` restated what is asked
     and was graded correct; a force of constraint may be written λ∇ψ, as in ``expected:``)."""
-    symbols = dict(problem.symbols)
-    forbidden = {}
-    for c in problem.constraints:
-        symbols.setdefault(f"lambda_{c.name}", sympy.Symbol(f"lambda_{c.name}", real=True))
-    for q in problem.coordinates:
-        symbols.setdefault(momentum_name(q.name), momentum_symbol(q.name))
+    symbols = dict(problem.symbols)  # (the loader refuses a declared lambda_<c> or p_<q>)
+    forbidden: dict[str, str] = {}
+    multiplier_names = {f"lambda_{c.name}": sympy.Symbol(f"lambda_{c.name}", real=True) for c in problem.constraints}
+    momentum_names = {momentum_name(q.name): momentum_symbol(q.name) for q in problem.coordinates}
     if state and not multipliers:
-        for c in problem.constraints:
-            if symbols.pop(f"lambda_{c.name}", None) is not None:
-                forbidden[f"lambda_{c.name}"] = "a multiplier is allowed only in equations and constraint_forces; " \
-                    "write the answer in t, the parameters, coordinates and velocities"
+        forbidden |= dict.fromkeys(multiplier_names, "a multiplier is allowed only in equations and constraint_forces;"
+                                   " write the answer in t, the parameters, coordinates and velocities")
+    else:
+        symbols |= multiplier_names
     if state:
-        for q in problem.coordinates:
-            if momentum_name(q.name) not in {p.name for p in problem.parameters} and \
-                    symbols.pop(momentum_name(q.name), None) is not None:
-                forbidden[momentum_name(q.name)] = "a momentum is not allowed here; write it in the velocities"
+        forbidden |= dict.fromkeys(momentum_names, "a momentum is not allowed here; write it in the velocities")
+    else:
+        symbols |= momentum_names
     symbols.update(normals or {})
     ddots = [(q.acceleration.name, q.acceleration) for q in problem.coordinates]
     if frame is not None:

@@ -51,6 +51,12 @@ WATCH_POINTS = 250
 PROJECTED = 1e-15
 
 
+def projection_floors(scales: np.ndarray) -> np.ndarray:
+    """The residual below which a state is not projected onto each constraint of the given scales
+    (:func:`~lagsolve.numeric.system.surface_scales`): :data:`PROJECTED`, scaled down for a scale below 1."""
+    return PROJECTED * np.minimum(1.0, scales)
+
+
 class EventKind(TextEnum):
     """What changed the equations during a run (:class:`Event` ``kind``)."""
 
@@ -275,7 +281,7 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         raise ValueError("t_end must be a positive number")
     m, k = system.m, len(system.contacts)
     run = _Run(system, np.ones(m, dtype=bool), np.zeros(k, dtype=bool), np.zeros(k), project,
-               floor=PROJECTED * np.minimum(1.0, system.surface_scales(0.0, q0, qd0)))
+               floor=projection_floors(system.surface_scales(0.0, q0, qd0)))
     coordinates = _coordinates(run, q0, qd0, minimal)
     options = _Options(method, t_end, rtol, atol, max_step, project, after_release, progress)
     record = _Record(np.linspace(0.0, t_end, samples), t_end)
@@ -569,13 +575,14 @@ def _first_event(run: _Run, dense: Any, t_old: float, t_new: float, old: dict, n
     if not old or t_new - t_old <= spacing:
         return _crossing(run, dense, t_old, t_new, old, new)
     pieces = int(np.ceil((t_new - t_old) / spacing))
-    for i in range(1, pieces + 1):
-        t_mid = t_new if i == pieces else t_old + i * (t_new - t_old) / pieces
-        watched = new if i == pieces else _watch(run, t_mid, dense(t_mid))
-        found = _crossing(run, dense, t_old, t_mid, old, watched)
+    times = [*np.linspace(t_old, t_new, pieces + 1)[1:-1], t_new]
+    t_before = t_old
+    for t_mid in times:
+        watched = new if t_mid == t_new else _watch(run, t_mid, dense(t_mid))
+        found = _crossing(run, dense, t_before, t_mid, old, watched)
         if found is not None:
             return found
-        t_old, old = t_mid, watched
+        t_before, old = t_mid, watched
     return None
 
 

@@ -40,6 +40,17 @@ from lagsolve.numeric.minimal_state import NumericChart, compile_chart
 from lagsolve.problem.schema import ConstraintKind, Problem
 
 
+def surface_scales(gradients: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """For each holonomic constraint (``gradients``: its ∇ψ in the last axis, one state or a batch of them), the
+    size its residual ψ takes for a displacement of the state's own size: ‖∇ψ‖ · max|q| (1 where that is zero or
+    not finite). Residuals are measured against it, so that a problem in micrometres is held to the same relative
+    accuracy as one in metres (x² + y² − l² is 1e-14 m² off at l = 1e-7 m with the bob 40 % of l away from its
+    circle)."""
+    with np.errstate(all="ignore"):
+        scales = np.linalg.norm(gradients, axis=-1) * np.max(np.abs(q), axis=-1, initial=0.0)[..., None]
+    return np.where(np.isfinite(scales) & (scales > 0), scales, 1.0)
+
+
 @dataclass(frozen=True)
 class NumericSystem:
     """Numeric callables of one problem, each ``f(t, q, qd, p) -> ndarray``.
@@ -173,16 +184,11 @@ class NumericSystem:
         return qdd, lam, normal, sticking
 
     def surface_scales(self, t: float, q: np.ndarray, qd: np.ndarray) -> np.ndarray:
-        """For each holonomic constraint, the size its residual ψ takes for a displacement of the state's own size:
-        ‖∇ψ‖ · max|q| (1 where that is zero). Residuals are measured against it, so that a problem in micrometres
-        is held to the same relative accuracy as one in metres (x² + y² − l² is 1e-14 m² off at l = 1e-7 m with
-        the bob 40 % of l away from its circle)."""
+        """:func:`surface_scales` of each holonomic constraint at the state (t, q, q̇)."""
         if not self.holonomic:
             return _EMPTY
         gradients = self.position_jacobian(t, q, qd, self.parameters).reshape(len(self.holonomic), self.n)
-        with np.errstate(all="ignore"):
-            scales = np.linalg.norm(gradients, axis=1) * float(np.max(np.abs(q), initial=0.0))
-        return np.where(np.isfinite(scales) & (scales > 0), scales, 1.0)
+        return surface_scales(gradients, q)
 
     def sliding_parts(self, t: float, q: np.ndarray, qd: np.ndarray) -> dict[int, tuple[np.ndarray, float, np.ndarray]]:
         """Per contact that can stick: its sliding rate's coefficients w, the drift ẇ·q̇ and the generalized

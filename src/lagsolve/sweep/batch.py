@@ -146,28 +146,25 @@ class BatchSystem:
         """Per row and holonomic constraint, the residual below which a state is not projected, as the single-run
         integrator sets it at the start (``integrate.PROJECTED`` scaled down for a constraint whose scale,
         ‖∇ψ‖·max|q|, is below 1: a problem in micrometres)."""
-        from lagsolve.numeric.integrate import PROJECTED
+        from lagsolve.numeric.integrate import projection_floors
+        from lagsolve.numeric.system import surface_scales
 
         if not self.holonomic:
             return np.zeros((len(t), 0))
         gradients = self.position_jacobian(t, q, qd, p).reshape(len(t), self.holonomic, self.n)
-        with np.errstate(all="ignore"):
-            scales = np.linalg.norm(gradients, axis=2) * np.max(np.abs(q), axis=1, initial=0.0)[:, None]
-        scales = np.where(np.isfinite(scales) & (scales > 0), scales, 1.0)
-        return PROJECTED * np.minimum(1.0, scales)
+        return projection_floors(surface_scales(gradients, q))
 
     def project(self, t: np.ndarray, q: np.ndarray, qd: np.ndarray, p: np.ndarray,
-                floor: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+                floor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Each row's nearest state on the constraints (least-norm corrections), as the single-run
         integrator projects: positions by up to four Newton steps (a row whose residuals are all below ``floor``,
         :meth:`floors`, is left), then velocities."""
         n, rows = self.n, len(t)
         q, qd = q.copy(), qd.copy()
         if self.holonomic:
-            below = 1e-15 if floor is None else floor
             for _ in range(4):
                 psi = self.position_residual(t, q, qd, p)
-                moving = np.any(np.abs(psi) >= below, axis=1)
+                moving = np.any(np.abs(psi) >= floor, axis=1)
                 if not moving.any():
                     break
                 jac = self.position_jacobian(t, q, qd, p).reshape(rows, self.holonomic, n)
