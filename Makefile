@@ -3,6 +3,10 @@ PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+# the compiled templates and bytecode (python -m lagsolve.prepare) are made again when a template or module changes:
+# a stale entry is never used (Jinja2 and Python check each against its source), only compiled at every command
+READY  := $(VENV)/.prepared
+SOURCES := $(wildcard templates/*/*.j2 src/lagsolve/*.py src/lagsolve/*/*.py src/lagsolve/*/*/*.py)
 
 .PHONY: run test test-fast golden lint bench docs clean
 
@@ -10,35 +14,38 @@ $(STAMP): pyproject.toml
 	test -d $(VENV) || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -e '.[dev]'
-	$(BIN)/python -m lagsolve.prepare
 	touch $(STAMP)
 
-run: $(STAMP)
+$(READY): $(STAMP) $(SOURCES)
+	$(BIN)/python -m lagsolve.prepare
+	touch $(READY)
+
+run: $(READY)
 	$(BIN)/lagsolve derive problems/bead.yaml -o out/
 	$(BIN)/lagsolve simulate problems/bead.yaml --plot -o out/
 
 # PYTHONDONTWRITEBYTECODE emptied for the tests: each pytest worker would otherwise compile, and rewrite the
 # assertions of, every test module at every run (about 6 s of each worker's start); the caches go in __pycache__
-test: $(STAMP)
+test: $(READY)
 	$(BIN)/ruff check src tests bench
 	$(BIN)/mypy
 	PYTHONDONTWRITEBYTECODE= $(BIN)/python -m pytest -q -n auto
 
-test-fast: $(STAMP)
+test-fast: $(READY)
 	$(BIN)/ruff check src tests bench
 	$(BIN)/mypy
 	PYTHONDONTWRITEBYTECODE= $(BIN)/python -m pytest -q -n auto -m "not slow"
 
-golden: $(STAMP)
+golden: $(READY)
 	$(BIN)/lagsolve derive problems/*.yaml --golden tests/golden --update-golden
 	for name in bead rotating_tube; do for to in python c; do \
 		$(BIN)/lagsolve export problems/$$name.yaml --to $$to -o tests/golden/export || exit 1; done; done
 
-lint: $(STAMP)
+lint: $(READY)
 	$(BIN)/ruff check src tests bench
 	$(BIN)/mypy
 
-bench: $(STAMP)
+bench: $(READY)
 	$(BIN)/python bench/derive.py
 	$(BIN)/python bench/classics.py
 	$(BIN)/python bench/simulate.py
@@ -48,7 +55,7 @@ bench: $(STAMP)
 	$(BIN)/python bench/export.py
 	$(BIN)/python bench/sweep_fast.py --numpy
 
-docs: $(STAMP)
+docs: $(READY)
 	$(BIN)/mkdocs build --strict
 
 clean:

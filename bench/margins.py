@@ -12,6 +12,7 @@ The stages are timed by wrapping :meth:`lagsolve.mechanics.stages.Stages.run` in
 
     .venv/bin/python bench/margins.py                   # every problems/*.yaml (about 30 s)
     .venv/bin/python bench/margins.py coupled_pendulums --json
+    .venv/bin/python bench/margins.py /tmp/my_problem.yaml      # any problem file, by its path
 
 The exit status is always 0: this is a benchmark, not a test.
 """
@@ -53,15 +54,20 @@ def _measure(names: list[str]) -> list[dict[str, Any]]:
     try:
         for name in names:
             current[0] = name
-            derive(load_problem(ROOT / "problems" / f"{name}.yaml"))
+            derive(load_problem(_problem_file(name)))
     finally:
         module.Stages.run = original  # type: ignore[method-assign]
     return sorted(rows, key=lambda r: (-r["ratio"], r["problem"], r["stage"]))
 
 
+def _problem_file(name: str) -> Path:
+    """A name in problems/ (``bead``) or the path of any problem file (``problems/bead.yaml``, an unshipped one)."""
+    return Path(name) if name.endswith((".yaml", ".yml")) else ROOT / "problems" / f"{name}.yaml"
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("problems", nargs="*", help="names in problems/ (default: every one)")
+    parser.add_argument("problems", nargs="*", help="names in problems/ or problem files' paths (default: all shipped)")
     parser.add_argument("--json", action="store_true", help="print the figures as JSON")
     options = parser.parse_args(argv)
     names = options.problems or sorted(p.stem for p in (ROOT / "problems").glob("*.yaml"))

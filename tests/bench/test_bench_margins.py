@@ -26,3 +26,17 @@ def test_bench_margins_json_for_one_problem() -> None:
     assert all(r["slice_s"] > 0 and r["used_s"] >= 0 for r in rows)
     assert [r["ratio"] for r in rows] == sorted((r["ratio"] for r in rows), reverse=True)
     assert result["flagged"] == sum(r["flagged"] for r in rows)
+
+
+def test_bench_margins_takes_a_name_or_a_path() -> None:
+    """``bead`` is the shipped problem; a path (an unshipped problem's) is taken as it is, not looked up in
+    problems/ (it was read as problems/problems/bead.yaml.yaml, a traceback)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("bench_margins", SCRIPT)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert module._problem_file("bead") == ROOT / "problems" / "bead.yaml"
+    assert module._problem_file("/tmp/elsewhere/rod.yaml") == Path("/tmp/elsewhere/rod.yaml")
+    assert module._problem_file("problems/bead.yml") == Path("problems/bead.yml")
