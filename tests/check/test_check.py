@@ -25,6 +25,7 @@ from lagsolve.check.compare import (
     RELEASED,
     SIGN_DEPENDENT,
     SYMBOLIC,
+    TRIVIAL,
     UNCHECKED,
     UNDEFINED,
     WARNING,
@@ -292,10 +293,45 @@ def test_claimed_constant_that_changes_is_a_mismatch_with_a_state() -> None:
 
 
 def test_claimed_constant_is_checked_numerically_on_a_surface_no_coordinate_solves() -> None:
-    """On the Cartesian pendulum x² + y² is constant only on the constraint surface: ok, by numeric states."""
-    verdict = verdicts("pendulum_cartesian", '  conserved: {radius: "x**2 + y**2"}\n')["conserved.radius"]
-    assert (verdict.status, verdict.reason) == (OK, CONSERVED)
-    assert verdict.states >= 8
+    """On the Cartesian pendulum the energy written by hand, m(ẋ² + ẏ²)/2 + m g y, is conserved only on the
+    constraint surface (its rate along lagsolve's equations is m(xẋ + yẏ)(g y − v²)/(x² + y²)): ok, by numeric
+    states. x² + y², constant on the surface, and a constant of the parameters are true claims that say nothing: a
+    warning (they passed as conserved); x ẏ is a mismatch."""
+    found = verdicts("pendulum_cartesian", '  conserved: {mechanical: "m*(x_dot**2 + y_dot**2)/2 + m*g*y", '
+                                           'radius: "x**2 + y**2", none: "m*g + l", moment: "x*y_dot"}\n')
+    mechanical = found["conserved.mechanical"]
+    assert (mechanical.status, mechanical.reason) == (OK, CONSERVED)
+    assert mechanical.states >= 8
+    for name in ("radius", "none"):
+        verdict = found[f"conserved.{name}"]
+        assert (verdict.status, verdict.reason) == (WARNING, TRIVIAL), name
+        assert "constant of the parameters or a constraint" in verdict.note
+    assert (found["conserved.moment"].status, found["conserved.moment"].reason) == (MISMATCH, NOT_CONSERVED)
+
+
+def test_a_trivial_constant_is_not_flagged_without_a_degree_of_freedom() -> None:
+    """Where every state of a set of parameters is the same (no degree of freedom), a constant says as much as any
+    quantity: not flagged."""
+    source = """name: fixed bead
+parameters:
+  m: {description: mass}
+  g: {description: gravity}
+  a: {description: height}
+coordinates:
+  x: {description: position}
+  y: {description: height}
+particles:
+  bead: {mass: m, position: [x, y]}
+gravity: [0, -g]
+constraints:
+  post: {holonomic: x - a, on: bead}
+  floor: {holonomic: y - a, on: bead}
+expected:
+  conserved: {c: "m*g*a"}
+"""
+    report = check(derive(load_text(source, "fixed.yaml")))
+    (verdict,) = [v for v in report.verdicts if v.quantity == "conserved" and v.name == "c"]
+    assert verdict.reason != TRIVIAL and verdict.status == OK
 
 
 def test_analysis_given_as_text_is_read_safely() -> None:

@@ -174,3 +174,17 @@ def test_grades_do_not_depend_on_the_order_of_entries(key: tuple) -> None:
     a = graded(key, steps(accelerations={"x": ACC, "y": ACC_Y}, potential="m*g*y"))
     b = graded(key, steps(potential="m*g*y", accelerations={"y": ACC_Y, "x": ACC}))
     assert a == b
+
+
+def test_a_trivial_constant_earns_no_credit_as_a_conserved_quantity(key: tuple) -> None:
+    """A conserved quantity the key does not name is correct when its rate along the key's equations is 0, but not
+    when it is the same at every state of a set of parameters: m g (a constant) and y − f(x) (the wire) are
+    conserved by any motion (they were graded correct). The energy written by hand under another name still is."""
+    energy = "m*(x_dot**2 + y_dot**2)/2 + m*g*y"
+    grading = Grading({"conserved": 1.0})
+    for value in ("m*g", "y - f(x)", "m*g + y - f(x)"):
+        step = graded(key, steps(conserved={"c": value}), grading)["conserved"]
+        assert step.status == "incorrect", value
+        assert "constant of the parameters or a constraint" in step.message, value
+    assert graded(key, steps(conserved={"mechanical": energy}), grading)["conserved"].status == "correct"
+    assert graded(key, steps(conserved={"c": "m*x_dot"}), grading)["conserved"].status == "incorrect"

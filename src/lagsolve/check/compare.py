@@ -79,6 +79,7 @@ from lagsolve.check.verdicts import (
     SIGN_DEPENDENT,
     SYMBOLIC,
     TOO_FEW_STATES,
+    TRIVIAL,
     UNCHECKED,
     UNDEFINED,
     WARNING,
@@ -95,7 +96,8 @@ from lagsolve.problem.names import momentum_name, momentum_symbol
 __all__ = [  # the verdicts and reasons are defined in verdicts.py; callers may name them here
     "CheckReport", "Verdict", "Witness", "check", "OK", "WARNING", "MISMATCH", "UNCHECKED", "SYMBOLIC", "NUMERIC",
     "OPPOSITE_SIGN", "CONVENTION", "FACTOR", "OFFSET", "SIGN_DEPENDENT", "UNDEFINED", "DIFFERS", "ABSENT", "SHAPE",
-    "RELEASED", "CONSERVED", "NOT_CONSERVED", "NOT_DERIVED", "TOO_FEW_STATES", "SAME", "BRACKET", "NOT_BRACKET",
+    "RELEASED", "CONSERVED", "NOT_CONSERVED", "TRIVIAL", "NOT_DERIVED", "TOO_FEW_STATES", "SAME", "BRACKET",
+    "NOT_BRACKET",
 ]
 
 STATES = 24
@@ -233,6 +235,11 @@ def _steady_stability(derivation: Derivation) -> list[Verdict]:
                     (sympy.true if steady.stable else sympy.false,))]
 
 
+#: why a claimed constant of the motion that is the same at every state of one set of parameters is true but says
+#: nothing (a warning: ``lagsolve grade`` gives such an answer no credit)
+TRIVIALLY = ("it has the same value at every state on the constraint surface (for given parameters): a constant of "
+             "the parameters or a constraint, conserved by any motion; a constant of the motion is a quantity of "
+             "the coordinates and velocities")
 NOT_YET = "not derived yet (lagsolve's analysis does not give it for this problem)"
 
 
@@ -338,6 +345,7 @@ class _Checker:
         self._extra: set[Any] = set()
         self._released: ReleasedConstraints | None = None
         self._rates: dict[str, Any] = {}
+        self._trivial: dict[str, bool] = {}
         for item in items:
             for e in (*item.expected, *(item.derived or ())):
                 self._extra |= self.prepare(e).free_symbols
@@ -388,6 +396,9 @@ class _Checker:
     # verdicts
 
     def verdict(self, item: Item) -> Verdict:
+        if (item.rate or "bracket" in item.extra) and self.trivial(item.expected[0]):
+            return Verdict(quantity=item.quantity, name=item.name, expected=item.expected, status=WARNING,
+                           reason=TRIVIAL, note=TRIVIALLY)
         if item.rate:
             return self.conservation(item)
         if "bracket" in item.extra:
@@ -518,6 +529,26 @@ class _Checker:
         return Verdict(**base, status=MISMATCH, reason=NOT_CONSERVED, witness=self.witness(row, (prepared,), (rate,)),
                        note=f"{item.note}; {along} is not 0 at {len(rows) - sum(zero)} of {len(rows)} states "
                             "on the constraint surface")
+
+    def trivial(self, expr: Any) -> bool:
+        """``expr`` has one value at all the states of each group (one set of parameters) while the coordinates or
+        velocities differ between them: a constant of the parameters, or a constraint (x² + y² on a rod), which any
+        motion conserves (its rate is 0) and which is no answer. Where no state differs from another (no degree of
+        freedom, constraints fixed in time) nothing is trivial."""
+        key = str(sympy.srepr(expr))
+        if key not in self._trivial:
+            compiled = Compiled(self.prepare(expr), self.space())
+            space = self.space()
+            free = (*space.coordinates, *space.velocities)
+            groups: dict[int, list[tuple[Any, tuple[Any, ...]]]] = {}
+            for state in self.states():
+                value = compiled(state)
+                if isinstance(value, mpmath.mpf):
+                    groups.setdefault(state.group, []).append((value, tuple(state.values[s] for s in free)))
+            moving = [g for g in groups.values() if len({point for _, point in g}) > 1]
+            self._trivial[key] = (sum(len(g) for g in moving) >= MINIMUM_STATES
+                                  and all(close(v, g[0][0]) for g in moving for v, _ in g))
+        return self._trivial[key]
 
     # diagnosis helpers
 

@@ -27,7 +27,7 @@ OPPOSITE_SIGN, CONVENTION = "opposite sign", "multiplier convention"
 FACTOR, OFFSET, SIGN_DEPENDENT = "constant factor", "constant offset", "holds only where"
 UNDEFINED, DIFFERS, ABSENT, SHAPE = "undefined", "differs", "absent", "shape"
 RELEASED = "constraints released"
-CONSERVED, NOT_CONSERVED = "conserved", "not conserved"
+CONSERVED, NOT_CONSERVED, TRIVIAL = "conserved", "not conserved", "trivially constant"
 NOT_DERIVED, TOO_FEW_STATES, SAME = "not derived", "too few states", "same"
 BRACKET, NOT_BRACKET = "Poisson bracket", "Poisson bracket not 0"
 

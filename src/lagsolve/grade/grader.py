@@ -35,7 +35,7 @@ from typing import Any
 import mpmath
 import sympy
 
-from lagsolve.check.compare import STATES, Comparer
+from lagsolve.check.compare import STATES, TRIVIALLY, Comparer
 from lagsolve.check.diagnose import ReleasedConstraints, close
 from lagsolve.grade.analysis_steps import (
     angle_coordinates,
@@ -513,7 +513,11 @@ class _Grader(ListSteps):
         return _Entry(name, INCORRECT, mistake, f"{_label(name)}{detail}")
 
     def conserved(self, name: str, value: Any) -> _Entry:
-        """A conserved quantity the key does not name: its rate along the key's equations of motion is 0."""
+        """A conserved quantity the key does not name: its rate along the key's equations of motion is 0, and it is
+        not the same at every state of a set of parameters (a constant or a constraint, conserved by any motion)."""
+        with contextlib.suppress(TypeError, ValueError, AttributeError):
+            if self.context.comparer.trivial(value):
+                return _Entry(name, INCORRECT, None, f"{_label(name)}{TRIVIALLY}")
         values = self.context.values
         with contextlib.suppress(TypeError, ValueError, AttributeError):
             rate = values.values(self.context.comparer.rate(value))

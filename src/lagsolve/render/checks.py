@@ -152,6 +152,8 @@ def _conservation(verdict: Verdict, note: Notation) -> str | None:
     if reason == c.CONSERVED:
         where = f"at {verdict.states} states on the constraint surface" if verdict.states else "symbolically"
         return f"ok (conserved: dC/dt = 0 along the equations of motion, {where})"
+    if reason == c.TRIVIAL:
+        return "warning: trivially constant, " + verdict.note
     if reason == c.NOT_CONSERVED:
         return (f"mismatch: not conserved, dC/dt ≠ 0 along the equations of motion at "
                 f"{verdict.states - verdict.agreeing} of {verdict.states} states")
