@@ -6,8 +6,10 @@ from __future__ import annotations
 import functools
 from pathlib import Path
 
-from lagsolve.check.compare import ABSENT, DIFFERS, MISMATCH, OK, SYMBOLIC, UNCHECKED, Verdict, check
-from lagsolve.check.modes import AT_VALUES, NOT_EQUILIBRIUM
+import sympy
+
+from lagsolve.check.compare import ABSENT, DIFFERS, MISMATCH, OK, SYMBOLIC, UNCHECKED, WARNING, Verdict, check
+from lagsolve.check.modes import AT_VALUES, INCOMPLETE, NOT_EQUILIBRIUM
 from lagsolve.mechanics.derivation import derive
 from lagsolve.problem.load import load_text
 from lagsolve.render.checks import check_table
@@ -93,3 +95,35 @@ def test_the_check_table_names_the_modes() -> None:
     report = check(derive(load_text(text, "coupled_pendulums.yaml")))
     table = check_table(report)
     assert "✓ modes 1: ω² 2" in table and "✓ modes 1: shape 1" in table and report.passed
+
+
+def test_a_list_that_leaves_out_a_mode_is_a_warning() -> None:
+    """Only g/l of the two pendulums' ω² (g/l, g/l + 2k/m): true as far as it goes, and incomplete, a warning naming
+    the one left out (it passed as ok). The full list has no such warning; a wrong ω² stays a mismatch only."""
+    partial = """  normal_modes:
+    - at: {theta1: 0, theta2: 0}
+      squared_frequencies: ["g/l"]
+"""
+    found = _by_name(_report(partial))
+    assert found["[0].squared_frequencies[0]"].status == OK
+    left = found["[0].squared_frequencies"]
+    assert (left.status, left.reason) == (WARNING, INCOMPLETE)
+    assert "lists 1 of lagsolve's 2 non-zero squared frequencies" in left.note
+    (missing,) = left.derived
+    plain = missing.subs({s: sympy.Symbol(s.name) for s in missing.free_symbols})
+    g, k, length, m = sympy.symbols("g k l m")
+    assert sympy.simplify(plain - (g / length + 2 * k / m)) == 0
+    text = (ROOT / "problems" / "coupled_pendulums.yaml").read_text()
+    head, tail = text.split("\nexpected:")[0], text.split("\nsimulation:")[1]
+    table = check_table(check(derive(load_text(f"{head}\nexpected:\n{partial}\nsimulation:{tail}", "p.yaml"))))
+    assert "warning: lists 1 of lagsolve's 2" in table
+    full = _by_name(_report("""  normal_modes:
+    - at: {theta1: 0, theta2: 0}
+      squared_frequencies: ["g/l", "g/l + 2*k/m"]
+"""))
+    assert "[0].squared_frequencies" not in full
+    wrong = _by_name(_report("""  normal_modes:
+    - at: {theta1: 0, theta2: 0}
+      squared_frequencies: ["g/l + k/m"]
+"""))
+    assert "[0].squared_frequencies" not in wrong and wrong["[0].squared_frequencies[0]"].status == MISMATCH

@@ -11,7 +11,7 @@ For each expected item:
 * **stable**: lagsolve's verdict there.
 * **squared_frequencies**: as a list in any order; each expected :math:`\omega^2` must equal a different one of
   lagsolve's, symbolically or at random states as other answers are (numerically at the simulation values when
-  lagsolve's are numeric).
+  lagsolve's are numeric). A list that leaves out a non-zero one of lagsolve's is a warning (*incomplete*).
 * **shapes**: each expected shape u (paired with its :math:`\omega^2`) must be one of lagsolve's shapes for that
   :math:`\omega^2` up to a non-zero factor (for a repeated :math:`\omega^2`, lie in their span): every 2 × 2 minor
   of the two vectors is zero, symbolically or at random parameter values.
@@ -27,6 +27,7 @@ import sympy
 from lagsolve.check.verdicts import (
     ABSENT,
     DIFFERS,
+    INCOMPLETE,
     MISMATCH,
     NOT_DERIVED,
     NUMERIC,
@@ -34,6 +35,7 @@ from lagsolve.check.verdicts import (
     SAME,
     SYMBOLIC,
     UNCHECKED,
+    WARNING,
     Item,
     Verdict,
     symbolically_equal,
@@ -96,6 +98,18 @@ def _stable(expected: bool, mode: Mode, label: str) -> Verdict:
     same = mode.stable == expected
     return Verdict(QUANTITY, f"{label}.stable", OK if same else MISMATCH, SAME if same else DIFFERS, flag,
                    (sympy.true if mode.stable else sympy.false,))
+
+
+def _left_out(squares: tuple[Any, ...], derived: tuple[Any, ...], used: set[int], label: str) -> list[Verdict]:
+    """A warning when every expected ω² is one of lagsolve's but some non-zero ones of lagsolve's are not
+    expected: the list is true as far as it goes, and incomplete (a zero ω², a free direction, may be left out)."""
+    missing = [d for j, d in enumerate(derived) if j not in used and not (d == 0 or getattr(d, "is_zero", False))]
+    if not missing or len(used) < len(squares):
+        return []
+    shown = ", ".join(str(d) for d in missing)
+    return [Verdict(QUANTITY, f"{label}.squared_frequencies", WARNING, INCOMPLETE, squares, tuple(missing),
+                    note=f"lists {len(squares)} of lagsolve's {len(used) + len(missing)} non-zero squared frequencies "
+                         f"here; it leaves out {shown}")]
 
 
 def _numeric(values: Any) -> bool:
@@ -212,7 +226,7 @@ class _Context:
             out.append(verdict)
             if shapes is not None:
                 out.append(self.shape(shapes[k], mode, derived[j], f"{label}.shapes[{k}]"))
-        return out
+        return out + _left_out(squares, derived, used, label)
 
     def match(self, e: Any, derived: tuple[Any, ...], used: set[int], name: str,
               numeric: bool) -> tuple[int | None, Verdict | None]:

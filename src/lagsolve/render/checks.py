@@ -91,7 +91,7 @@ def describe(verdict: Verdict, note: Notation) -> str:
         text = words(verdict, note)
         if text is not None:
             return text
-    prefix = "mismatch: " if verdict.status == Status.MISMATCH else ""
+    prefix = {Status.MISMATCH: "mismatch: ", Status.WARNING: "warning: "}.get(verdict.status, "")
     return prefix + verdict.note
 
 
