@@ -50,6 +50,22 @@ def test_missing_parameter_value_is_named() -> None:
         bind(matrix_form(load_text(text)))
 
 
+def test_missing_parameter_value_names_a_line_without_a_simulation_section() -> None:
+    """Without a simulation section (``lagsolve export`` of a file that only derives) the error names the line where
+    the first missing parameter is declared (it named line 0); with one, the values' line."""
+    head = BEAD.split("simulation:")[0]
+    with pytest.raises(SpecError) as raised:
+        bind(matrix_form(load_text(head, "nosim.yaml")))
+    issue = next(i for i in raised.value.issues if i.where == "simulation.values")
+    declared = next(n for n, line in enumerate(head.splitlines(), 1) if line.startswith("parameters:"))
+    assert issue.line == declared > 0 and "no value for parameters g, m" in issue.message
+    text = BEAD.replace("values: {m: 2.0, g: 9.81}", "values: {m: 2.0}")
+    with pytest.raises(SpecError) as raised:
+        bind(matrix_form(load_text(text)))
+    line = next(n for n, row in enumerate(text.splitlines(), 1) if "values: {m: 2.0}" in row)
+    assert raised.value.issues[0].line == line
+
+
 def test_missing_concrete_function_is_named() -> None:
     """A declared function without a concrete form cannot be simulated; the error says how to add one."""
     text = BEAD.replace('  functions: {"f(u)": "u**2/2"}\n', "")

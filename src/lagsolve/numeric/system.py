@@ -400,13 +400,17 @@ def _value_issues(problem: Problem, prepared: dict[str, list[Any]], values: dict
     needed = set().union(*(getattr(e, "free_symbols", set()) for group in ("matrices", "psi", "offsets", "directions")
                            for e in prepared[group]))
     missing = sorted(p.name for p in problem.parameters if p.symbol in needed and p.name not in values)
+    lines = problem.lines
     if missing:
-        issues.append(Issue(problem.source, problem.lines.get("simulation", 0), "simulation.values",
+        # the values' line, else the simulation's, else (a file without one) where the first missing one is declared
+        line = lines.get("simulation.values", lines.get("simulation", lines.get(f"parameters.{missing[0]}", 0)))
+        issues.append(Issue(problem.source, line, "simulation.values",
                             "no value for parameter" + ("s " if len(missing) > 1 else " ") + ", ".join(missing),
                             "give it under simulation.values or with --set NAME=VALUE"))
     for name, value in values.items():
         if not np.isfinite(value):
-            issues.append(Issue(problem.source, 0, f"parameter {name}", f"value {value} is not a finite number"))
+            line = lines.get(f"simulation.values.{name}", lines.get(f"parameters.{name}", 0))
+            issues.append(Issue(problem.source, line, f"parameter {name}", f"value {value} is not a finite number"))
     return issues
 
 
