@@ -101,3 +101,35 @@ def test_unit_text_names_si_units() -> None:
     assert unit_text(unit_of("rad/s^2")) == "1/s^2"
     assert unit_text(unit_of("km/min^2")) == "km/min^2"
     assert unit_text(None) is None
+
+
+def test_unit_text_leaves_radians_out_of_units_that_are_not_si() -> None:
+    """An energy in CGS from a swinging angle is g*cm^2/s^2 as the SI one is J (it was written cm^2*g*rad^2/s^2);
+    radians stay for angle kinematics, and a degree is not rewritten."""
+    assert unit_text(unit_of("g*cm^2*rad^2/s^2")) == "cm^2*g/s^2"
+    assert unit_text(unit_of("g*cm^2/s^2/rad"), torque=True) == "cm^2*g/s^2"
+    assert unit_text(unit_of("km*rad/h")) == "km/h"
+    assert unit_text(unit_of("rad/min"), angle=True) == "rad/min"
+    assert unit_text(unit_of("deg/s"), angle=True) == "deg/s"
+    assert unit_text(unit_of("deg/s")) == "deg/s"
+
+
+def test_a_cgs_pendulum_table_names_its_energy_without_radians() -> None:
+    """The simulated table of a pendulum in grams and centimetres: θ̇ in rad/s, the energy in g*cm^2/s^2."""
+    from lagsolve.mechanics.derivation import derive
+    from lagsolve.mechanics.units.result_units import column_units
+    from lagsolve.problem.load import load_text
+
+    problem = load_text("""name: CGS pendulum
+parameters:
+  m: {unit: g}
+  l: {unit: cm}
+  g: {unit: cm/s^2}
+coordinates:
+  theta: {unit: rad}
+particles:
+  bob: {mass: m, position: [l*sin(theta), -l*cos(theta)]}
+gravity: [0, -g]
+""", "cgs.yaml")
+    units = column_units(problem, derive(problem).model.kinetic)
+    assert (units["theta"], units["theta_dot"], units["energy"]) == ("rad", "rad/s", "cm^2*g/s^2")

@@ -32,19 +32,22 @@ def unit_text(unit: Any, *, angle: bool = False, torque: bool = False) -> str | 
     """A result's unit for people: ``N``, ``N/m``, ``J`` (``N*m`` with ``torque``), ``m/s^2``.
 
     SI units are named (kg, m, s, N, J, W); radians are kept only with ``angle`` (``rad/s^2``).
-    Units that are not coherent SI (``km``, ``min``, ``g``) are written as declared and combined.
+    Units that are not coherent SI (``km``, ``min``, ``g``) are written as declared and combined, with the
+    radians likewise left out unless ``angle`` (an energy ``g*cm^2/s^2``, not ``cm^2*g*rad^2/s^2``).
     None stays None (unknown).
     """
     if unit is None:
         return None
     ureg = registry()
     base = ureg.Quantity(1, unit).to_base_units()
-    if abs(float(base.magnitude) - 1.0) > 1e-12:
-        return format_unit(unit)
     exps = dict(base.unit_items())
     rad = exps.pop("radian", 0)
+    declared = dict(ureg.Quantity(1, unit).unit_items()).get("radian", 0)  # (a degree is left as it is)
+    as_declared = unit if angle or not declared else (ureg.Quantity(1, unit) / ureg.radian ** declared).units
+    if abs(float(base.magnitude) - 1.0) > 1e-12:
+        return format_unit(as_declared)  # g*cm^2/s^2 for an energy in CGS (radians left out, as J leaves them)
     if any(name not in ("kilogram", "meter", "second", "ampere", "kelvin", "mole", "candela") for name in exps):
-        return format_unit(unit)
+        return format_unit(as_declared)
     kg, m, s = exps.pop("kilogram", 0), exps.pop("meter", 0), exps.pop("second", 0)
     rest = [(format_unit(ureg.parse_units(n)), e) for n, e in exps.items()]
     if kg == 1 and (m, s) == (2, -2):
