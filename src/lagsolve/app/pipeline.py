@@ -294,8 +294,11 @@ class _Loading:
         return self._problem
 
     def problem_loaded(self) -> Problem:
-        """The file loaded (raises :class:`SpecError` for an invalid one), kept for :attr:`problem`."""
-        self._problem = self.load(self.path)
+        """The file loaded and its units checked (raises :class:`SpecError` for an invalid one), kept for
+        :attr:`problem`. The units are checked here, where pint is loaded anyway, so that the child needs none."""
+        from lagsolve.mechanics.units.unit_system import units_checked
+
+        self._problem = units_checked(self.load(self.path))
         return self._problem
 
 

@@ -266,6 +266,9 @@ class Problem:
     independent: tuple[str, ...] = ()  # optional choice of minimal coordinates (names, input order)
     time_unit: str | None = None  # declared with ``time: {name: t, unit: ms}``; seconds otherwise
     texts: Mapping[str, str] = field(default_factory=dict)  # dotted field -> expression as written
+    # the units passed ``check_units`` already (in the command's process, where pint is loaded): a budgeted child
+    # that derives it does not import pint and check them again
+    units_checked: bool = False
 
     def __repr__(self) -> str:
         def count(n: int, what: str) -> str:

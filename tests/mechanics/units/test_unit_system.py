@@ -341,3 +341,40 @@ def test_docs_show_the_messages_lagsolve_prints(tmp_path: Path, name: str, text:
     assert result.exit_code == 2
     docs = (Path(__file__).resolve().parents[3] / "docs" / "format.md").read_text(encoding="utf-8")
     assert result.stderr.strip() in docs
+
+
+def test_units_checked_once_then_derived_without_pint(tmp_path: Path) -> None:
+    """The command's process checks the units as it loads the file (units_checked) and marks the problem, so that
+    the budgeted child that derives it needs no pint (it imported pint and its registry to check them again: about
+    a tenth of a second of lagsolve derive). A derivation with pint made unimportable still completes, and gives
+    the same equations as one that checked the units itself; a file with wrong units is refused by units_checked."""
+    import subprocess
+    import sys
+
+    from lagsolve.mechanics.units.unit_system import units_checked
+
+    path = Path(__file__).resolve().parents[3] / "problems" / "bead.yaml"
+    problem = load_text(path.read_text(), "bead.yaml")
+    assert not problem.units_checked and units_checked(problem).units_checked
+    unitless = load_text("name: free\ncoordinates: {x: {}}\nkinetic: x_dot**2/2\n", "free.yaml")
+    assert units_checked(unitless) is unitless
+    with pytest.raises(SpecError, match="m/ms\\^2"):
+        units_checked(load_text(FALL_MS, "fall.yaml"))
+    script = f"""
+import pickle, sys
+from lagsolve.problem.load import load_problem
+from lagsolve.mechanics.units.unit_system import units_checked
+blob = pickle.dumps(units_checked(load_problem({str(path)!r})))
+for name in [m for m in sys.modules if m == "pint" or m.startswith("pint.") or m == "lagsolve.pint_import"]:
+    del sys.modules[name]
+sys.modules["pint"] = None  # any import of pint now fails
+from lagsolve.mechanics.derivation import derive
+checked = derive(pickle.loads(blob))
+assert checked.complete, checked
+print(sorted(map(str, checked.accelerations.values())))
+"""
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=300, check=False)
+    assert done.returncode == 0, done.stderr[-2000:]
+    from lagsolve.mechanics.derivation import derive
+
+    assert done.stdout.strip() == str(sorted(map(str, derive(problem).accelerations.values())))

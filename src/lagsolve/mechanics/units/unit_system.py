@@ -32,6 +32,7 @@ disagrees with those before it, which it names.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from fractions import Fraction
@@ -50,7 +51,8 @@ _RULE = "(the units of a file must form one system: docs/format.md, Units)"
 def check_units(problem: Problem) -> None:
     """Refuse a file whose units are wrong: a field of the wrong dimension, or units of mixed scales.
 
-    Does nothing for a file without units. Every issue of both kinds is reported at once.
+    Does nothing for a file without units, or one :func:`units_checked` passed. Every issue of both kinds is
+    reported at once.
 
     Raises
     ------
@@ -58,11 +60,27 @@ def check_units(problem: Problem) -> None:
         One issue per wrong field (:func:`~lagsolve.mechanics.units.dimensions.dimension_issues`) and per unit that is
         not of the file's system (:func:`scale_issues`).
     """
-    if not problem.has_units:
+    if not problem.has_units or problem.units_checked:
         return
     issues = dimension_issues(problem) + scale_issues(problem)
     if issues:
         raise SpecError(sorted(issues, key=lambda issue: issue.line))
+
+
+def units_checked(problem: Problem) -> Problem:
+    """``problem`` once :func:`check_units` passed, marked so that a derivation does not check it again: the command's
+    process checks a file's units as it loads it (with pint, which it imports for loading anyway), and its budgeted
+    child, which derives, then needs no pint (about a tenth of a second of ``lagsolve derive``).
+
+    Raises
+    ------
+    SpecError
+        As :func:`check_units`.
+    """
+    if not problem.has_units or problem.units_checked:
+        return problem
+    check_units(problem)
+    return dataclasses.replace(problem, units_checked=True)
 
 
 @dataclass(frozen=True)
