@@ -207,7 +207,9 @@ class _Run:
         system, p, n = self.system, self.system.parameters, self.system.n
         a = system.velocity_jacobian(t, q, qd, p).reshape(system.m, n)[self.active] if system.m else np.zeros((0, n))
         b = system.velocity_offset(t, q, qd, p)[self.active] if system.m else np.zeros(0)
-        held = [w for c, (w, _, _) in system.sliding_parts(t, q, qd).items() if self.stuck[c]]
+        held = []  # the sliding parts are evaluated only when a contact is stuck: nothing else uses them here
+        if self.stuck.any():
+            held = [w for c, (w, _, _) in system.sliding_parts(t, q, qd).items() if self.stuck[c]]
         if held:
             a, b = np.vstack([a, *held]), np.concatenate([b, np.zeros(len(held))])
         return a, b
