@@ -513,8 +513,14 @@ class _Grader(ListSteps):
         return _Entry(name, INCORRECT, mistake, f"{_label(name)}{detail}")
 
     def conserved(self, name: str, value: Any) -> _Entry:
-        """A conserved quantity the key does not name: its rate along the key's equations of motion is 0."""
+        """A conserved quantity the key does not name: its rate along the key's equations of motion is 0, and it is
+        not a constant of the parameters (``0``, ``m1 + m2``, ``r - z`` on the string's surface: conserved by any
+        motion, so no answer)."""
         values = self.context.values
+        if self.trivial(value):
+            return _Entry(name, INCORRECT, None, f"{_label(name)}a constant (of the parameters alone, on the "
+                                                 "constraint surface) is conserved by any motion; give a quantity "
+                                                 "of the state")
         with contextlib.suppress(TypeError, ValueError, AttributeError):
             rate = values.values(self.context.comparer.rate(value))
             real = [v for v in rate or () if isinstance(v, mpmath.mpf)]
@@ -537,17 +543,25 @@ class _Grader(ListSteps):
         if all(q in key and self.relation(own[q], key[q]).kind == SAME for q in self.context.coordinates):
             return False  # no earlier mistake: what the key's motion conserves is graded against the key
         with contextlib.suppress(TypeError, ValueError, AttributeError):
-            at = values.values(value) or ()
-            groups: dict[int, list[Any]] = {}
-            for state, v in zip(values.states, at, strict=True):
-                if isinstance(v, mpmath.mpf):
-                    groups.setdefault(state.group, []).append(v)
-            if all(all(close(v, vs[0]) for v in vs) for vs in groups.values()):
+            if self.trivial(value):
                 return False  # constant at each value of the parameters: conserved by any equations
             qdd = {a: own[q] for a, q in zip(model.accelerations, self.context.coordinates, strict=True)}
             rate = model.time_derivative(value, second_order=True).xreplace(qdd)
             found = [v for v in values.values(rate) or () if isinstance(v, mpmath.mpf)]
             return len(found) >= MINIMUM_STATES and all(close(v, 0) for v in found)
+        return False
+
+    def trivial(self, value: Any) -> bool:
+        """``value`` is the same at the shared states of each group (a constant of the parameters, on the
+        constraint surface)."""
+        values = self.context.values
+        with contextlib.suppress(TypeError, ValueError, AttributeError):
+            groups: dict[int, list[Any]] = {}
+            for state, v in zip(values.states, values.values(value) or (), strict=True):
+                if isinstance(v, mpmath.mpf):
+                    groups.setdefault(state.group, []).append(v)
+            return sum(map(len, groups.values())) >= MINIMUM_STATES and all(
+                all(close(v, vs[0]) for v in vs) for vs in groups.values())
         return False
 
     def diagnose(self, step: str, name: str, found: Relation, value: Any, reference: Any) -> tuple[str | None, str]:
