@@ -291,6 +291,8 @@ class _Reader:
         out: dict[str, Any] = {}
         for i, item in enumerate(items):
             where = (*path, i) if isinstance(value, list) else path
+            if name == "equilibria":
+                item, where = _as_expected(item, where, coordinates)
             if name == "frequencies" or not isinstance(item, dict):
                 if isinstance(item, dict | list):
                     raise _Unreadable(self.issue(where, f"expected an expression, found {kind_of(item)}",
@@ -337,6 +339,23 @@ class _Reader:
             return gateway.parse(text, names)
         except ExpressionError as error:
             raise _Unreadable(self.issue(path, error.message, error.hint)) from None
+
+
+#: an equilibrium written as in a problem file's ``expected:`` (the contract): the point under this key, and the
+#: other keys allowed beside it (read, not graded here: stability is not a step, ω² is ``frequencies``)
+EXPECTED_FORMS = {"value": ("stable", "frequency"), "at": ("stable", "squared_frequencies", "shapes")}
+
+
+def _as_expected(item: Any, where: tuple, coordinates: tuple[str, ...] | list[str]) -> tuple[Any, tuple]:
+    """An equilibrium item as ``expected:`` writes it — ``{value: q0, stable: ..., frequency: ...}`` (the effective
+    potential's) or ``{at: {q: value}, stable: ..., squared_frequencies: [...]}`` (normal modes') — as its point
+    (and where it is); any other item as it is (a mapping whose keys are all coordinates is a point)."""
+    if not isinstance(item, dict) or all(k in coordinates for k in item):
+        return item, where
+    for point, others in EXPECTED_FORMS.items():
+        if point in item and all(k == point or k in others for k in item):
+            return item[point], (*where, point)
+    return item, where
 
 
 def _texts(name: str, value: Any, entries: dict[str, Any]) -> dict[str, str]:
