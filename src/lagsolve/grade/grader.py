@@ -57,6 +57,7 @@ from lagsolve.grade.evaluate import (
     Evaluator,
     Relation,
     constant_in_groups,
+    normal_to_surface,
     proportional,
     relation,
 )
@@ -664,20 +665,26 @@ class _Grader(ListSteps):
                     return _Entry(name, INCORRECT, MOVING, f"{_label(name)}written as if the constraint did not move:"
                                   f" ∂ψ/∂t = {sympy.sstr(terms.offset)} is missing (ψ = "
                                   f"{sympy.sstr(terms.expression)} = 0)")
-        if self.frame is not None and self.holds_on_surface(value):
+        if self.frame is not None and self.holds_on_surface(value, terms):
             return _Entry(name, CORRECT, None, f"{_label(name)}holds on the key's constraint surface (in the "
                                                "submission's coordinates)")
         return _Entry(name, INCORRECT, None, f"{_label(name)}not the key's constraint ψ = "
                                              f"{sympy.sstr(terms.expression)} = 0 up to a constant factor")
 
 
-    def holds_on_surface(self, value: Any) -> bool:
-        """ψ (mapped) is zero at every shared state (on the key's constraint surface) and not zero everywhere."""
+    def holds_on_surface(self, value: Any, terms: Any) -> bool:
+        """ψ (mapped) is zero at every shared state (on the key's constraint surface), not zero everywhere, and its
+        gradient there is not zero and is that of the key's constraint ``terms`` (not a double zero, not another
+        constraint that holds on the same surface)."""
         values = self.context.values
         found = values.values(value)
         if found is None or len(found) < MINIMUM_STATES or sympy.simplify(value) == 0:
             return False
-        return all(isinstance(v, mpmath.mpf) and close(v, 0) for v in found)
+        if not all(isinstance(v, mpmath.mpf) and close(v, 0) for v in found):
+            return False
+        model = self.derivation.model
+        return normal_to_surface(values, value, [*terms.coefficients, terms.offset], [*model.coordinates, model.time],
+                                 model.velocities)
 
 
 def _example(entries: list[_Entry], mistake: str | None, texts: dict[str, str]) -> str:
