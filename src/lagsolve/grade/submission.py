@@ -18,13 +18,14 @@ from typing import Any
 import sympy
 
 from lagsolve.errors import ExpressionError, Issue, SpecError
+from lagsolve.files import read_input
 from lagsolve.grade.frame import Frame, MapError, build_frame
 from lagsolve.mechanics.stages import StageTimeout, cpu_limit
 from lagsolve.problem import expr as gateway
 from lagsolve.problem.names import momentum_name, momentum_symbol
 from lagsolve.problem.readers.base import line_of
 from lagsolve.problem.schema import Problem
-from lagsolve.problem.yamlread import SUBMISSION, Document, dotted, kind_of, read_document
+from lagsolve.problem.yamlread import MAX_BYTES, SUBMISSION, Document, dotted, kind_of, read_document
 
 #: the steps a submission may contain, in the order of a derivation (names fixed by the contract)
 STEPS = ("kinetic", "potential", "lagrangian", "constraints", "momenta", "generalized_forces", "equations",
@@ -118,7 +119,7 @@ def read_submission(path: str | Path, problem: Problem, normals: dict[str, Any] 
     """Read the submission file ``path`` against the key ``problem`` (see :func:`read_text`)."""
     path = Path(path)
     try:
-        raw = path.read_bytes()
+        raw = read_input(path, MAX_BYTES)  # at most one byte over the limit: /dev/zero or a pipe never hangs here
     except OSError as error:
         raise SpecError([Issue(str(path), 0, "", f"cannot read the file: {error.strerror or error}",
                                "check the path")]) from None
