@@ -20,3 +20,13 @@ def test_a_problem_with_a_declared_function_gets_its_key() -> None:
     assert abs(answers["x_ddot"] - (-slope * g / (1 + slope**2))) < 1e-5
     assert abs(answers["lambda_wire"] - g / (1 + slope**2)) < 1e-5
     assert abs(answers["F_wire"] - g / (1 + slope**2) ** 0.5) < 1e-5
+
+
+def test_frequencies_found_numerically_at_the_files_values_are_not_a_key() -> None:
+    # the triple pendulum's ω² are numeric at the file's g = 9.81 (its characteristic polynomial does not split):
+    # taken as closed forms at each variant's g they disagreed with the variant's own (2.0196 against 1.8442 at
+    # g = 8.18), so every candidate failed the rule 'key' and no variant could be made (exit 2)
+    made = lagsolve.variants(ROOT / "problems" / "triple_pendulum.yaml", count=1, vary={"g": "8.18:8.18"})
+    names = {a.name for a in made.variants[0].key.answers}
+    assert "equilibrium_1_theta1" in names and not any(n.startswith("omega_") for n in names)
+    assert made.rejections.get("key", 0) == 0
