@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from lagsolve.errors import SpecError
-from lagsolve.files import read_text, write_file
+from lagsolve.files import read_input, read_text, write_file
 
 
 def test_write_creates_folders_and_returns_the_path(tmp_path: Path) -> None:
@@ -101,3 +101,24 @@ def test_read_text_refuses_what_is_not_a_golden_file(tmp_path: Path, make: objec
     make(path)  # type: ignore[operator]
     with pytest.raises(SpecError, match=f"g.md: --golden: {message}"):
         read_text(path)
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo") or not Path("/dev/zero").exists(), reason="POSIX devices and pipes")
+def test_an_input_file_never_hangs_nor_fills_memory(tmp_path: Path) -> None:
+    """A submission (or sweep problem) was read whole, so `lagsolve grade KEY /dev/zero` ran out of memory (a
+    MemoryError traceback at best); a named pipe without a writer blocked every command reading it forever."""
+    from click.testing import CliRunner
+
+    from lagsolve.cli import main
+
+    assert len(read_input("/dev/zero", 1000)) == 1001
+    fifo = tmp_path / "fifo.yaml"
+    os.mkfifo(fifo)
+    assert read_input(fifo, 1000) == b""
+    (tmp_path / "plain.yaml").write_bytes(b"name: x\n")
+    assert read_input(tmp_path / "plain.yaml", 1000) == b"name: x\n"
+    key = str(Path(__file__).resolve().parents[1] / "problems" / "bead.yaml")
+    result = CliRunner().invoke(main, ["grade", key, "/dev/zero", str(fifo), "--format", "json"])
+    assert result.exit_code == 2 and "the limit is" in result.output and "file is empty" in result.output
+    result = CliRunner().invoke(main, ["derive", str(fifo)])
+    assert result.exit_code == 2 and "file is empty" in result.output

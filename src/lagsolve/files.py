@@ -209,6 +209,32 @@ def read_text(path: Path, *, option: str = "--golden") -> str | None:
                       "replace it with the report, e.g. with --update-golden") from None
 
 
+def read_input(path: str | Path, limit: int) -> bytes:
+    """At most ``limit`` + 1 bytes of the input file ``path`` (a problem or a submission): a device never fills
+    memory (``/dev/zero``), and a named pipe without a writer reads as empty instead of blocking the open forever
+    (it is opened without waiting, then read as usual, so a pipe being written still gives its data).
+
+    Raises
+    ------
+    OSError
+        As :func:`open` does (missing, a folder, not readable).
+    """
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    try:
+        if hasattr(os, "set_blocking"):
+            os.set_blocking(fd, True)
+        if stat.S_ISDIR(os.fstat(fd).st_mode):
+            raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR), str(path))
+        chunks: list[bytes] = []
+        size = 0
+        while size <= limit and (chunk := os.read(fd, limit + 1 - size)):
+            chunks.append(chunk)
+            size += len(chunk)
+        return b"".join(chunks)
+    finally:
+        os.close(fd)
+
+
 def safe_slug(path: str | Path) -> str:
     """A file-name-safe stem for output names: ``problems/My bead.yaml`` → ``My_bead``."""
     stem = Path(path).name

@@ -97,3 +97,16 @@ def test_a_step_that_restates_the_multiplier_is_unreadable(tmp_path: Path) -> No
     message = steps["multipliers"]["message"]
     assert "taut.yaml:3" in message and "a multiplier is allowed only in equations and constraint_forces" in message
     assert steps["equations"]["status"] != "unreadable"
+
+
+def test_no_gradebook_cell_is_a_formula(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The student id was guarded against spreadsheet formulas, the source column (a file name, also the
+    student's: an uploaded `=HYPERLINK(...).yaml` graded from its folder) was not."""
+    monkeypatch.chdir(tmp_path)
+    name = '=HYPERLINK("http:evil","x").yaml'
+    Path(name).write_text("student: ok\nsteps:\n  potential: m*g*y\n")
+    result = CliRunner().invoke(main, ["grade", KEY, name, "--format", "csv"])
+    assert result.exit_code == 0, result.output
+    (row,) = list(csv.DictReader(io.StringIO(result.stdout)))
+    assert all(cell[:1] not in "=+-@\t\r" for cell in row.values() if cell), row
+    assert row["source"] == "'" + name

@@ -78,6 +78,12 @@ EQUILIBRIA_CORRECT = [
                           "{theta1: -pi, theta2: 0}]"),
     ("two_masses_spring", '[{x1: "x2 - L0"}]'),
     ("hole_table", '["(p_theta**2/(g*m1*m2))**(1/3)"]'),
+    # as a problem file's expected: writes them (shared/grading-format.md: "equilibria: as expected:"); 'value'
+    # was read as an unknown coordinate and the step was unreadable
+    ("hole_table", '[{value: "(p_theta**2/(g*m1*m2))**(1/3)", stable: true, frequency: "sqrt(g)"}]'),
+    (HOOP, f'[{{value: 0}}, {{value: pi, stable: false}}, {{value: "{ACOS}"}}, {{value: "-{ACOS}"}}]'),
+    ("coupled_pendulums", "[{at: {theta1: 0, theta2: 0}, stable: true, squared_frequencies: [g/l]}, "
+                          "{at: {theta1: pi, theta2: pi}}, {at: {theta1: 0, theta2: pi}}, {theta1: -pi, theta2: 0}]"),
 ]
 
 
@@ -95,6 +101,8 @@ EQUILIBRIA_WRONG = [
      "theta1 = pi/2, theta2 = 0 is not an equilibrium", 0.8),
     ("two_masses_spring", '[{x1: "x2 + L0"}]', "x1 = -L0 + x2 is missing", 0.0),
     ("coupled_pendulums", "[0, pi]", "a bare value", 0.0),
+    (HOOP, f'[{{value: 0}}, {{value: pi}}, {{value: "{ACOS}"}}, {{value: "pi/2"}}]', f"theta = -{ACOS} is missing",
+     0.6),
 ]
 
 

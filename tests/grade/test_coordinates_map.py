@@ -113,6 +113,12 @@ def test_correct_answers_in_other_coordinates_earn_every_point(name: str, mappin
     assert not lost
 
 
+@pytest.mark.parametrize("rod", ["r = l", "r**2 - l**2", "(r - l)*(r + l + 5)", "sin(r - l)", "r*r_dot", "r_dot"])
+def test_a_constraint_with_the_same_surface_in_other_coordinates_is_correct(rod: str) -> None:
+    result = graded("pendulum_cartesian", POLAR_MAP, {"constraints": {"rod": rod}})
+    assert result["constraints"].status == "correct", result["constraints"].message
+
+
 @pytest.mark.parametrize(("name", "mapping", "steps", "step", "change", "mistake"), [
     ("bead_on_rotating_hoop", HOOP_MAP, HOOP, "accelerations",
      {"alpha": "-sin(alpha)*(Omega**2*cos(alpha) + g/R)", "phi": "0"}, "sign_error"),
@@ -127,6 +133,12 @@ def test_correct_answers_in_other_coordinates_earn_every_point(name: str, mappin
     ("central_force", {"rho": "r/2", "beta": "theta + 1"}, {}, "kinetic", "2*m*rho_dot**2", "missing_kinetic_term"),
     ("central_force", ROTATING_MAP, ROTATING, "accelerations",
      {"r": "r*beta_dot**2 - k/(m*r**2)", "beta": "-2*r_dot*beta_dot/r"}, None),
+    # each vanishes on the rod's surface, which was enough: a double zero (its gradient vanishes there), the
+    # square of the velocity form, and, below, the other constraint of the incline written under this one's name
+    ("pendulum_cartesian", POLAR_MAP, POLAR, "constraints", {"rod": "(r - l)**2"}, None),
+    ("pendulum_cartesian", POLAR_MAP, POLAR, "constraints", {"rod": "r_dot**2"}, None),
+    ("incline_pulley", {"u": "x"}, {}, "constraints",
+     {"plane": "u*cos(alpha) - y*sin(alpha) - z", "string": "u*cos(alpha) - y*sin(alpha) - z"}, None),
 ])
 def test_a_wrong_step_in_other_coordinates_is_found(name: str, mapping: dict, steps: dict, step: str, change: Any,
                                                     mistake: str | None) -> None:

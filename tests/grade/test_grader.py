@@ -188,3 +188,16 @@ def test_a_trivial_constant_earns_no_credit_as_a_conserved_quantity(key: tuple) 
         assert "constant of the parameters or a constraint" in step.message, value
     assert graded(key, steps(conserved={"mechanical": energy}), grading)["conserved"].status == "correct"
     assert graded(key, steps(conserved={"c": "m*x_dot"}), grading)["conserved"].status == "incorrect"
+
+
+@pytest.mark.parametrize("constant", ["0", "m + g", "y - f(x) + 3"])
+def test_a_constant_is_no_conserved_quantity(key: tuple, constant: str) -> None:
+    """A quantity the key does not name is correct when it is conserved along the key's motion, but a constant of
+    the parameters (on the constraint surface) is conserved by any motion: full marks for ``c: 0`` before."""
+    problem, _ = key
+    grading = Grading({**default_weights(problem), "conserved": 1.0})
+    found = graded(key, steps(conserved={"c": constant}), grading)["conserved"]
+    assert found.status == "incorrect"
+    assert "a constant of the parameters or a constraint" in found.message
+    real = graded(key, steps(conserved={"c": f"2*(m*x_dot**2*(1 + {F1}**2)/2 + m*g*f(x))"}), grading)["conserved"]
+    assert real.status == "correct"

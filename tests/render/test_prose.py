@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import shutil
+import subprocess
+from pathlib import Path
+
 from lagsolve.render.notation import md_description, md_math_prose, tex_description, tex_prose
 from lagsolve.render.prose import description_segments, safe_math, segments
 
@@ -56,3 +60,23 @@ def test_markdown_descriptions_keep_emphasis_but_no_link() -> None:
     assert md_description("a\n# b") == "a\n\\# b"
     assert md_cell("a\r\n## b | c") == r"a ## b \| c"
     assert md_cell(r"norm $|x|$") == r"norm $`\|x\|`$"
+
+
+MALFORMED = [r"\frac{a}", r"\dot", r"x_1_2", "x^", "__", r"\left( x", r"x^2'", r"\sqrt[3", "^^41", r"\dot\frac{a}{b}"]
+WELL_FORMED = [r"\frac{1}{2}m\dot x^2", r"\left( x \right.", r"\sqrt[3]{x}", "f''(x)", "x'^2", r"\sum_{i=1}^{n} x_i",
+               r"|f''(x)\,\dot x^2 + g|\, m/\sqrt{1 + f'(x)^2}"]
+
+
+def test_description_math_that_tex_would_refuse_stays_text(tmp_path: Path) -> None:
+    """Math of safe pieces put together wrong (``$\\frac{a}$``, ``$x_1_2$``) was set as math, and pdflatex stopped
+    on the report; it is literal text now, and the rest is math still (each compiled when pdflatex is here)."""
+    assert [m for m in MALFORMED if safe_math(m)] == []
+    assert [m for m in WELL_FORMED if not safe_math(m)] == []
+    if shutil.which("pdflatex") is None:
+        return
+    body = " ".join(tex_description(f"${m}$") for m in MALFORMED + WELL_FORMED)
+    (tmp_path / "d.tex").write_text(f"\\documentclass{{article}}\n\\usepackage{{amsmath}}\n\\begin{{document}}\n"
+                                    f"{body}\n\\end{{document}}\n")
+    run = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "-no-shell-escape", "d.tex"],
+                         cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    assert run.returncode == 0, run.stdout[-1500:]

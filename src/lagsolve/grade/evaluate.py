@@ -165,3 +165,37 @@ def proportional(student: Values | None, reference: Values | None, states: Seque
     if found.kind in (SAME, OPPOSITE, FACTOR):
         return not all(close(r[2][0], 0) for r in found.rows)
     return False
+
+
+def normal_to_surface(values: Evaluator, value: Any, row: Sequence[Any], variables: Sequence[Any],
+                      velocities: Sequence[Any]) -> bool:
+    """Whether the constraint ``value`` (ψ, or a velocity form a·q̇ + b) has, at every shared state, a gradient that is
+    not zero and is parallel to the key's constraint row ``row`` = (a, b) (over ``variables`` = the coordinates, then
+    the time): its zero set is the key's constraint's surface near each state, not a double zero of it (``(r -
+    l)**2``, whose gradient vanishes there) nor another constraint that also holds there."""
+    if value.has(*velocities):
+        at_rest = value.xreplace(dict.fromkeys(velocities, 0))
+        gradient = [sympy.diff(value, v) for v in velocities] + [at_rest]
+    else:
+        gradient = [sympy.diff(value, x) for x in variables]
+    found = [values.values(g) for g in gradient]
+    key = [values.values(a) for a in row]
+    if any(f is None for f in found) or any(k is None for k in key):
+        return False
+    checked = 0
+    for i in range(len(values.states)):
+        g = [f[i] for f in found]  # type: ignore[index]
+        a = [k[i] for k in key]  # type: ignore[index]
+        if not all(_real(x) for x in (*g, *a)):
+            continue
+        norm_a = mpmath.sqrt(sum(x * x for x in a))
+        if norm_a < 1e-12:
+            continue  # a singular point of the key's constraint: nothing to compare with
+        norm_g = mpmath.sqrt(sum(x * x for x in g))
+        if norm_g <= 1e-12 * norm_a:
+            return False
+        along = sum(x * y for x, y in zip(g, a, strict=True)) / norm_a**2
+        if mpmath.sqrt(sum((x - along * y) ** 2 for x, y in zip(g, a, strict=True))) > 1e-10 * norm_g:
+            return False
+        checked += 1
+    return checked >= MINIMUM_STATES

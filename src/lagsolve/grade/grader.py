@@ -57,6 +57,7 @@ from lagsolve.grade.evaluate import (
     Evaluator,
     Relation,
     constant_in_groups,
+    normal_to_surface,
     proportional,
     relation,
 )
@@ -515,9 +516,8 @@ class _Grader(ListSteps):
     def conserved(self, name: str, value: Any) -> _Entry:
         """A conserved quantity the key does not name: its rate along the key's equations of motion is 0, and it is
         not the same at every state of a set of parameters (a constant or a constraint, conserved by any motion)."""
-        with contextlib.suppress(TypeError, ValueError, AttributeError):
-            if self.context.comparer.trivial(value):
-                return _Entry(name, INCORRECT, None, f"{_label(name)}{TRIVIALLY}")
+        if self.trivial(value):
+            return _Entry(name, INCORRECT, None, f"{_label(name)}{TRIVIALLY}")
         values = self.context.values
         with contextlib.suppress(TypeError, ValueError, AttributeError):
             rate = values.values(self.context.comparer.rate(value))
@@ -541,17 +541,19 @@ class _Grader(ListSteps):
         if all(q in key and self.relation(own[q], key[q]).kind == SAME for q in self.context.coordinates):
             return False  # no earlier mistake: what the key's motion conserves is graded against the key
         with contextlib.suppress(TypeError, ValueError, AttributeError):
-            at = values.values(value) or ()
-            groups: dict[int, list[Any]] = {}
-            for state, v in zip(values.states, at, strict=True):
-                if isinstance(v, mpmath.mpf):
-                    groups.setdefault(state.group, []).append(v)
-            if all(all(close(v, vs[0]) for v in vs) for vs in groups.values()):
+            if self.trivial(value):
                 return False  # constant at each value of the parameters: conserved by any equations
             qdd = {a: own[q] for a, q in zip(model.accelerations, self.context.coordinates, strict=True)}
             rate = model.time_derivative(value, second_order=True).xreplace(qdd)
             found = [v for v in values.values(rate) or () if isinstance(v, mpmath.mpf)]
             return len(found) >= MINIMUM_STATES and all(close(v, 0) for v in found)
+        return False
+
+    def trivial(self, value: Any) -> bool:
+        """``value`` is the same at the shared states of each group (a constant of the parameters, or a constraint,
+        on the constraint surface): :meth:`lagsolve.check.compare._Checker.trivial`, which ``lagsolve check`` uses."""
+        with contextlib.suppress(TypeError, ValueError, AttributeError):
+            return bool(self.context.comparer.trivial(value))
         return False
 
     def diagnose(self, step: str, name: str, found: Relation, value: Any, reference: Any) -> tuple[str | None, str]:
@@ -654,20 +656,26 @@ class _Grader(ListSteps):
                     return _Entry(name, INCORRECT, MOVING, f"{_label(name)}written as if the constraint did not move:"
                                   f" ∂ψ/∂t = {sympy.sstr(terms.offset)} is missing (ψ = "
                                   f"{sympy.sstr(terms.expression)} = 0)")
-        if self.frame is not None and self.holds_on_surface(value):
+        if self.frame is not None and self.holds_on_surface(value, terms):
             return _Entry(name, CORRECT, None, f"{_label(name)}holds on the key's constraint surface (in the "
                                                "submission's coordinates)")
         return _Entry(name, INCORRECT, None, f"{_label(name)}not the key's constraint ψ = "
                                              f"{sympy.sstr(terms.expression)} = 0 up to a constant factor")
 
 
-    def holds_on_surface(self, value: Any) -> bool:
-        """ψ (mapped) is zero at every shared state (on the key's constraint surface) and not zero everywhere."""
+    def holds_on_surface(self, value: Any, terms: Any) -> bool:
+        """ψ (mapped) is zero at every shared state (on the key's constraint surface), not zero everywhere, and its
+        gradient there is not zero and is that of the key's constraint ``terms`` (not a double zero, not another
+        constraint that holds on the same surface)."""
         values = self.context.values
         found = values.values(value)
         if found is None or len(found) < MINIMUM_STATES or sympy.simplify(value) == 0:
             return False
-        return all(isinstance(v, mpmath.mpf) and close(v, 0) for v in found)
+        if not all(isinstance(v, mpmath.mpf) and close(v, 0) for v in found):
+            return False
+        model = self.derivation.model
+        return normal_to_surface(values, value, [*terms.coefficients, terms.offset], [*model.coordinates, model.time],
+                                 model.velocities)
 
 
 def _example(entries: list[_Entry], mistake: str | None, texts: dict[str, str]) -> str:

@@ -18,13 +18,14 @@ from typing import Any
 import sympy
 
 from lagsolve.errors import ExpressionError, Issue, SpecError
+from lagsolve.files import read_input
 from lagsolve.grade.frame import Frame, MapError, build_frame
 from lagsolve.mechanics.stages import StageTimeout, cpu_limit
 from lagsolve.problem import expr as gateway
 from lagsolve.problem.names import momentum_name, momentum_symbol
 from lagsolve.problem.readers.base import line_of
 from lagsolve.problem.schema import Problem
-from lagsolve.problem.yamlread import SUBMISSION, Document, dotted, kind_of, read_document
+from lagsolve.problem.yamlread import MAX_BYTES, SUBMISSION, Document, dotted, kind_of, read_document
 
 #: the steps a submission may contain, in the order of a derivation (names fixed by the contract)
 STEPS = ("kinetic", "potential", "lagrangian", "constraints", "momenta", "generalized_forces", "equations",
@@ -118,7 +119,7 @@ def read_submission(path: str | Path, problem: Problem, normals: dict[str, Any] 
     """Read the submission file ``path`` against the key ``problem`` (see :func:`read_text`)."""
     path = Path(path)
     try:
-        raw = path.read_bytes()
+        raw = read_input(path, MAX_BYTES)  # at most one byte over the limit: /dev/zero or a pipe never hangs here
     except OSError as error:
         raise SpecError([Issue(str(path), 0, "", f"cannot read the file: {error.strerror or error}",
                                "check the path")]) from None
@@ -291,6 +292,8 @@ class _Reader:
         out: dict[str, Any] = {}
         for i, item in enumerate(items):
             where = (*path, i) if isinstance(value, list) else path
+            if name == "equilibria":
+                item, where = _as_expected(item, where, coordinates)
             if name == "frequencies" or not isinstance(item, dict):
                 if isinstance(item, dict | list):
                     raise _Unreadable(self.issue(where, f"expected an expression, found {kind_of(item)}",
@@ -337,6 +340,23 @@ class _Reader:
             return gateway.parse(text, names)
         except ExpressionError as error:
             raise _Unreadable(self.issue(path, error.message, error.hint)) from None
+
+
+#: an equilibrium written as in a problem file's ``expected:`` (the contract): the point under this key, and the
+#: other keys allowed beside it (read, not graded here: stability is not a step, ω² is ``frequencies``)
+EXPECTED_FORMS = {"value": ("stable", "frequency"), "at": ("stable", "squared_frequencies", "shapes")}
+
+
+def _as_expected(item: Any, where: tuple, coordinates: tuple[str, ...] | list[str]) -> tuple[Any, tuple]:
+    """An equilibrium item as ``expected:`` writes it — ``{value: q0, stable: ..., frequency: ...}`` (the effective
+    potential's) or ``{at: {q: value}, stable: ..., squared_frequencies: [...]}`` (normal modes') — as its point
+    (and where it is); any other item as it is (a mapping whose keys are all coordinates is a point)."""
+    if not isinstance(item, dict) or all(k in coordinates for k in item):
+        return item, where
+    for point, others in EXPECTED_FORMS.items():
+        if point in item and all(k == point or k in others for k in item):
+            return item[point], (*where, point)
+    return item, where
 
 
 def _texts(name: str, value: Any, entries: dict[str, Any]) -> dict[str, str]:

@@ -14,6 +14,7 @@ from typing import Any
 import sympy
 
 from lagsolve.errors import Issue, SpecError
+from lagsolve.files import read_input
 from lagsolve.problem import expr as gateway
 from lagsolve.problem.readers.answers import AnswersReader
 from lagsolve.problem.readers.base import (
@@ -54,9 +55,7 @@ def load_problem(path: str | Path) -> Problem:
     """
     source = str(path)
     try:
-        # read at most one byte over the limit: a device or pipe never makes this hang
-        with Path(path).open("rb") as handle:
-            raw = handle.read(MAX_BYTES + 1)
+        raw = read_input(path, MAX_BYTES)  # one byte over the limit at most; a pipe without a writer never blocks
     except FileNotFoundError:
         raise SpecError([Issue(source, 0, "", "file not found", "check the path")]) from None
     except IsADirectoryError:

@@ -67,7 +67,7 @@ def grades_csv(grades: ClassGrades) -> str:
     writer.writerow(["student", "source", "points", "max_points", *steps, *(f"{s}_status" for s in steps)])
     for g in grades.grades:
         by = {s.step: s for s in g.steps}
-        writer.writerow([_safe(g.student), g.source, _number(g.points), _number(g.max_points),
+        writer.writerow([_safe(g.student), _safe(g.source), _number(g.points), _number(g.max_points),
                          *(_number(by[s].points) for s in steps), *(str(by[s].status) for s in steps)])
     return out.getvalue()
 

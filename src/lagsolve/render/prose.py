@@ -154,7 +154,8 @@ def description_segments(text: str) -> list[tuple[str, str]]:
 
 
 def safe_math(tex: str) -> bool:
-    """Only letters, digits, operators, balanced braces and the commands of :data:`SAFE_COMMANDS`."""
+    """Only letters, digits, operators, balanced braces and the commands of :data:`SAFE_COMMANDS`, put together so
+    that TeX accepts them (:func:`_well_formed`: ``$\\frac{a}$`` or ``$x_1_2$`` would stop pdflatex)."""
     body = _COMMAND.sub(lambda m: "" if m.group(1) in SAFE_COMMANDS or not m.group(1).isalpha() else "\0", tex)
     if "\0" in body or "\\" in body or not _SAFE_CHARS.match(body):
         return False
@@ -163,7 +164,71 @@ def safe_math(tex: str) -> bool:
         depth += {"{": 1, "}": -1}.get(ch, 0)
         if depth < 0:
             return False
-    return depth == 0
+    return depth == 0 and _well_formed(tex)
+
+
+#: the arguments each safe command takes (the others take none); ``\sqrt`` may have ``[n]`` first
+_ARGUMENTS = {"frac": 2, "tfrac": 2, "dfrac": 2, "dot": 1, "ddot": 1, "hat": 1, "bar": 1, "vec": 1, "tilde": 1,
+              "sqrt": 1, "mathrm": 1, "mathbf": 1, "boldsymbol": 1, "mathcal": 1}
+_DELIMITERS = frozenset("()[]|./<>")
+_MATH_TOKEN = re.compile(r"\\([A-Za-z]+|[,;! ])|(\s+)|(.)")
+
+
+def _well_formed(tex: str) -> bool:
+    """Whether TeX takes ``tex`` (made of safe pieces) as math: each command has its arguments, ``^`` and ``_``
+    theirs and at most one each per atom (primes are its superscript, and may only be followed by ``^``),
+    ``\\left`` and ``\\right`` pair up within a group, each with a delimiter."""
+    tokens = [("cmd", m.group(1)) if m.group(1) else ("char", m.group(3))
+              for m in _MATH_TOKEN.finditer(tex) if not m.group(2)]
+    position = 0
+
+    def take() -> tuple[str, str] | None:
+        nonlocal position
+        position += 1
+        return tokens[position - 1] if position <= len(tokens) else None
+
+    def argument() -> bool:
+        token = take()
+        if token is None:
+            return False
+        kind, value = token
+        if kind == "cmd":
+            return value not in _ARGUMENTS and value not in ("left", "right")
+        return group("}") if value == "{" else value not in "}^_'"
+
+    def command(value: str) -> bool:
+        if value in ("left", "right"):
+            token = take()
+            return token is not None and token[0] == "char" and token[1] in _DELIMITERS
+        if value == "sqrt" and position < len(tokens) and tokens[position] == ("char", "["):
+            take()
+            if not group("]"):
+                return False
+        return all(argument() for _ in range(_ARGUMENTS.get(value, 0)))
+
+    def group(closing: str | None) -> bool:
+        lefts, sup, sub, primed = 0, False, False, False
+        while (token := take()) is not None:
+            kind, value = token
+            if kind == "char" and value == closing:
+                return lefts == 0
+            if kind == "char" and value in "^_'":
+                if value == "_" and sub or value != "_" and sup and not primed:
+                    return False
+                sub, sup, primed = sub or value == "_", sup or value != "_", value == "'"
+                if value != "'" and not argument():
+                    return False
+                continue
+            sup = sub = primed = False  # a new atom
+            if kind == "char" and value == "}" or kind == "char" and value == "{" and not group("}"):
+                return False
+            if kind == "cmd":
+                lefts += {"left": 1, "right": -1}.get(value, 0)
+                if lefts < 0 or not command(value):
+                    return False
+        return closing is None and lefts == 0
+
+    return group(None)
 
 
 def render_segments(pieces: list[tuple[str, str]], text: Callable[[str], str], math: Callable[[str], str]) -> str:

@@ -18,7 +18,9 @@ from typing import Any
 
 from lagsolve import ranges
 from lagsolve.errors import Issue, SpecError
+from lagsolve.files import read_input
 from lagsolve.problem.methods import DEFAULT as DEFAULT_METHOD
+from lagsolve.problem.yamlread import MAX_BYTES
 from lagsolve.sweep import INSTALL
 
 ProgressCallback = Callable[[int, int], None]  # (runs done, runs in all)
@@ -80,8 +82,8 @@ def _text(path_or_text: str | Path | bytes) -> tuple[str, str]:
     if isinstance(path_or_text, str) and "\n" in path_or_text:
         return path_or_text, "<text>"
     path = Path(path_or_text)
-    try:
-        return path.read_text(encoding="utf-8"), str(path)
+    try:  # at most one byte over the limit, which the reader then refuses: /dev/zero or a pipe never hangs here
+        return read_input(path, MAX_BYTES).decode("utf-8"), str(path)
     except (OSError, UnicodeDecodeError) as exc:
         raise SpecError([Issue(str(path), 0, "", f"cannot read the problem file: {exc}",
                                "give the path of a YAML problem file")]) from None

@@ -15,6 +15,7 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
+import sympy
 
 from lagsolve.errors import LagsolveError
 from lagsolve.mechanics.results import Derivation
@@ -31,8 +32,8 @@ Add = Callable[[str, float, float, str, str, float], None]
 
 
 def _points(derivation: Derivation) -> list[tuple[dict[str, Any], Any, list[Any]]]:
-    """(point, stable, ω² list) of each equilibrium in closed form; [] for a system the second route cannot
-    linearise (normal modes of a constrained system)."""
+    """(point, stable, ω² list) of each equilibrium in closed form (the point {} where it is numeric); [] for a
+    system the second route cannot linearise (normal modes of a constrained system)."""
     analysis = derivation.analysis
     if analysis is None:
         return []
@@ -42,9 +43,16 @@ def _points(derivation: Derivation) -> list[tuple[dict[str, Any], Any, list[Any]
                  [eq.frequency_squared] if eq.frequency_squared is not None else [])
                 for eq in potential.equilibria if eq.value is not None]
     if linear is not None and linear.modes and not derivation.problem.constraints:
-        return [({str(q): v for q, v in mode.point}, mode.stable, list(mode.squared_frequencies or []))
-                for mode in linear.modes]
+        # a point or ω² found numerically (a Float: at the file's simulation values, the triple pendulum's ω²) is
+        # no closed form at a variant's values: it is left out (it failed the second route, every candidate)
+        return [({} if any(_numeric(v) for _, v in mode.point) else {str(q): v for q, v in mode.point}, mode.stable,
+                 [w for w in mode.squared_frequencies or [] if not _numeric(w)]) for mode in linear.modes]
     return []
+
+
+def _numeric(value: Any) -> bool:
+    """A value found numerically at the file's values (it holds a Float; closed forms are exact)."""
+    return isinstance(value, sympy.Basic) and bool(value.atoms(sympy.Float))
 
 
 def _accelerations(system: NumericSystem, point: Mapping[str, float]) -> np.ndarray | None:
@@ -77,7 +85,7 @@ def equilibrium_answers(derivation: Derivation, system: NumericSystem, evaluate:
     ``add(name, closed form, second route, what, how checked, tolerance)``."""
     for i, (point, stable, squares) in enumerate(_points(derivation), start=1):
         values = {q: evaluate(v) for q, v in point.items()}
-        if not all(math.isfinite(v) for v in values.values()):
+        if not values or not all(math.isfinite(v) for v in values.values()):
             continue  # this equilibrium does not exist at the variant's values
         rest = _accelerations(system, values)
         if rest is None:

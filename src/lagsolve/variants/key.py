@@ -20,6 +20,7 @@ import numpy as np
 import sympy
 
 from lagsolve.mechanics.results import Derivation
+from lagsolve.numeric.compile import substitute_functions
 from lagsolve.numeric.integrate import EventKind, Trajectory
 from lagsolve.numeric.system import NumericSystem
 
@@ -80,10 +81,16 @@ class StateNumbers:
         numbers.update(zip(coordinates, map(float, q), strict=True))
         numbers.update({f"{c}_dot": float(v) for c, v in zip(coordinates, qd, strict=True)})
         self.map = {symbols[k]: sympy.Float(v, 17) for k, v in numbers.items() if k in symbols}
+        simulation = derivation.problem.simulation
+        given = simulation.functions if simulation is not None else {}
+        #: each declared function's concrete form (simulation.functions), as the simulation uses it
+        self.functions = {f.function: (given[f.name].arguments, given[f.name].expression)
+                          for f in derivation.problem.functions if f.name in given}
 
     def __call__(self, expr: Any) -> float:
         try:
-            value = complex(sympy.sympify(expr, strict=True).xreplace(self.signs).xreplace(self.map).evalf(17))
+            concrete = substitute_functions(sympy.sympify(expr, strict=True), self.functions)
+            value = complex(concrete.xreplace(self.signs).xreplace(self.map).evalf(17))
         except TypeError:  # a symbol without a value (a conserved momentum p_phi): no number
             return math.nan
         return value.real if abs(value.imag) <= 1e-12 * (1 + abs(value.real)) else math.nan
