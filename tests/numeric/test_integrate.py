@@ -244,3 +244,45 @@ def test_a_ball_on_a_vibrating_plate_leaves_it_where_newton_says() -> None:
     [event] = run.events
     assert event.kind == "release" and event.name == "plate"
     assert event.time == pytest.approx(math.asin(9.81 / (0.01 * 60.0**2)) / 60.0, rel=1e-9)
+
+
+STRING = """
+name: Stone whirled on a string in a vertical circle
+parameters: {m: mass, g: gravity, l: length}
+coordinates: {r: {positive: true}, theta: angle from the downward vertical}
+particles: {stone: {mass: m, position: [r*sin(theta), -r*cos(theta)]}}
+gravity: [0, -g]
+constraints: {string: {holonomic: l - r, unilateral: true}}
+simulation:
+  values: {m: 0.5, g: 9.81, l: 1.2}
+  initial: {r: 1.2, theta: 0, theta_dot: 5.0}
+  t_end: 1.5
+"""
+
+
+def test_a_string_that_comes_taut_again_after_going_slack_stops_the_run() -> None:
+    """Below the critical speed the string goes slack (tension m(l θ̇² + g cos θ) reaches 0) and the stone flies
+    free; where its parabola reaches r = l again the string would jerk taut, an impact lagsolve does not model.
+    The run stops there (it went on with the stone 2.3 m from the pivot on a 1.2 m string, exit 0)."""
+    from scipy.optimize import brentq
+
+    from lagsolve.render.trajectory import summary
+
+    trajectory = run(STRING, 1.5, after_release="continue")
+    release, back = trajectory.events
+    assert (release.kind, release.action, back.kind, back.name, back.action) == (
+        "release", "released", "contact", "string", "stopped")
+    g, length, theta, rate = 9.81, 1.2, release.state["theta"], release.state["theta_dot"]
+    assert length * rate**2 + g * math.cos(theta) == pytest.approx(0.0, abs=1e-7)  # the tension is zero there
+    x0, y0 = length * math.sin(theta), -length * math.cos(theta)
+    vx, vy = length * math.cos(theta) * rate, length * math.sin(theta) * rate
+
+    def gap(s: float) -> float:  # r² − l² along the free flight after the release
+        return (x0 + vx * s) ** 2 + (y0 + vy * s - g * s * s / 2) ** 2 - length * length
+
+    flight = brentq(gap, 0.05, 1.0)
+    assert back.time == pytest.approx(release.time + flight, abs=1e-8)
+    assert trajectory.t[-1] == pytest.approx(back.time)
+    assert np.all(trajectory.q[:, 0] <= length + 1e-8)
+    assert "reached again at t = " in summary(trajectory, "stone", timing=False)
+

@@ -84,6 +84,9 @@ def summary(trajectory: Trajectory, name: str, timing: bool = True) -> str:
         elif event.kind == "release":
             verb = "stopped there" if event.action == "stopped" else "continued without it"
             lines.append(f"  event: constraint {event.name!r} released at t = {event.time:.10g} ({where}); {verb}")
+        elif event.kind == "contact":
+            lines.append(f"  event: constraint {event.name!r} reached again at t = {event.time:.10g} ({where}): the "
+                         "motion comes back to it, an impact that lagsolve does not model; stopped there")
         else:
             verb = "sticks" if event.kind == "stick" else "slips again"
             lines.append(f"  event: contact {event.name!r} {verb} at t = {event.time:.10g} ({where})")
