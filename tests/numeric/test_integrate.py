@@ -286,3 +286,31 @@ def test_a_string_that_comes_taut_again_after_going_slack_stops_the_run() -> Non
     assert np.all(trajectory.q[:, 0] <= length + 1e-8)
     assert "reached again at t = " in summary(trajectory, "stone", timing=False)
 
+
+LAUNCH = """
+name: Two blocks launched by a spring
+parameters: {mA: mass, mB: mass, k: stiffness, L0: natural length, w: width}
+coordinates: [xA, xB]
+particles: {A: {mass: mA, position: [xA, 0]}, B: {mass: mB, position: [xB, 0]}}
+potential: k*(xA - L0)**2/2
+constraints: {touch: {holonomic: xB - xA - w, on: [B, A], at: [xB, 0], unilateral: true}}
+simulation:
+  values: {mA: 1.0, mB: 3.0, k: 100.0, L0: 1.0, w: 0.1}
+  initial: {xA: 0.8, xA_dot: 0}
+  t_end: 1.0
+"""
+
+
+def test_conserved_quantities_are_measured_up_to_a_release_the_run_went_on_from() -> None:
+    """The blocks separate at t = (π/2)√((mA + mB)/k); after it the energy of the joined blocks, (mA + mB) ẋA²/2
+    + V, is no longer the energy, which stays 2 J. The summary said 'energy conserved: relative drift 0.75'."""
+    from lagsolve.render.trajectory import summary
+
+    trajectory = run(LAUNCH, 1.0, after_release="continue")
+    [release] = trajectory.events
+    assert release.time == pytest.approx(math.pi / 2 * math.sqrt(4.0 / 100.0), rel=1e-9)
+    assert trajectory.stats["conserved_until"] == release.time
+    assert trajectory.stats["conserved_drift"]["energy"] < 1e-8
+    assert np.allclose(trajectory.energy, 2.0, rtol=1e-8)  # the whole system's energy, throughout
+    text = summary(trajectory, "launch", timing=False)
+    assert f"relative drift {trajectory.stats['conserved_drift']['energy']:.3g} (up to the release at t = " in text

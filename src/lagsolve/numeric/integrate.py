@@ -123,6 +123,9 @@ class RunStats(Mapping[str, Any]):
     projected: bool
     energy_drift: float = math.nan
     conserved_drift: Mapping[str, float] = field(default_factory=dict)
+    #: the time of a release the run went on from (NaN without one): the drifts are measured up to it, since the
+    #: conserved quantities are those of the system with every constraint held
+    conserved_until: float = math.nan
 
     def __getitem__(self, key: str) -> Any:
         if key not in _RUN_STATS:
@@ -705,8 +708,10 @@ def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: R
             conserved[i] = system.conserved(ti, qi, qdi, p)
         if positions.shape[1]:
             positions[i] = system.positions(ti, qi, qdi, p)
-    stats = dataclasses.replace(stats, energy_drift=_relative_drift(energy),
-                                conserved_drift={name: _relative_drift(conserved[:, c])
+    until = next((e.time for e in events if e.kind == EventKind.RELEASE and e.action == "released"), math.nan)
+    held = slice(None) if math.isnan(until) else t <= until
+    stats = dataclasses.replace(stats, energy_drift=_relative_drift(energy[held]), conserved_until=until,
+                                conserved_drift={name: _relative_drift(conserved[held, c])
                                                  for c, name in enumerate(system.conserved_names)})
     return Trajectory(t, system.coordinates, system.constraints, q, qd, lam, mags, system.contact_names, normals,
                       stuck, energy, {name: conserved[:, c] for c, name in enumerate(system.conserved_names)},
