@@ -244,3 +244,73 @@ def test_a_ball_on_a_vibrating_plate_leaves_it_where_newton_says() -> None:
     [event] = run.events
     assert event.kind == "release" and event.name == "plate"
     assert event.time == pytest.approx(math.asin(9.81 / (0.01 * 60.0**2)) / 60.0, rel=1e-9)
+
+
+STRING = """
+name: Stone whirled on a string in a vertical circle
+parameters: {m: mass, g: gravity, l: length}
+coordinates: {r: {positive: true}, theta: angle from the downward vertical}
+particles: {stone: {mass: m, position: [r*sin(theta), -r*cos(theta)]}}
+gravity: [0, -g]
+constraints: {string: {holonomic: l - r, unilateral: true}}
+simulation:
+  values: {m: 0.5, g: 9.81, l: 1.2}
+  initial: {r: 1.2, theta: 0, theta_dot: 5.0}
+  t_end: 1.5
+"""
+
+
+def test_a_string_that_comes_taut_again_after_going_slack_stops_the_run() -> None:
+    """Below the critical speed the string goes slack (tension m(l θ̇² + g cos θ) reaches 0) and the stone flies
+    free; where its parabola reaches r = l again the string would jerk taut, an impact lagsolve does not model.
+    The run stops there (it went on with the stone 2.3 m from the pivot on a 1.2 m string, exit 0)."""
+    from scipy.optimize import brentq
+
+    from lagsolve.render.trajectory import summary
+
+    trajectory = run(STRING, 1.5, after_release="continue")
+    release, back = trajectory.events
+    assert (release.kind, release.action, back.kind, back.name, back.action) == (
+        "release", "released", "contact", "string", "stopped")
+    g, length, theta, rate = 9.81, 1.2, release.state["theta"], release.state["theta_dot"]
+    assert length * rate**2 + g * math.cos(theta) == pytest.approx(0.0, abs=1e-7)  # the tension is zero there
+    x0, y0 = length * math.sin(theta), -length * math.cos(theta)
+    vx, vy = length * math.cos(theta) * rate, length * math.sin(theta) * rate
+
+    def gap(s: float) -> float:  # r² − l² along the free flight after the release
+        return (x0 + vx * s) ** 2 + (y0 + vy * s - g * s * s / 2) ** 2 - length * length
+
+    flight = brentq(gap, 0.05, 1.0)
+    assert back.time == pytest.approx(release.time + flight, abs=1e-8)
+    assert trajectory.t[-1] == pytest.approx(back.time)
+    assert np.all(trajectory.q[:, 0] <= length + 1e-8)
+    assert "reached again at t = " in summary(trajectory, "stone", timing=False)
+
+
+LAUNCH = """
+name: Two blocks launched by a spring
+parameters: {mA: mass, mB: mass, k: stiffness, L0: natural length, w: width}
+coordinates: [xA, xB]
+particles: {A: {mass: mA, position: [xA, 0]}, B: {mass: mB, position: [xB, 0]}}
+potential: k*(xA - L0)**2/2
+constraints: {touch: {holonomic: xB - xA - w, on: [B, A], at: [xB, 0], unilateral: true}}
+simulation:
+  values: {mA: 1.0, mB: 3.0, k: 100.0, L0: 1.0, w: 0.1}
+  initial: {xA: 0.8, xA_dot: 0}
+  t_end: 1.0
+"""
+
+
+def test_conserved_quantities_are_measured_up_to_a_release_the_run_went_on_from() -> None:
+    """The blocks separate at t = (π/2)√((mA + mB)/k); after it the energy of the joined blocks, (mA + mB) ẋA²/2
+    + V, is no longer the energy, which stays 2 J. The summary said 'energy conserved: relative drift 0.75'."""
+    from lagsolve.render.trajectory import summary
+
+    trajectory = run(LAUNCH, 1.0, after_release="continue")
+    [release] = trajectory.events
+    assert release.time == pytest.approx(math.pi / 2 * math.sqrt(4.0 / 100.0), rel=1e-9)
+    assert trajectory.stats["conserved_until"] == release.time
+    assert trajectory.stats["conserved_drift"]["energy"] < 1e-8
+    assert np.allclose(trajectory.energy, 2.0, rtol=1e-8)  # the whole system's energy, throughout
+    text = summary(trajectory, "launch", timing=False)
+    assert f"relative drift {trajectory.stats['conserved_drift']['energy']:.3g} (up to the release at t = " in text

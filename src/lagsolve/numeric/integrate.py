@@ -13,6 +13,9 @@ step at a time (the same solvers ``solve_ivp`` uses), which allows
 
   - *release*: a unilateral constraint holds while its multiplier is ≥ 0; where it
     reaches zero the run stops or continues without it;
+  - *contact*: after a release, the motion comes back to the constraint (ψ < 0, the other side
+    of a surface, a string longer than itself): an impact, which is not modelled, so the run
+    stops there;
   - *stick*: a friction contact's sliding rate σ = w·q̇ (the relative velocity of the
     contact point along its tangent) reaches zero and the tangential force needed to
     hold it, |Φ|, is within μ_s N: the contact sticks (an extra row σ = 0 replaces
@@ -49,6 +52,9 @@ HOLD_TOLERANCE = 1e-12  # relative slack in |needed force| <= mu_s N when decidi
 WATCH_POINTS = 250
 #: the residual of a holonomic constraint (of scale 1 or more) below which a state is not projected onto it
 PROJECTED = 1e-15
+#: how far (relative to its scale) a released unilateral constraint's ψ must go below zero to count as reached
+#: again: at the release ψ leaves zero with its first two rates zero, and rounding must not count as a return
+RETURN_DEPTH = 1e-9
 
 
 def projection_floors(scales: np.ndarray) -> np.ndarray:
@@ -61,6 +67,7 @@ class EventKind(TextEnum):
     """What changed the equations during a run (:class:`Event` ``kind``)."""
 
     RELEASE = "release"
+    CONTACT = "contact"  # a released unilateral constraint is reached again: the run stops there
     STICK = "stick"
     SLIP = "slip"
 
@@ -76,7 +83,8 @@ class AfterRelease(TextEnum):
 class Event:
     """Something that changed the equations at ``time``.
 
-    ``kind`` is "release" (a unilateral constraint lost contact), "stick" or "slip"
+    ``kind`` is "release" (a unilateral constraint lost contact), "contact" (after a release the
+    motion came back to it: an impact, not modelled, so the run stopped), "stick" or "slip"
     (a friction contact); ``name`` the constraint or contact; ``action`` "stopped",
     "released", "stuck" or "slipped".
     """
@@ -115,6 +123,9 @@ class RunStats(Mapping[str, Any]):
     projected: bool
     energy_drift: float = math.nan
     conserved_drift: Mapping[str, float] = field(default_factory=dict)
+    #: the time of a release the run went on from (NaN without one): the drifts are measured up to it, since the
+    #: conserved quantities are those of the system with every constraint held
+    conserved_until: float = math.nan
 
     def __getitem__(self, key: str) -> Any:
         if key not in _RUN_STATS:
@@ -182,6 +193,8 @@ class _Run:
     #: per holonomic constraint, the residual below which a state is not projected: PROJECTED, scaled down for a
     #: constraint whose scale (NumericSystem.surface_scales, at the start) is below 1 (a problem in micrometres)
     floor: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: per released unilateral holonomic constraint j: how far below zero its ψ must go to count as reached again
+    returning: dict[int, float] = field(default_factory=dict)
 
     def solve(self, t: float, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         n = self.system.n
@@ -402,7 +415,7 @@ def _let_go(run: _Run, record: _Record, t0: float, y0: np.ndarray, after_release
     if stop:
         record.rows.append(_sample(run, t0, y0))
         return True
-    _release(run, pulling[0])
+    _release(run, pulling[0], t0, y0)
     return False
 
 
@@ -510,10 +523,15 @@ def _whole(run: _Run, dense: Callable[[float], np.ndarray]) -> Callable[[float],
     return lambda tau: run.full(tau, dense(tau))
 
 
-def _release(run: _Run, j: int) -> None:
-    """Constraint ``j`` no longer holds; minimal coordinates that used it no longer describe the motion."""
+def _release(run: _Run, j: int, t: float, y: np.ndarray) -> None:
+    """Constraint ``j`` no longer holds at ``(t, y)``; minimal coordinates that used it no longer describe the
+    motion. A holonomic one is watched from then on for the motion coming back to it."""
     run.active[j] = False
     run.chart = None
+    system = run.system
+    if j in system.holonomic:
+        n = system.n
+        run.returning[j] = RETURN_DEPTH * system.surface_scales(t, y[:n], y[n:])[system.holonomic.index(j)]
 
 
 def _start_contacts(run: _Run, t: float, y: np.ndarray, events: list[Event]) -> None:
@@ -557,6 +575,11 @@ def _watch(run: _Run, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
         for j in system.unilateral:
             if run.active[j]:
                 values[(EventKind.RELEASE, j)] = float(lam[j])
+    if run.returning:
+        n = system.n
+        psi = system.position_residual(t, y[:n], y[n:], system.parameters)
+        for j, depth in run.returning.items():
+            values[(EventKind.CONTACT, j)] = float(psi[system.holonomic.index(j)]) + depth
     for c, sticks in enumerate(system.sticks):
         if not sticks:
             continue
@@ -625,8 +648,11 @@ def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_rele
         events.append(Event(float(t), EventKind.RELEASE, system.constraints[index], _state(system, y),
                             "stopped" if stop else "released"))
         if not stop:
-            _release(run, index)
+            _release(run, index, t, y)
         return t, y, stop
+    if kind == EventKind.CONTACT:
+        events.append(Event(float(t), EventKind.CONTACT, system.constraints[index], _state(system, y), "stopped"))
+        return t, y, True
     if kind == EventKind.STICK:
         run.stuck[index] = True
         margin, needed = run.holding_margin(t, y, index)
@@ -684,8 +710,10 @@ def _trajectory(system: NumericSystem, rows: list, events: list[Event], stats: R
             conserved[i] = system.conserved(ti, qi, qdi, p)
         if positions.shape[1]:
             positions[i] = system.positions(ti, qi, qdi, p)
-    stats = dataclasses.replace(stats, energy_drift=_relative_drift(energy),
-                                conserved_drift={name: _relative_drift(conserved[:, c])
+    until = next((e.time for e in events if e.kind == EventKind.RELEASE and e.action == "released"), math.nan)
+    held = slice(None) if math.isnan(until) else t <= until
+    stats = dataclasses.replace(stats, energy_drift=_relative_drift(energy[held]), conserved_until=until,
+                                conserved_drift={name: _relative_drift(conserved[held, c])
                                                  for c, name in enumerate(system.conserved_names)})
     return Trajectory(t, system.coordinates, system.constraints, q, qd, lam, mags, system.contact_names, normals,
                       stuck, energy, {name: conserved[:, c] for c, name in enumerate(system.conserved_names)},

@@ -49,9 +49,10 @@ def _time_label(units: Units) -> str:
 
 
 def _events(ax: Any, trajectory: Trajectory) -> None:
-    """Release events as dotted lines; sticking phases of friction contacts shaded."""
+    """Release events (and a return to a released constraint) as dotted lines; sticking phases of friction
+    contacts shaded."""
     for event in trajectory.events:
-        if event.kind == EventKind.RELEASE:
+        if event.kind in (EventKind.RELEASE, EventKind.CONTACT):
             ax.axvline(event.time, color="0.4", linestyle=":", linewidth=1)
     if trajectory.stuck.size and trajectory.stuck.any():
         stuck = trajectory.stuck.any(axis=1)
@@ -228,6 +229,22 @@ def forces_figure(trajectory: Trajectory, title: str, units: Units = None) -> An
     return fig
 
 
+def _drift_panel(a: Any, trajectory: Trajectory, series: Mapping[str, np.ndarray], notes: list[str]) -> None:
+    """The relative drift of each conserved quantity, up to a release the run went on from: after it the
+    quantities of the system with the constraint held need not be conserved, and are not drawn."""
+    until = float(trajectory.stats.get("conserved_until", np.nan))
+    held = trajectory.t <= until if np.isfinite(until) else np.ones(len(trajectory.t), dtype=bool)
+    for label, values in series.items():
+        scale = abs(values[0]) if abs(values[0]) > 1e-300 else 1.0
+        a.semilogy(trajectory.t, np.where(held, np.maximum(np.abs(values - values[0]) / scale, 1e-17), np.nan),
+                   linewidth=1, label=label)
+    if np.isfinite(until):
+        notes.append(f"drifts drawn up to the release at t = {until:.6g}: after it the constraint no longer holds")
+    a.legend(loc="best", fontsize="small")
+    a.set_ylabel("relative drift")
+    a.grid(alpha=0.3, which="both")
+
+
 def conservation_figure(trajectory: Trajectory, title: str, units: Units = None) -> Any:
     """Relative drift of each conserved quantity (log scale); where the energy is not conserved, the
     change of the Jacobi integral h − h₀ (the energy dissipated, or fed in by a drive); and the
@@ -247,15 +264,9 @@ def conservation_figure(trajectory: Trajectory, title: str, units: Units = None)
     what = "conservation and constraints" if trajectory.constraints else "conservation"
     fig, axes = figure(f"{title}: {what}", len(panels), 1, sharex=True)
     ax = dict(zip(panels, (row[0] for row in axes), strict=True))
-    notes = []
+    notes: list[str] = []
     if "drift" in ax:
-        for label, values in series.items():
-            scale = abs(values[0]) if abs(values[0]) > 1e-300 else 1.0
-            ax["drift"].semilogy(trajectory.t, np.maximum(np.abs(values - values[0]) / scale, 1e-17), linewidth=1,
-                                 label=label)
-        ax["drift"].legend(loc="best", fontsize="small")
-        ax["drift"].set_ylabel("relative drift")
-        ax["drift"].grid(alpha=0.3, which="both")
+        _drift_panel(ax["drift"], trajectory, series, notes)
     if "energy" in ax:
         h = trajectory.energy
         a = ax["energy"]

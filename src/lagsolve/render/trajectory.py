@@ -11,6 +11,7 @@ unit, ``x [m]``; a column whose unit is not known keeps its bare name.
 from __future__ import annotations
 
 import io
+import math
 from collections.abc import Mapping
 from typing import Any
 
@@ -84,6 +85,9 @@ def summary(trajectory: Trajectory, name: str, timing: bool = True) -> str:
         elif event.kind == "release":
             verb = "stopped there" if event.action == "stopped" else "continued without it"
             lines.append(f"  event: constraint {event.name!r} released at t = {event.time:.10g} ({where}); {verb}")
+        elif event.kind == "contact":
+            lines.append(f"  event: constraint {event.name!r} reached again at t = {event.time:.10g} ({where}): the "
+                         "motion comes back to it, an impact that lagsolve does not model; stopped there")
         else:
             verb = "sticks" if event.kind == "stick" else "slips again"
             lines.append(f"  event: contact {event.name!r} {verb} at t = {event.time:.10g} ({where})")
@@ -95,14 +99,17 @@ def summary(trajectory: Trajectory, name: str, timing: bool = True) -> str:
         projected = stats.get("projected", True)
         lines.append(f"  largest constraint residual{' (before projection)' if projected else ''}: "
                      f"{stats['max_residual']:.3g}")
+    until = stats.get("conserved_until", math.nan)
+    # after a release the quantities of the system with the constraint held need not be conserved
+    upto = "" if math.isnan(until) else f" (up to the release at t = {until:.10g})"
     if stats.get("energy_conserved"):
         drift = stats.get("conserved_drift", {}).get("energy", stats["energy_drift"])
-        lines.append(f"  energy (Jacobi integral) conserved: relative drift {drift:.3g}")
+        lines.append(f"  energy (Jacobi integral) conserved: relative drift {drift:.3g}{upto}")
     else:
         lines.append(f"  energy not conserved: {stats.get('energy_note', '')}")
     for quantity, drift in stats.get("conserved_drift", {}).items():
         if quantity != "energy" or not stats.get("energy_conserved"):
-            lines.append(f"  {quantity} conserved: relative drift {drift:.3g}")
+            lines.append(f"  {quantity} conserved: relative drift {drift:.3g}{upto}")
     return "\n".join(lines) + "\n"
 
 
