@@ -73,7 +73,28 @@ def complete_initial(system: NumericSystem, given: Mapping[str, float], source: 
     if not (np.all(np.isfinite(q)) and np.all(np.isfinite(qd))):
         raise SpecError([Issue(source, line, field, "the initial state is not finite",
                                   "give values at which every expression of the problem can be evaluated")])
+    resting = at_rest(system, t0, q, qd)
+    if resting:
+        raise SpecError([Issue(source, line, field, f"contact {resting[0]!r} does not slide at the start (its sliding "
+                               "speed is 0), and friction that acts in a plane, -mu N v/|v|, is modelled only while "
+                               "the contact slides", "give it a sliding velocity, or let it slide along one line "
+                               "(one coordinate under 'sliding:'), where it can stick")])
     return q, qd
+
+
+#: a contact that slides in a plane is at rest where its sliding speed is below this fraction of the state's
+#: fastest velocity (rounding: the speed of a contact at rest computes as 1e-17 and the like)
+AT_REST = 1e-12
+
+
+def at_rest(system: NumericSystem, t: float, q: np.ndarray, qd: np.ndarray) -> list[str]:
+    """The contacts that slide in a plane and are at rest at the state (their friction is undefined there)."""
+    if all(system.sticks):
+        return []
+    speeds = system.speeds(t, q, qd, system.parameters)
+    planar = [name for name, sticks in zip(system.contact_names, system.sticks, strict=True) if not sticks]
+    scale = float(np.max(np.abs(qd), initial=0.0))
+    return [name for name, speed in zip(planar, speeds, strict=True) if not speed > AT_REST * scale]
 
 
 #: starting values tried, in order, for the coordinates the user left free (0 first; below before above)

@@ -57,6 +57,10 @@ PROJECTED = 1e-15
 RETURN_DEPTH = 1e-9
 
 
+#: a contact that slides in a plane counts as at rest once its speed is this fraction of the one at the start
+REST = 1e-9
+
+
 def projection_floors(scales: np.ndarray) -> np.ndarray:
     """The residual below which a state is not projected onto each constraint of the given scales
     (:func:`~lagsolve.numeric.system.surface_scales`): :data:`PROJECTED`, scaled down for a scale below 1."""
@@ -70,6 +74,7 @@ class EventKind(TextEnum):
     CONTACT = "contact"  # a released unilateral constraint is reached again: the run stops there
     STICK = "stick"
     SLIP = "slip"
+    REST = "rest"  # a contact that slides in a plane comes to rest: its friction is not modelled there, the run stops
 
 
 class AfterRelease(TextEnum):
@@ -85,7 +90,8 @@ class Event:
 
     ``kind`` is "release" (a unilateral constraint lost contact), "contact" (after a release the
     motion came back to it: an impact, not modelled, so the run stopped), "stick" or "slip"
-    (a friction contact); ``name`` the constraint or contact; ``action`` "stopped",
+    (a friction contact), "rest" (a contact that slides in a plane came to rest, where its friction is
+    not modelled: the run stopped); ``name`` the constraint or contact; ``action`` "stopped",
     "released", "stuck" or "slipped".
     """
 
@@ -195,6 +201,8 @@ class _Run:
     floor: np.ndarray = field(default_factory=lambda: np.zeros(0))
     #: per released unilateral holonomic constraint j: how far below zero its ψ must go to count as reached again
     returning: dict[int, float] = field(default_factory=dict)
+    #: per contact that slides in a plane: the speed (a fraction REST of the one at the start) that counts as at rest
+    resting: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def solve(self, t: float, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         n = self.system.n
@@ -296,7 +304,8 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         raise ValueError("t_end must be a positive number")
     m, k = system.m, len(system.contacts)
     run = _Run(system, np.ones(m, dtype=bool), np.zeros(k, dtype=bool), np.zeros(k), project,
-               floor=projection_floors(system.surface_scales(0.0, q0, qd0)))
+               floor=projection_floors(system.surface_scales(0.0, q0, qd0)),
+               resting=REST * system.speeds(0.0, q0, qd0, system.parameters))
     coordinates = _coordinates(run, q0, qd0, minimal)
     options = _Options(method, t_end, rtol, atol, max_step, project, after_release, progress)
     record = _Record(np.linspace(0.0, t_end, samples), t_end)
@@ -580,6 +589,9 @@ def _watch(run: _Run, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
         psi = system.position_residual(t, y[:n], y[n:], system.parameters)
         for j, depth in run.returning.items():
             values[(EventKind.CONTACT, j)] = float(psi[system.holonomic.index(j)]) + depth
+    if run.resting.size:
+        for i, speed in enumerate(system.speeds(t, y[:system.n], y[system.n:], system.parameters)):
+            values[(EventKind.REST, i)] = float(speed - run.resting[i])
     for c, sticks in enumerate(system.sticks):
         if not sticks:
             continue
@@ -650,8 +662,10 @@ def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_rele
         if not stop:
             _release(run, index, t, y)
         return t, y, stop
-    if kind == EventKind.CONTACT:
-        events.append(Event(float(t), EventKind.CONTACT, system.constraints[index], _state(system, y), "stopped"))
+    if kind in (EventKind.CONTACT, EventKind.REST):
+        planar = [c for c, sticks in zip(system.contact_names, system.sticks, strict=True) if not sticks]
+        name = system.constraints[index] if kind == EventKind.CONTACT else planar[index]
+        events.append(Event(float(t), kind, name, _state(system, y), "stopped"))
         return t, y, True
     if kind == EventKind.STICK:
         run.stuck[index] = True

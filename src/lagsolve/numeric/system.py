@@ -81,6 +81,9 @@ class NumericSystem:
     position_jacobian: StateFunction
     velocity_jacobian: StateFunction
     velocity_offset: StateFunction
+    # per contact that slides in a plane (not ``sticks``), in contact order: its sliding speed |v|; the friction
+    # -mu N v/|v| holds only while it is not 0 (:mod:`lagsolve.numeric.integrate` stops the run where it comes to rest)
+    speeds: StateFunction
     energy: StateFunction
     positions: StateFunction
     particles: tuple[tuple[str, int], ...]
@@ -391,6 +394,9 @@ def _expressions(form: MatrixForm, conserved: Mapping[str, Any]) -> tuple[list[A
         "positions": [r for p in problem.particles for r in p.position],
         "conserved": list(conserved.values()),
         "contact_values": [value for f in form.frictions for value in (f.static, f.coefficient)], "sliding": sliding,
+        # per contact that slides in a plane (kinetic friction only, -mu N v/|v|): its sliding speed |v|
+        "speeds": [sympy.sqrt(sum((v**2 for v in f.sliding_velocity), sympy.Integer(0)))
+                   for f in form.frictions if f.rate is None],
     }
 
 
@@ -458,6 +464,7 @@ def _compiled(form: MatrixForm, prepared: dict[str, list[Any]], values: dict[str
         position_jacobian=compile_group("psi_jacobian"),
         velocity_jacobian=compile_group("velocity_jacobian"),
         velocity_offset=compile_group("offsets"),
+        speeds=compile_group("speeds"),
         energy=compile_group("energy"),
         positions=compile_group("positions"),
         particles=tuple((p.name, len(p.position)) for p in problem.particles),

@@ -49,10 +49,10 @@ def _time_label(units: Units) -> str:
 
 
 def _events(ax: Any, trajectory: Trajectory) -> None:
-    """Release events (and a return to a released constraint) as dotted lines; sticking phases of friction
-    contacts shaded."""
+    """Release events (and a return to a released constraint, or a contact that slides in a plane coming to rest)
+    as dotted lines; sticking phases of friction contacts shaded."""
     for event in trajectory.events:
-        if event.kind in (EventKind.RELEASE, EventKind.CONTACT):
+        if event.kind in (EventKind.RELEASE, EventKind.CONTACT, EventKind.REST):
             ax.axvline(event.time, color="0.4", linestyle=":", linewidth=1)
     if trajectory.stuck.size and trajectory.stuck.any():
         stuck = trajectory.stuck.any(axis=1)

@@ -88,6 +88,9 @@ def summary(trajectory: Trajectory, name: str, timing: bool = True) -> str:
         elif event.kind == "contact":
             lines.append(f"  event: constraint {event.name!r} reached again at t = {event.time:.10g} ({where}): the "
                          "motion comes back to it, an impact that lagsolve does not model; stopped there")
+        elif event.kind == "rest":
+            lines.append(f"  event: contact {event.name!r} comes to rest at t = {event.time:.10g} ({where}): friction "
+                         "that acts in a plane is modelled only while the contact slides; stopped there")
         else:
             verb = "sticks" if event.kind == "stick" else "slips again"
             lines.append(f"  event: contact {event.name!r} {verb} at t = {event.time:.10g} ({where})")
