@@ -71,7 +71,7 @@ def test_bad_key_exits_2(tmp_path: Path) -> None:
 
 
 def test_two_submissions_for_one_gradescope_folder_are_refused(tmp_path: Path) -> None:
-    """A second file that declares `student: ada` (or an id that gives the same folder) would replace ada's
+    """A second file that declares `student: ada` would replace ada's
     results.json with its own: exit 2, naming both, and no folder written."""
     copy = tmp_path / "mallory.yaml"
     copy.write_text("student: ada\nsteps: {kinetic: '0'}\n")
@@ -80,6 +80,25 @@ def test_two_submissions_for_one_gradescope_folder_are_refused(tmp_path: Path) -
     assert result.exit_code == 2
     assert "mallory.yaml: student: the student id 'ada' gives the results folder 'ada'" in result.stderr
     assert "ada.yaml" in result.stderr and not (tmp_path / "out").exists()
+
+
+def test_student_ids_a_path_cannot_hold_get_folders_of_their_own(tmp_path: Path) -> None:
+    """Ids in another script (王小明, 李雷) all gave the folder 'problem', and a/b and c/b the folder 'b', so a class
+    was refused as a clash: each now gets its safe letters and a short hash of the id; a plain id keeps its name."""
+    from lagsolve.app.grading import student_folder
+
+    files = []
+    for k, student in enumerate(("王小明", "李雷", "a/b", "c/b")):
+        path = tmp_path / f"s{k}.yaml"
+        path.write_text(f"student: '{student}'\nsteps: {{kinetic: '0'}}\n", encoding="utf-8")
+        files.append(str(path))
+    result = CliRunner().invoke(main, ["grade", KEY, EXAMPLES[0], *files, "--format", "gradescope",
+                                       "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.stderr
+    folders = sorted(p.parent.name for p in (tmp_path / "out").glob("*/results.json"))
+    assert len(folders) == 5 and "ada" in folders
+    assert {student_folder(s) for s in ("王小明", "李雷", "a/b", "c/b")} == set(folders) - {"ada"}
+    assert all(f.startswith(("student_", "a_b_", "c_b_")) for f in folders if f != "ada")
 
 
 def test_a_step_that_restates_the_multiplier_is_unreadable(tmp_path: Path) -> None:

@@ -52,6 +52,25 @@ def grade_files(key: str | Path, submissions: Sequence[str | Path], *, budget: f
     return ClassGrades(problem.name, str(key), tuple(grades))
 
 
+def student_folder(student: str) -> str:
+    """The folder name of a student id: the id itself where it is a safe name (letters, digits, ``_``, ``-``,
+    ``.`` inside), else its safe letters and a short hash of the whole id, so that ids that differ only in what a
+    path cannot hold stay apart (``王小明`` and ``李雷`` gave the one folder ``problem``, ``a/b`` and ``c/b`` ``b``).
+
+    >>> student_folder("ada"), student_folder("a/b") != student_folder("c/b")
+    ('ada', True)
+    >>> student_folder("王小明")
+    'student_acf979cc'
+    """
+    import hashlib
+    import re
+
+    if re.fullmatch(r"[A-Za-z0-9_-]+(\.[A-Za-z0-9_-]+)*", student):
+        return student
+    safe = re.sub(r"[^A-Za-z0-9_-]+", "_", student).strip("_") or "student"
+    return f"{safe}_{hashlib.sha256(student.encode('utf-8')).hexdigest()[:8]}"
+
+
 def gradescope_folders(grades: Sequence[SubmissionGrade]) -> dict[str, SubmissionGrade]:
     """Each submission's folder of ``lagsolve grade --format gradescope -o DIR`` (its student id made safe for a
     path), by folder.
@@ -63,12 +82,11 @@ def gradescope_folders(grades: Sequence[SubmissionGrade]) -> dict[str, Submissio
         ``c/b`` that give the same folder name): one student's results would silently replace another's.
     """
     from lagsolve.errors import Issue
-    from lagsolve.files import safe_slug
 
     folders: dict[str, SubmissionGrade] = {}
     issues = []
     for g in grades:
-        folder = safe_slug(g.student)
+        folder = student_folder(g.student)
         if folder in folders:
             first = folders[folder]
             issues.append(Issue(g.source, 0, "student", f"the student id {g.student!r} gives the results folder "
