@@ -86,6 +86,11 @@ def _fail(error: LagsolveError) -> int:
     return 1
 
 
+def _warn(source: str, warning: str) -> None:
+    """A warning about the file ``source`` on stderr, prefixed with the file unless it names it (with its line)."""
+    _note(f"warning: {warning}" if warning.startswith(f"{source}:") else f"warning: {source}: {warning}", err=True)
+
+
 def _note(text: str, *, err: bool = False, level: int = 1, nl: bool = True) -> None:
     """Show ``text`` unless --quiet (level 1), or only with --verbose (level 2)."""
     context = click.get_current_context(silent=True)
@@ -185,7 +190,7 @@ def check(files: tuple[Path, ...], timeout: float, fmt: str) -> None:
             continue
         results.append(checked)
         for warning in checked.warnings:
-            _note(f"warning: {checked.source}: {warning}", err=True)
+            _warn(checked.source, warning)
         if fmt == "text":
             click.echo(checked.table, nl=False)
         if not checked.passed:
@@ -240,7 +245,7 @@ def derive(files: tuple[Path, ...], output: Path | None, fmts: tuple[str, ...], 
             status = max(status, _fail(error))
             continue
         for warning in reports.warnings:
-            _note(f"warning: {reports.source}: {warning}", err=True)
+            _warn(reports.source, warning)
         status = max(status, _deliver(reports, plan, output, golden, update_golden, texts))
     if plan.stream:
         from lagsolve.render.machine import json_stream
@@ -457,7 +462,7 @@ def simulate(files: tuple[Path, ...], t_end: float | None, values: tuple[str, ..
         to_stdout = fmt == "csv" and output is None
         _note(result.summary, nl=False, err=to_stdout)
         for warning in result.warnings:
-            _note(f"warning: {result.source}: {warning}", err=True)
+            _warn(result.source, warning)
         written = []
         try:
             for kind, data in result.tables.items():

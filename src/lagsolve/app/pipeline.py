@@ -142,14 +142,18 @@ def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
 
 
 def _unit_warnings(problem: Problem) -> tuple[str, ...]:
-    """A file that declares some units but not all: the names without one (their dimensions go unchecked)."""
+    """A file that declares some units but not all: the names without one (their dimensions go unchecked); and
+    a value of more than a whole turn on an angle (likely degrees: :func:`~lagsolve.mechanics.units.angles.
+    angle_warnings`)."""
+    from lagsolve.mechanics.units.angles import angle_warnings
     from lagsolve.mechanics.units.result_units import missing_units
 
     missing = missing_units(problem)
     if not missing:
-        return ()
+        return angle_warnings(problem)
     return (f"units: no unit declared for {', '.join(missing)}, so dimensions involving "
-            f"{'it' if len(missing) == 1 else 'them'} are not checked; add 'unit:' to each (1 for a pure number)",)
+            f"{'it' if len(missing) == 1 else 'them'} are not checked; add 'unit:' to each (1 for a pure number)",
+            *angle_warnings(problem))
 
 
 def _potential_figure(derivation: Derivation) -> dict | None:
