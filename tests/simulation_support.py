@@ -50,6 +50,23 @@ simulation:
 """
 
 
+PUCK = """
+name: Puck sliding to rest on a rough floor
+parameters: {m: mass, g: gravity, mu: kinetic coefficient}
+coordinates: [x, y, z]
+particles: {puck: {mass: m, position: [x, y, z]}}
+gravity: [0, 0, -g]
+constraints:
+  floor: {holonomic: z, on: puck}
+friction:
+  rub: {coefficient: mu, normal: [floor]}
+simulation:
+  values: {m: 0.2, g: 9.81, mu: 0.1}
+  initial: {x: 0, y: 0, z: 0, x_dot: 1.2, y_dot: 0.5}
+  t_end: 3.0
+"""
+
+
 def system_of(text: str, values: dict[str, float] | None = None) -> tuple[NumericSystem, dict]:
     problem = load_text(text, "inline.yaml")
     form = matrix_form(problem, display=False)

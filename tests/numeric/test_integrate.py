@@ -9,7 +9,7 @@ import pytest
 
 from lagsolve.errors import SimulationError
 from lagsolve.numeric.integrate import integrate_motion
-from simulation_support import CARTESIAN_PENDULUM, FREE_FALL, SPHERE, run, system_of
+from simulation_support import CARTESIAN_PENDULUM, FREE_FALL, PUCK, SPHERE, run, system_of
 
 BEAD_SMOOTH = """
 name: Bead on a parabola
@@ -316,23 +316,6 @@ def test_conserved_quantities_are_measured_up_to_a_release_the_run_went_on_from(
     assert f"relative drift {trajectory.stats['conserved_drift']['energy']:.3g} (up to the release at t = " in text
 
 
-PUCK = """
-name: Puck sliding to rest on a rough floor
-parameters: {m: mass, g: gravity, mu: kinetic coefficient}
-coordinates: [x, y, z]
-particles: {puck: {mass: m, position: [x, y, z]}}
-gravity: [0, 0, -g]
-constraints:
-  floor: {holonomic: z, on: puck}
-friction:
-  rub: {coefficient: mu, normal: [floor]}
-simulation:
-  values: {m: 0.2, g: 9.81, mu: 0.1}
-  initial: {x: 0, y: 0, z: 0, x_dot: 1.2, y_dot: 0.5}
-  t_end: 3.0
-"""
-
-
 def test_a_contact_sliding_in_a_plane_stops_the_run_where_it_comes_to_rest() -> None:
     """Friction in a plane, -mu N v/|v|, holds only while the puck slides: the run stops where it comes to rest, at
     t = |v0|/(mu g), |v0|²/(2 mu g) along v0 (closed form; it spun until its 600 s budget ran out, then exit 1)."""
@@ -355,8 +338,6 @@ def test_a_contact_sliding_in_a_plane_at_rest_at_the_start_is_refused() -> None:
     with the contact's name and the fix, exit 2."""
     from lagsolve.errors import SpecError
     from lagsolve.numeric.initial import complete_initial
-    from simulation_support import system_of
-
     system, given = system_of(PUCK)
     with pytest.raises(SpecError, match="contact 'rub' does not slide at the start"):
         complete_initial(system, {**given, "x_dot": 0.0, "y_dot": 0.0})

@@ -14,6 +14,7 @@ pandas = pytest.importorskip("pandas")
 import lagsolve  # noqa: E402
 from lagsolve.sweep.api import sweep  # noqa: E402
 from simulation_support import CARTESIAN_PENDULUM as CARTESIAN  # noqa: E402
+from simulation_support import PUCK  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 DOUBLE = ROOT / "problems" / "double_pendulum.yaml"
@@ -267,3 +268,13 @@ def test_every_shipped_problem_matches_simulate(path: Path) -> None:
     ours = np.array([row[f"final_{c}"] for c in run.coordinates])
     assert np.max(np.abs(ours - run.q[-1])) < 1e-8
     assert row.max_residual < 1e-8
+
+
+def test_a_puck_that_comes_to_rest_stops_its_run_with_a_note() -> None:
+    """Friction in a plane is modelled only while the contact slides: each run stops where the puck comes to rest,
+    at |v0|/(mu g) (closed form), and its note says so (the per-run path: a friction contact)."""
+    frame = sweep(PUCK.encode(), grid={"x_dot": [0.5, 1.0]}, t_end=3.0)
+    for _, row in frame.iterrows():
+        speed = math.hypot(row.x_dot, 0.5)
+        assert row.status == "ok" and row.t_final == pytest.approx(speed / (0.1 * 9.81), rel=1e-8)
+        assert "contact 'rub' comes to rest" in row.note

@@ -466,6 +466,10 @@ def _per_run(problem: Compiled, settings: Settings, parameters: np.ndarray, star
         row["steps"] = int(motion.stats["steps"])
         if settings.section is not None:
             row["note"] = "Poincaré crossings are recorded on the batched path only"
+        rest = next((e for e in motion.events if e.kind == EventKind.REST), None)
+        if rest is not None:  # t_final is then its time
+            row["note"] = (f"contact {rest.name!r} comes to rest at t = {rest.time:.6g}, where friction that acts in a "
+                           "plane is not modelled: the run stops there")
         _settle(row, bool(system.contacts), bool(angular.any()))
     return rows
 
