@@ -197,6 +197,16 @@ def test_wrong_hamiltonians_are_incorrect_and_named(name: str, value: str, mista
     assert (found.status, found.mistake) == ("incorrect", mistake), found.message
 
 
+def test_hamiltonian_in_the_momenta_of_other_coordinates_is_said() -> None:
+    """The hole table's H written with z (the hanging mass's height) and p_z is a Hamiltonian too, but not in the
+    key's momenta (p_r, p_theta): incorrect, and the message says which momenta to use (it said 'not equivalent',
+    with a state in r, theta, z)."""
+    found = graded("hole_table", "hamiltonian", '"p_z**2/(2*(m1 + m2)) + p_theta**2/(2*m1*(z + l)**2) + m2*g*z"')
+    assert found.status == "incorrect"
+    assert "written in p_theta, p_z: the key's H is in the momenta of its minimal coordinates (p_r, p_theta)" in (
+        found.message)
+
+
 def test_hamiltonian_in_the_velocities_is_said() -> None:
     found = graded("two_masses_spring", "hamiltonian", '"m1*x1_dot**2/2 + m2*x2_dot**2/2 + k*(x2 - x1 - L0)**2/2"')
     assert found.status == "incorrect"

@@ -592,7 +592,21 @@ class _Grader(ListSteps):
             return DIMENSION, dimension
         if step == "hamiltonian" and value.has(*self.derivation.model.velocities):
             return None, "written with velocities: H is a function of the coordinates and the momenta p_q"
+        if step == "hamiltonian":
+            other = self.other_momenta(value, reference)
+            if other:
+                return None, other
         return None, self.differs(found)
+
+    def other_momenta(self, value: Any, reference: Any) -> str:
+        """Why an H in the momenta of other coordinates than the key's H is not compared ("" when it is not)."""
+        names = {momentum_name(c.name) for c in self.derivation.problem.coordinates}
+        used = sorted(s.name for s in value.free_symbols if s.name in names)
+        keys = sorted(s.name for s in reference.free_symbols if s.name in names)
+        if not set(used) - set(keys):
+            return ""
+        return (f"written in {', '.join(used)}: the key's H is in the momenta of its minimal coordinates "
+                f"({', '.join(keys) or 'none'}); write H in those")
 
     def dimension(self, step: str, value: Any, reference: Any) -> str:
         """The evidence of a wrong dimension ("" when none is found): not for H (its momenta have no units here);
