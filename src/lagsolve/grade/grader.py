@@ -590,16 +590,13 @@ class _Grader(ListSteps):
                 return mistake or None, detail
         if dimension:
             return DIMENSION, dimension
-        if step == "hamiltonian" and value.has(*self.derivation.model.velocities):
-            return None, "written with velocities: H is a function of the coordinates and the momenta p_q"
-        if step == "hamiltonian":
-            other = self.other_momenta(value, reference)
-            if other:
-                return None, other
-        return None, self.differs(found)
+        return None, (self.not_canonical(value, reference) if step == "hamiltonian" else "") or self.differs(found)
 
-    def other_momenta(self, value: Any, reference: Any) -> str:
-        """Why an H in the momenta of other coordinates than the key's H is not compared ("" when it is not)."""
+    def not_canonical(self, value: Any, reference: Any) -> str:
+        """Why an H is not in the key's variables: written with velocities, or in the momenta of other coordinates
+        than the key's H ("" when it is in them)."""
+        if value.has(*self.derivation.model.velocities):
+            return "written with velocities: H is a function of the coordinates and the momenta p_q"
         names = {momentum_name(c.name) for c in self.derivation.problem.coordinates}
         used = sorted(s.name for s in value.free_symbols if s.name in names)
         keys = sorted(s.name for s in reference.free_symbols if s.name in names)
