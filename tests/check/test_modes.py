@@ -127,3 +127,23 @@ def test_a_list_that_leaves_out_a_mode_is_a_warning() -> None:
       squared_frequencies: ["g/l + k/m"]
 """))
     assert "[0].squared_frequencies" not in wrong and wrong["[0].squared_frequencies[0]"].status == MISMATCH
+
+
+def test_a_listed_zero_is_not_counted_as_a_non_zero_one() -> None:
+    """Two free masses and a spring: ω² are 0 (the translation) and 2K/m. A list of only 0 leaves out 2K/m, and
+    says it lists 0 of lagsolve's 1 non-zero ω² (it said '1 of lagsolve's 2 non-zero', counting the 0)."""
+    text = """name: two free masses
+parameters: {m: mass, K: stiffness}
+coordinates: [x1, x2]
+particles:
+  a: {mass: m, position: [x1, 0]}
+  b: {mass: m, position: [x2, 0]}
+potential: K*(x1 - x2)**2/2
+expected:
+  normal_modes:
+    - {at: {x1: x2}, squared_frequencies: ["0"]}
+"""
+    found = _by_name(check(derive(load_text(text, "free.yaml"))).verdicts)
+    left = found["[0].squared_frequencies"]
+    assert (left.status, left.reason) == (WARNING, INCOMPLETE)
+    assert "lists 0 of lagsolve's 1 non-zero squared frequencies here; it leaves out 2*K/m" in left.note

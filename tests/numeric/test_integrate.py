@@ -343,3 +343,27 @@ def test_a_contact_sliding_in_a_plane_at_rest_at_the_start_is_refused() -> None:
         complete_initial(system, {**given, "x_dot": 0.0, "y_dot": 0.0})
     q, qd = complete_initial(system, {**given, "x_dot": 1e-6, "y_dot": 0.0})  # slow, but sliding
     assert qd[0] == 1e-6
+
+
+SPRUNG_PUCK = PUCK.replace("gravity: [0, 0, -g]", "gravity: [0, 0, -g]\npotential: k*x**2/2").replace(
+    "mu: kinetic coefficient}", "mu: kinetic coefficient, k: stiffness}").replace(
+    "values: {m: 0.2, g: 9.81, mu: 0.1}", "values: {m: 1.0, g: 9.81, mu: 0.1, k: 10.0}").replace(
+    "x_dot: 1.2, y_dot: 0.5}", "x_dot: 2.0, y_dot: 0.0}").replace("t_end: 3.0", "t_end: 5.0")
+
+
+def test_a_contact_sliding_in_a_plane_whose_velocity_only_turns_slides_on() -> None:
+    """A spring pulls the puck back along the line it came on: at its turning point (x = 0.542, k x = 5.4 > mu m g)
+    it does not come to rest, it slides back (the run stopped there, 'comes to rest'). Closed form, half swings of
+    pi/omega about -+mu g/omega^2 from the first turn: it stops at x = 0.04668 (k x < mu m g), t = 3.42844."""
+    from lagsolve.numeric.integrate import EventKind
+
+    motion = run(SPRUNG_PUCK, 5.0)
+    omega, shift = math.sqrt(10.0), 0.1 * 9.81 / 10.0
+    amplitude = math.hypot(shift, 2.0 / omega)
+    t, x = (math.pi / 2 - math.asin(shift / amplitude)) / omega, amplitude - shift
+    for _ in range(3):
+        t, x = t + math.pi / omega, 2 * math.copysign(shift, x) - x
+    (event,) = motion.events
+    assert (event.kind, event.name) == (EventKind.REST, "rub")
+    assert event.time == pytest.approx(t, rel=1e-7)
+    assert motion.q[-1, 0] == pytest.approx(x, rel=1e-6)

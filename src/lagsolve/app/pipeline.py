@@ -141,19 +141,20 @@ def _warnings(outputs: dict[str, str], summary_text: str) -> tuple[str, ...]:
                  if line.startswith("    "))
 
 
-def _unit_warnings(problem: Problem) -> tuple[str, ...]:
+def _unit_warnings(problem: Problem, options: SimulationOptions | None = None) -> tuple[str, ...]:
     """A file that declares some units but not all: the names without one (their dimensions go unchecked); and
     a value of more than a whole turn on an angle (likely degrees: :func:`~lagsolve.mechanics.units.angles.
-    angle_warnings`)."""
+    angle_warnings`), with a simulation's ``options`` (``--set``, ``--initial``) in place of the file's values."""
     from lagsolve.mechanics.units.angles import angle_warnings
     from lagsolve.mechanics.units.result_units import missing_units
 
+    angles = angle_warnings(problem) if options is None else angle_warnings(problem, options.values, options.initial)
     missing = missing_units(problem)
     if not missing:
-        return angle_warnings(problem)
+        return angles
     return (f"units: no unit declared for {', '.join(missing)}, so dimensions involving "
             f"{'it' if len(missing) == 1 else 'them'} are not checked; add 'unit:' to each (1 for a pure number)",
-            *angle_warnings(problem))
+            *angles)
 
 
 def _potential_figure(derivation: Derivation) -> dict | None:
@@ -395,4 +396,4 @@ def simulate_file(path: str | Path, options: SimulationOptions, *, timeout: floa
     loaded = _Loading(path)
     result = run_with_budget(_simulate, (options, progress), timeout, f"the simulation of {path}",
                              first=loaded.problem_loaded, warm=_warm_once(_warm_simulate))
-    return replace(result, warnings=_unit_warnings(loaded.problem))
+    return replace(result, warnings=_unit_warnings(loaded.problem, options))

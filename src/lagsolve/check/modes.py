@@ -103,12 +103,14 @@ def _stable(expected: bool, mode: Mode, label: str) -> Verdict:
 def _left_out(squares: tuple[Any, ...], derived: tuple[Any, ...], used: set[int], label: str) -> list[Verdict]:
     """A warning when every expected ω² is one of lagsolve's but some non-zero ones of lagsolve's are not
     expected: the list is true as far as it goes, and incomplete (a zero ω², a free direction, may be left out)."""
-    missing = [d for j, d in enumerate(derived) if j not in used and not (d == 0 or getattr(d, "is_zero", False))]
+    nonzero = [j for j, d in enumerate(derived) if not (d == 0 or getattr(d, "is_zero", False))]
+    missing = [derived[j] for j in nonzero if j not in used]
     if not missing or len(used) < len(squares):
         return []
     shown = ", ".join(str(d) for d in missing)
+    listed = len(used & set(nonzero))  # a zero ω² listed is no non-zero one of lagsolve's
     return [Verdict(QUANTITY, f"{label}.squared_frequencies", WARNING, INCOMPLETE, squares, tuple(missing),
-                    note=f"lists {len(squares)} of lagsolve's {len(used) + len(missing)} non-zero squared frequencies "
+                    note=f"lists {listed} of lagsolve's {len(nonzero)} non-zero squared frequencies "
                          f"here; it leaves out {shown}")]
 
 

@@ -203,6 +203,9 @@ class _Run:
     returning: dict[int, float] = field(default_factory=dict)
     #: per contact that slides in a plane: the speed (a fraction REST of the one at the start) that counts as at rest
     resting: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: per contact that slides in a plane: its velocity turned (:func:`_turns`) and its speed has not yet risen
+    #: past twice ``resting``: it is not watched for rest until then (it would be found at once again)
+    turning: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
 
     def solve(self, t: float, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         n = self.system.n
@@ -306,6 +309,7 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
     run = _Run(system, np.ones(m, dtype=bool), np.zeros(k, dtype=bool), np.zeros(k), project,
                floor=projection_floors(system.surface_scales(0.0, q0, qd0)),
                resting=REST * system.speeds(0.0, q0, qd0, system.parameters))
+    run.turning = np.zeros(run.resting.size, dtype=bool)
     coordinates = _coordinates(run, q0, qd0, minimal)
     options = _Options(method, t_end, rtol, atol, max_step, project, after_release, progress)
     record = _Record(np.linspace(0.0, t_end, samples), t_end)
@@ -468,6 +472,10 @@ def _step(run: _Run, record: _Record, options: _Options, solver: Any,
         return (t0, y0, stopped), watch_new
     n = run.system.n
     record.max_residual = max(record.max_residual, run.residual(t_new, y_new[:n], y_new[n:]))
+    if run.turning.any():  # watched for rest again once it slides off
+        speeds = run.system.speeds(t_new, y_new[:n], y_new[n:], run.system.parameters)
+        run.turning &= ~(speeds > 2 * run.resting)
+        watch_new = _watch(run, t_new, y_new)
     watch_new = _projected_step(run, record, options, solver, y_new, watch_new)
     if options.progress is not None:
         options.progress(t_new)
@@ -591,7 +599,8 @@ def _watch(run: _Run, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
             values[(EventKind.CONTACT, j)] = float(psi[system.holonomic.index(j)]) + depth
     if run.resting.size:
         for i, speed in enumerate(system.speeds(t, y[:system.n], y[system.n:], system.parameters)):
-            values[(EventKind.REST, i)] = float(speed - run.resting[i])
+            if not run.turning[i]:
+                values[(EventKind.REST, i)] = float(speed - run.resting[i])
     for c, sticks in enumerate(system.sticks):
         if not sticks:
             continue
@@ -662,6 +671,9 @@ def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_rele
         if not stop:
             _release(run, index, t, y)
         return t, y, stop
+    if kind == EventKind.REST and _turns(run, t, y, index):
+        run.turning[index] = True
+        return t, y, False  # its velocity only passes through zero, and kinetic friction turns with it
     if kind in (EventKind.CONTACT, EventKind.REST):
         planar = [c for c, sticks in zip(system.contact_names, system.sticks, strict=True) if not sticks]
         name = system.constraints[index] if kind == EventKind.CONTACT else planar[index]
@@ -681,6 +693,29 @@ def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_rele
     run.direction[index] = -np.sign(needed)
     events.append(Event(float(t), EventKind.SLIP, system.contact_names[index], _state(system, y), "slipped"))
     return t, y, False
+
+
+def _turns(run: _Run, t: float, y: np.ndarray, index: int) -> bool:
+    """Whether the contact that slides in a plane (``index`` among those) and whose speed falls to zero at ``(t, y)``
+    only turns there: the tangential force of everything but friction exceeds μ_s N, as a spring that pulls a puck
+    back along the line it came on does; then it slides on (the other way) and the run goes on.
+
+    The accelerations at the state and at its reversed velocity are the applied part plus and minus the friction's
+    (the velocity is about 0, so the terms in q̇ are negligible), and the sliding velocity is linear in q̇: the two
+    parts' sliding rates are those of the applied force and of μ N along the contact. Exact for a particle; a file
+    whose velocity constraints have an offset (a motor's ψ = φ − Ω t) cannot reverse its velocity: it stops, as
+    at rest."""
+    system, n, p = run.system, run.system.n, run.system.parameters
+    q, qd = y[:n], y[n:]
+    if system.m and np.any(system.velocity_offset(t, q, qd, p)[run.active] != 0):
+        return False
+    ahead = run.solve(t, y)[0]
+    back = run.solve(t, np.concatenate([q, -qd]))[0]
+    applied = float(system.speeds(t, q, (ahead + back) / 2, p)[index])
+    friction = float(system.speeds(t, q, (ahead - back) / 2, p)[index])
+    contact = [c for c, sticks in enumerate(system.sticks) if not sticks][index]
+    mu_s, mu = system.contact_values(t, q, qd, p)[2 * contact: 2 * contact + 2]
+    return bool(mu > 0 and applied * mu > (1 + 1e-9) * mu_s * friction)
 
 
 def _state(system: NumericSystem, y: np.ndarray) -> dict[str, float]:

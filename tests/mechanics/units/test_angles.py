@@ -67,3 +67,18 @@ def test_simulate_prints_it_once_and_goes_on(tmp_path: Path) -> None:
     assert result.exit_code == 0, result.output
     assert result.stderr.count("alpha = 30 is an angle in radians") == 1
     assert f"warning: {path}:16: simulation.values.alpha" in result.stderr
+
+
+def test_the_command_lines_values_replace_the_files(tmp_path: Path) -> None:
+    """--set and --initial replace the file's values: the file's 30 they override is not warned about (the run does
+    not use it), and theirs are checked (simulate --initial theta=60 started 9.5 turns round without a word)."""
+    path = tmp_path / "p.yaml"
+    path.write_text(INCLINE.replace("ALPHA", "30").replace("THETA", "0.1"), encoding="utf-8")
+    found = angle_warnings(load_problem(path), {"alpha": 0.5}, {"theta": 60.0})
+    assert found == (f"{path}: --initial theta: theta = 60 is an angle in radians, 9.55 turns; if you meant 60°, "
+                     f"write {math.radians(60):.6g}",)
+    result = CliRunner().invoke(main, ["simulate", str(path), "--set", "alpha=0.5", "--initial", "theta=60",
+                                       "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    assert "alpha = 30" not in result.stderr
+    assert f"warning: {path}: --initial theta: theta = 60 is an angle in radians" in result.stderr

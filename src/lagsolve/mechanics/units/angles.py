@@ -15,7 +15,7 @@ sines and cosines (and tangents), each time added to the argument with a numeric
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from dataclasses import fields, is_dataclass
 from typing import Any
 
@@ -26,22 +26,33 @@ from lagsolve.problem.schema import Problem
 _TRIG = (sympy.sin, sympy.cos, sympy.tan)
 
 
-def angle_warnings(problem: Problem) -> tuple[str, ...]:
-    """One warning per value (a parameter's, an initial coordinate's) more than a whole turn on an angle."""
+def angle_warnings(problem: Problem, values: Mapping[str, float] | None = None,
+                   initial: Mapping[str, float] | None = None) -> tuple[str, ...]:
+    """One warning per value (a parameter's, an initial coordinate's) more than a whole turn on an angle.
+
+    ``values`` and ``initial`` are the command line's (``--set``, ``--initial``): they replace the file's, so a
+    file's value they override gets no warning and theirs are checked instead."""
     angles = _angles(problem)
     if not angles:
         return ()
+    given, start = dict(values or {}), dict(initial or {})
     spec = problem.simulation
-    values: list[tuple[str, str, float]] = [(f"parameters.{p.name}.value", p.name, p.value)
-                                            for p in problem.parameters if p.value is not None]
+    found: list[tuple[str, str, float]] = [(f"parameters.{p.name}.value", p.name, p.value)
+                                           for p in problem.parameters if p.value is not None and p.name not in given]
     if spec is not None:
-        values += [(f"simulation.values.{name}", name, value) for name, value in spec.values.items()]
-        values += [(f"simulation.initial.{name}", name, value) for name, value in spec.initial.items()]
+        found += [(f"simulation.values.{name}", name, value) for name, value in spec.values.items()
+                  if name not in given]
+        found += [(f"simulation.initial.{name}", name, value) for name, value in spec.initial.items()
+                  if name not in start]
+    found += [("--set", name, value) for name, value in given.items()]
+    found += [("--initial", name, value) for name, value in start.items()]
     out = []
-    for field, name, value in values:
+    for field, name, value in found:
         if name in angles and math.isfinite(value) and abs(value) > 2 * math.pi:
-            line = problem.lines.get(field, problem.lines.get(field.rsplit(".", 1)[0], 0))
-            out.append(f"{problem.source}:{line}: {field}: {name} = {value:g} is an angle in radians, "
+            where = (f"{problem.source}: {field} {name}" if field.startswith("--") else
+                     f"{problem.source}:{problem.lines.get(field, problem.lines.get(field.rsplit('.', 1)[0], 0))}: "
+                     f"{field}")
+            out.append(f"{where}: {name} = {value:g} is an angle in radians, "
                        f"{abs(value) / (2 * math.pi):.3g} turns; if you meant {value:g}°, write "
                        f"{math.radians(value):.6g}")
     return tuple(out)
