@@ -309,6 +309,18 @@ def test_claimed_constant_is_checked_numerically_on_a_surface_no_coordinate_solv
     assert (found["conserved.moment"].status, found["conserved.moment"].reason) == (MISMATCH, NOT_CONSERVED)
 
 
+def test_a_conserved_quantity_with_a_large_constant_or_a_small_factor_is_not_trivial() -> None:
+    """The energy plus 1e14 m g l, or times 1e-14, still varies from state to state as much as the energy does (each
+    was flagged 'trivially constant' when states were compared to 1e-12 absolute); x ẋ + y ẏ, zero on the surface
+    up to rounding, is trivial."""
+    energy = "m*(x_dot**2 + y_dot**2)/2 + m*g*y"
+    found = verdicts("pendulum_cartesian", f'  conserved: {{big: "{energy} + 1e14*m*g*l", small: "1e-14*({energy})", '
+                                           'rate: "x*x_dot + y*y_dot"}\n')
+    for name in ("big", "small"):
+        assert (found[f"conserved.{name}"].status, found[f"conserved.{name}"].reason) == (OK, CONSERVED), name
+    assert (found["conserved.rate"].status, found["conserved.rate"].reason) == (WARNING, TRIVIAL)
+
+
 def test_a_trivial_constant_is_not_flagged_without_a_degree_of_freedom() -> None:
     """Where every state of a set of parameters is the same (no degree of freedom), a constant says as much as any
     quantity: not flagged."""

@@ -235,6 +235,9 @@ def _steady_stability(derivation: Derivation) -> list[Verdict]:
                     (sympy.true if steady.stable else sympy.false,))]
 
 
+#: a claimed constant of the motion is the same at two states when its state-dependent terms differ by at most
+#: this fraction of their size (the sum of their absolute values)
+TRIVIAL_TOLERANCE = 1e-12
 #: why a claimed constant of the motion that is the same at every state of one set of parameters is true but says
 #: nothing (a warning: ``lagsolve grade`` gives such an answer no credit)
 TRIVIALLY = ("it has the same value at every state on the constraint surface (for given parameters): a constant of "
@@ -537,17 +540,22 @@ class _Checker:
         freedom, constraints fixed in time) nothing is trivial."""
         key = str(sympy.srepr(expr))
         if key not in self._trivial:
-            compiled = Compiled(self.prepare(expr), self.space())
             space = self.space()
             free = (*space.coordinates, *space.velocities)
-            groups: dict[int, list[tuple[Any, tuple[Any, ...]]]] = {}
+            # the terms that depend on the state, each compared at the size of those terms (a constant added, 1e14
+            # m g l, or a small factor, 1e-14 E, does not hide how much the rest varies; rounding in a sum that is
+            # 0 on the surface, x ẋ + y ẏ, is measured against its terms)
+            terms = [t for t in sympy.Add.make_args(self.prepare(expr)) if t.has(space.time, *free)]
+            compiled = Compiled(sympy.Add(*terms), space)
+            size = Compiled(sympy.Add(*(sympy.Abs(t) for t in terms)), space)
+            groups: dict[int, list[tuple[Any, Any, tuple[Any, ...]]]] = {}
             for state in self.states():
-                value = compiled(state)
-                if isinstance(value, mpmath.mpf):
-                    groups.setdefault(state.group, []).append((value, tuple(state.values[s] for s in free)))
-            moving = [g for g in groups.values() if len({point for _, point in g}) > 1]
-            self._trivial[key] = (sum(len(g) for g in moving) >= MINIMUM_STATES
-                                  and all(close(v, g[0][0]) for g in moving for v, _ in g))
+                value, scale = compiled(state), size(state)
+                if isinstance(value, mpmath.mpf) and isinstance(scale, mpmath.mpf):
+                    groups.setdefault(state.group, []).append((value, scale, tuple(state.values[s] for s in free)))
+            moving = [g for g in groups.values() if len({point for *_, point in g}) > 1]
+            self._trivial[key] = (sum(len(g) for g in moving) >= MINIMUM_STATES and all(
+                abs(v - g[0][0]) <= TRIVIAL_TOLERANCE * max(scale, g[0][1]) for g in moving for v, scale, _ in g))
         return self._trivial[key]
 
     # diagnosis helpers

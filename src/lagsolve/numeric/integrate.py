@@ -42,7 +42,7 @@ from scipy import integrate, optimize
 
 from lagsolve.enums import TextEnum
 from lagsolve.errors import SimulationError
-from lagsolve.numeric.minimal_state import NumericChart
+from lagsolve.numeric.active import ActiveSystem
 from lagsolve.numeric.system import NumericSystem, rate_sign
 from lagsolve.problem.methods import DEFAULT, EXPLICIT, METHODS
 
@@ -185,99 +185,6 @@ class Trajectory:
         return f"<Trajectory of {', '.join(self.coordinates)}: {len(self.t)} samples, {span}, {self.stats.method}>"
 
 
-@dataclass
-class _Run:
-    """The integrator's view of the equations: which constraints hold and which contacts stick."""
-
-    system: NumericSystem
-    active: np.ndarray
-    stuck: np.ndarray
-    direction: np.ndarray
-    project: bool
-    chart: NumericChart | None = None  # set while the integrator's state is in minimal coordinates
-    extended: np.ndarray = field(default_factory=lambda: np.zeros(0))  # parameters, then the chart's constants
-    #: per holonomic constraint, the residual below which a state is not projected: PROJECTED, scaled down for a
-    #: constraint whose scale (NumericSystem.surface_scales, at the start) is below 1 (a problem in micrometres)
-    floor: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    #: per released unilateral holonomic constraint j: how far below zero its ψ must go to count as reached again
-    returning: dict[int, float] = field(default_factory=dict)
-    #: per contact that slides in a plane: the speed (a fraction REST of the one at the start) that counts as at rest
-    resting: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    #: per contact that slides in a plane: its velocity turned (:func:`_turns`) and its speed has not yet risen
-    #: past twice ``resting``: it is not watched for rest until then (it would be found at once again)
-    turning: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
-
-    def solve(self, t: float, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        n = self.system.n
-        try:
-            return self.system.solve_all(t, y[:n], y[n:], self.active, self.stuck, self.direction)
-        except np.linalg.LinAlgError:
-            raise SimulationError(f"the augmented system is singular at t = {t:.6g}") from None
-
-    def full(self, t: float, y: np.ndarray) -> np.ndarray:
-        """The whole state (q, q̇) from the integrator's state."""
-        return y if self.chart is None else self.chart.full(t, y, self.system.n, self.extended)
-
-    def local(self, y: np.ndarray) -> np.ndarray:
-        """The integrator's state from a whole one."""
-        return y if self.chart is None else self.chart.local(y, self.system.n)
-
-    def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
-        if self.chart is None:
-            return np.concatenate([y[self.system.n:], self.solve(t, y)[0]])
-        return np.concatenate([y[self.chart.size:], self.solve(t, self.full(t, y))[0][self.chart.independent]])
-
-    def _velocity_rows(self, t: float, q: np.ndarray, qd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        system, p, n = self.system, self.system.parameters, self.system.n
-        a = system.velocity_jacobian(t, q, qd, p).reshape(system.m, n)[self.active] if system.m else np.zeros((0, n))
-        b = system.velocity_offset(t, q, qd, p)[self.active] if system.m else np.zeros(0)
-        held = []  # the sliding parts are evaluated only when a contact is stuck: nothing else uses them here
-        if self.stuck.any():
-            held = [w for c, (w, _, _) in system.sliding_parts(t, q, qd).items() if self.stuck[c]]
-        if held:
-            a, b = np.vstack([a, *held]), np.concatenate([b, np.zeros(len(held))])
-        return a, b
-
-    def residual(self, t: float, q: np.ndarray, qd: np.ndarray) -> float:
-        system, p = self.system, self.system.parameters
-        worst = 0.0
-        rows = [i for i, j in enumerate(system.holonomic) if self.active[j]]
-        if rows:
-            worst = float(np.max(np.abs(system.position_residual(t, q, qd, p)[rows])))
-        a, b = self._velocity_rows(t, q, qd)
-        if a.shape[0]:
-            worst = max(worst, float(np.max(np.abs(a @ qd + b))))
-        return worst
-
-    def projected(self, t: float, q: np.ndarray, qd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The nearest state on the constraints (Euclidean, least-norm corrections)."""
-        system, p = self.system, self.system.parameters
-        n = system.n
-        q, qd = q.copy(), qd.copy()
-        rows = [i for i, j in enumerate(system.holonomic) if self.active[j]]
-        if rows:
-            for _ in range(4):
-                psi = system.position_residual(t, q, qd, p)[rows]
-                if np.all(np.abs(psi) < self.floor[rows]):
-                    break
-                jac = system.position_jacobian(t, q, qd, p).reshape(len(system.holonomic), n)[rows]
-                q -= jac.T @ np.linalg.solve(jac @ jac.T, psi)
-        a, b = self._velocity_rows(t, q, qd)
-        if a.shape[0]:
-            qd -= a.T @ np.linalg.solve(a @ a.T, a @ qd + b)
-        return q, qd
-
-    def holding_margin(self, t: float, y: np.ndarray, c: int) -> tuple[float, float]:
-        """For a stuck contact: (μ_s N − |Φ|, Φ), Φ the tangential force needed to hold it."""
-        _, _, normal, sticking = self.solve(t, y)
-        mu_s = self.system.contact_values(t, y[: self.system.n], y[self.system.n:], self.system.parameters)[2 * c]
-        return float(mu_s * normal[c] - abs(sticking[c])), float(sticking[c])
-
-    def rate(self, t: float, y: np.ndarray, c: int) -> float:
-        """The sliding rate σ of contact ``c``."""
-        return self.system.sliding_rate(t, y[: self.system.n], y[self.system.n:], c)
-
-
 def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_end: float, *,
                      samples: int = 1001, method: str = DEFAULT, rtol: float = 1e-10, atol: float = 1e-12,
                      max_step: float = np.inf, project: bool = True, minimal: bool = True,
@@ -306,7 +213,7 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
     if not (t_end > 0 and np.isfinite(t_end)):
         raise ValueError("t_end must be a positive number")
     m, k = system.m, len(system.contacts)
-    run = _Run(system, np.ones(m, dtype=bool), np.zeros(k, dtype=bool), np.zeros(k), project,
+    run = ActiveSystem(system, np.ones(m, dtype=bool), np.zeros(k, dtype=bool), np.zeros(k), project,
                floor=projection_floors(system.surface_scales(0.0, q0, qd0)),
                resting=REST * system.speeds(0.0, q0, qd0, system.parameters))
     run.turning = np.zeros(run.resting.size, dtype=bool)
@@ -366,12 +273,12 @@ class _Record:
     nfev: int = 0
     max_residual: float = 0.0
 
-    def reached(self, run: _Run, t: float, y: np.ndarray, rhs: bool = False) -> None:
+    def reached(self, run: ActiveSystem, t: float, y: np.ndarray, rhs: bool = False) -> None:
         """Note a state the run reached, after checking it (or, with ``rhs``, its accelerations) finite."""
         _check_finite(run, t, y, self.last, rhs=rhs)
         self.last = (float(t), y)
 
-    def take_samples(self, run: _Run, dense: Callable[[float], np.ndarray], t_stop: float) -> None:
+    def take_samples(self, run: ActiveSystem, dense: Callable[[float], np.ndarray], t_stop: float) -> None:
         """Sample the dense output at every sample time not taken yet up to ``t_stop``."""
         times = self.times
         while self.next_sample < len(times) and times[self.next_sample] <= t_stop + 1e-12 * max(1.0, self.t_end):
@@ -382,7 +289,7 @@ class _Record:
             self.next_sample += 1
 
 
-def _coordinates(run: _Run, q0: np.ndarray, qd0: np.ndarray, minimal: bool) -> str:
+def _coordinates(run: ActiveSystem, q0: np.ndarray, qd0: np.ndarray, minimal: bool) -> str:
     """Put ``run`` in minimal coordinates when asked and the system has a chart; say which coordinates
     it integrates."""
     system = run.system
@@ -395,7 +302,7 @@ def _coordinates(run: _Run, q0: np.ndarray, qd0: np.ndarray, minimal: bool) -> s
     return f"minimal: {independent}, with {', '.join(names[system.chart.dependent])} from the constraints"
 
 
-def _segments(run: _Run, record: _Record, options: _Options, y0: np.ndarray) -> tuple[Any, bool]:
+def _segments(run: ActiveSystem, record: _Record, options: _Options, y0: np.ndarray) -> tuple[Any, bool]:
     """Integrate from ``y0`` at t = 0, restarting the integrator at each event, until ``t_end`` or an event
     that stops the run; return the last integrator (None when none ran) and whether the run stopped early."""
     t0 = 0.0  # the whole state at each (re)start is (t0, y0)
@@ -415,7 +322,7 @@ def _segments(run: _Run, record: _Record, options: _Options, y0: np.ndarray) -> 
             return solver, True
 
 
-def _let_go(run: _Run, record: _Record, t0: float, y0: np.ndarray, after_release: str) -> bool | None:
+def _let_go(run: ActiveSystem, record: _Record, t0: float, y0: np.ndarray, after_release: str) -> bool | None:
     """A unilateral constraint that would have to pull at ``(t0, y0)`` loses contact at once: the run stops
     there (True) or goes on without it (False). None when no active unilateral constraint pulls."""
     system = run.system
@@ -432,7 +339,7 @@ def _let_go(run: _Run, record: _Record, t0: float, y0: np.ndarray, after_release
     return False
 
 
-def _segment(run: _Run, record: _Record, options: _Options, t0: float,
+def _segment(run: ActiveSystem, record: _Record, options: _Options, t0: float,
              y0: np.ndarray) -> tuple[Any, tuple[float, np.ndarray, bool] | None]:
     """One integrator run from ``(t0, y0)`` until ``t_end`` or the first event; return the integrator and,
     after an event, where to restart and whether the run stops there (None when it reached ``t_end``)."""
@@ -447,7 +354,7 @@ def _segment(run: _Run, record: _Record, options: _Options, t0: float,
     return solver, restart
 
 
-def _step(run: _Run, record: _Record, options: _Options, solver: Any,
+def _step(run: ActiveSystem, record: _Record, options: _Options, solver: Any,
           watch_old: dict) -> tuple[tuple[float, np.ndarray, bool] | None, dict]:
     """One accepted step and the samples in it, up to the first event in it: after an event, where to
     restart and whether the run stops there; without one, None (the step's end projected onto the
@@ -482,7 +389,7 @@ def _step(run: _Run, record: _Record, options: _Options, solver: Any,
     return None, watch_new
 
 
-def _projected_step(run: _Run, record: _Record, options: _Options, solver: Any, y_new: np.ndarray,
+def _projected_step(run: ActiveSystem, record: _Record, options: _Options, solver: Any, y_new: np.ndarray,
                     watch: dict) -> dict:
     """After an explicit method's step, with constraints integrated in all coordinates or contacts stuck: the
     step's end projected onto them, and the integrator restarted from there. The watched values there."""
@@ -497,7 +404,7 @@ def _projected_step(run: _Run, record: _Record, options: _Options, solver: Any, 
     return _watch(run, t_new, y_new)
 
 
-def _check_finite(run: _Run, t: float, y: np.ndarray, last: tuple[float, np.ndarray] | None,
+def _check_finite(run: ActiveSystem, t: float, y: np.ndarray, last: tuple[float, np.ndarray] | None,
                   rhs: bool = False) -> None:
     """Stop with a :class:`SimulationError` at a state (or, with ``rhs``, accelerations) that is not finite.
 
@@ -533,14 +440,14 @@ def _check_finite(run: _Run, t: float, y: np.ndarray, last: tuple[float, np.ndar
                           "change the initial state, or check the problem's expressions for where they hold")
 
 
-def _whole(run: _Run, dense: Callable[[float], np.ndarray]) -> Callable[[float], np.ndarray]:
+def _whole(run: ActiveSystem, dense: Callable[[float], np.ndarray]) -> Callable[[float], np.ndarray]:
     """The step's dense output as whole states."""
     if run.chart is None:
         return dense
     return lambda tau: run.full(tau, dense(tau))
 
 
-def _release(run: _Run, j: int, t: float, y: np.ndarray) -> None:
+def _release(run: ActiveSystem, j: int, t: float, y: np.ndarray) -> None:
     """Constraint ``j`` no longer holds at ``(t, y)``; minimal coordinates that used it no longer describe the
     motion. A holonomic one is watched from then on for the motion coming back to it."""
     run.active[j] = False
@@ -551,7 +458,7 @@ def _release(run: _Run, j: int, t: float, y: np.ndarray) -> None:
         run.returning[j] = RETURN_DEPTH * system.surface_scales(t, y[:n], y[n:])[system.holonomic.index(j)]
 
 
-def _start_contacts(run: _Run, t: float, y: np.ndarray, events: list[Event]) -> None:
+def _start_contacts(run: ActiveSystem, t: float, y: np.ndarray, events: list[Event]) -> None:
     """At the start, the contacts at rest stick if they can; otherwise they slide the way they are pushed.
 
     Every contact at rest is held first; then, one at a time, the one whose holding force most exceeds
@@ -583,7 +490,7 @@ def _start_contacts(run: _Run, t: float, y: np.ndarray, events: list[Event]) -> 
             events.append(Event(float(t), EventKind.STICK, system.contact_names[c], _state(system, y), "stuck"))
 
 
-def _watch(run: _Run, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
+def _watch(run: ActiveSystem, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
     """The event functions at a state: each changes sign where its event happens."""
     system = run.system
     values: dict[tuple[str, int], float] = {}
@@ -611,7 +518,7 @@ def _watch(run: _Run, t: float, y: np.ndarray) -> dict[tuple[str, int], float]:
     return values
 
 
-def _first_event(run: _Run, dense: Any, t_old: float, t_new: float, old: dict, new: dict,
+def _first_event(run: ActiveSystem, dense: Any, t_old: float, t_new: float, old: dict, new: dict,
                  spacing: float = np.inf) -> tuple | None:
     """The earliest (time, kind, index) at which a watched function goes from ≥ 0 to < 0 (≤ 0 for a rate).
 
@@ -632,7 +539,7 @@ def _first_event(run: _Run, dense: Any, t_old: float, t_new: float, old: dict, n
     return None
 
 
-def _crossing(run: _Run, dense: Any, t_old: float, t_new: float, old: dict, new: dict) -> tuple | None:
+def _crossing(run: ActiveSystem, dense: Any, t_old: float, t_new: float, old: dict, new: dict) -> tuple | None:
     """:func:`_first_event` between two times at which the watched functions are known."""
     first = None
     for key, before in old.items():
@@ -654,7 +561,7 @@ def _crossing(run: _Run, dense: Any, t_old: float, t_new: float, old: dict, new:
     return first
 
 
-def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_release: str
+def _handle(run: ActiveSystem, event: tuple, dense: Any, events: list[Event], after_release: str
             ) -> tuple[float, np.ndarray, bool]:
     """Apply an event; returns the restart time and state, and whether the run stops there."""
     system, n = run.system, run.system.n
@@ -671,7 +578,7 @@ def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_rele
         if not stop:
             _release(run, index, t, y)
         return t, y, stop
-    if kind == EventKind.REST and _turns(run, t, y, index):
+    if kind == EventKind.REST and run.turns(t, y, index):
         run.turning[index] = True
         return t, y, False  # its velocity only passes through zero, and kinetic friction turns with it
     if kind in (EventKind.CONTACT, EventKind.REST):
@@ -695,36 +602,13 @@ def _handle(run: _Run, event: tuple, dense: Any, events: list[Event], after_rele
     return t, y, False
 
 
-def _turns(run: _Run, t: float, y: np.ndarray, index: int) -> bool:
-    """Whether the contact that slides in a plane (``index`` among those) and whose speed falls to zero at ``(t, y)``
-    only turns there: the tangential force of everything but friction exceeds μ_s N, as a spring that pulls a puck
-    back along the line it came on does; then it slides on (the other way) and the run goes on.
-
-    The accelerations at the state and at its reversed velocity are the applied part plus and minus the friction's
-    (the velocity is about 0, so the terms in q̇ are negligible), and the sliding velocity is linear in q̇: the two
-    parts' sliding rates are those of the applied force and of μ N along the contact. Exact for a particle; a file
-    whose velocity constraints have an offset (a motor's ψ = φ − Ω t) cannot reverse its velocity: it stops, as
-    at rest."""
-    system, n, p = run.system, run.system.n, run.system.parameters
-    q, qd = y[:n], y[n:]
-    if system.m and np.any(system.velocity_offset(t, q, qd, p)[run.active] != 0):
-        return False
-    ahead = run.solve(t, y)[0]
-    back = run.solve(t, np.concatenate([q, -qd]))[0]
-    applied = float(system.speeds(t, q, (ahead + back) / 2, p)[index])
-    friction = float(system.speeds(t, q, (ahead - back) / 2, p)[index])
-    contact = [c for c, sticks in enumerate(system.sticks) if not sticks][index]
-    mu_s, mu = system.contact_values(t, q, qd, p)[2 * contact: 2 * contact + 2]
-    return bool(mu > 0 and applied * mu > (1 + 1e-9) * mu_s * friction)
-
-
 def _state(system: NumericSystem, y: np.ndarray) -> dict[str, float]:
     n = system.n
     return {**{c: float(v) for c, v in zip(system.coordinates, y[:n], strict=True)},
             **{f"{c}_dot": float(v) for c, v in zip(system.coordinates, y[n:], strict=True)}}
 
 
-def _sample(run: _Run, t: float, y: np.ndarray) -> tuple:
+def _sample(run: ActiveSystem, t: float, y: np.ndarray) -> tuple:
     n = run.system.n
     residual = run.residual(t, y[:n], y[n:])
     # in minimal coordinates the state is on the constraints by construction
