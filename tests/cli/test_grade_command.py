@@ -101,6 +101,19 @@ def test_student_ids_a_path_cannot_hold_get_folders_of_their_own(tmp_path: Path)
     assert all(f.startswith(("student_", "a_b_", "c_b_")) for f in folders if f != "ada")
 
 
+def test_student_ids_that_differ_only_in_case_are_refused(tmp_path: Path) -> None:
+    """alice and Alice give two folders here, one on macOS or Windows (which ignore case): refused, nothing
+    written."""
+    files = []
+    for student in ("alice", "Alice"):
+        path = tmp_path / f"{student}_.yaml"
+        path.write_text(f"student: {student}\nsteps: {{kinetic: '0'}}\n", encoding="utf-8")
+        files.append(str(path))
+    result = CliRunner().invoke(main, ["grade", KEY, *files, "--format", "gradescope", "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2
+    assert "on a file system that ignores case ('alice')" in result.stderr and not (tmp_path / "out").exists()
+
+
 def test_a_step_that_restates_the_multiplier_is_unreadable(tmp_path: Path) -> None:
     """`multipliers: {wire: lambda_wire}` restates what is asked (it was graded correct): the step is unreadable,
     with the line and the reason; the equations and a force of constraint (λ∇ψ, as in `expected:`) may still use

@@ -84,16 +84,20 @@ def gradescope_folders(grades: Sequence[SubmissionGrade]) -> dict[str, Submissio
     from lagsolve.errors import Issue
 
     folders: dict[str, SubmissionGrade] = {}
+    by_case: dict[str, str] = {}  # a folder's name without case: macOS and Windows do not tell Alice from alice
     issues = []
     for g in grades:
         folder = student_folder(g.student)
-        if folder in folders:
-            first = folders[folder]
+        seen = by_case.get(folder.casefold())
+        if seen is not None:
+            first = folders[seen]
+            same = "" if seen == folder else f" on a file system that ignores case ({seen!r})"
             issues.append(Issue(g.source, 0, "student", f"the student id {g.student!r} gives the results folder "
-                                f"{folder!r}, as {first.student!r} of {first.source} does: one would replace the "
-                                "other", "give each submission a distinct student id (student: ...)"))
+                                f"{folder!r}, as {first.student!r} of {first.source} does{same}: one would replace "
+                                "the other", "give each submission a distinct student id (student: ...)"))
             continue
         folders[folder] = g
+        by_case[folder.casefold()] = folder
     if issues:
         raise SpecError(issues)
     return folders
