@@ -147,3 +147,15 @@ expected:
     left = found["[0].squared_frequencies"]
     assert (left.status, left.reason) == (WARNING, INCOMPLETE)
     assert "lists 0 of lagsolve's 1 non-zero squared frequencies here; it leaves out 2*K/m" in left.note
+
+
+def test_a_squared_frequency_listed_twice_says_so() -> None:
+    """g/l listed twice (lagsolve has g/l once and g/l + 2k/m): the second is a mismatch that says it repeats one
+    already matched (it said that none of lagsolve's equals it, g/l among them)."""
+    found = _by_name(_report("""  normal_modes:
+    - at: {theta1: 0, theta2: 0}
+      squared_frequencies: ["g/l", "g/l"]
+"""))
+    assert found["[0].squared_frequencies[0]"].status == OK
+    twice = found["[0].squared_frequencies[1]"]
+    assert twice.status == MISMATCH and "which an earlier item matched already: lagsolve has it once" in twice.note

@@ -218,8 +218,11 @@ class _Context:
             j, verdict = self.match(e, derived, used, name, _numeric(derived))
             if j is None or verdict is None:
                 shown = ", ".join(str(d) for d in derived)
-                out.append(Verdict(QUANTITY, name, MISMATCH, ABSENT, (e,),
-                                   note=f"none of lagsolve's squared frequencies here equals it ({shown})"))
+                again, _ = self.match(e, derived, set(), name, _numeric(derived)) if used else (None, None)
+                note = (f"it equals {derived[again]}, which an earlier item matched already: lagsolve has it once "
+                        f"({shown})" if again is not None else
+                        f"none of lagsolve's squared frequencies here equals it ({shown})")
+                out.append(Verdict(QUANTITY, name, MISMATCH, ABSENT, (e,), note=note))
                 if shapes is not None:
                     out.append(Verdict(QUANTITY, f"{label}.shapes[{k}]", UNCHECKED, NOT_DERIVED, shapes[k],
                                        note="its squared frequency is none of lagsolve's"))
