@@ -159,3 +159,33 @@ def test_a_squared_frequency_listed_twice_says_so() -> None:
     assert found["[0].squared_frequencies[0]"].status == OK
     twice = found["[0].squared_frequencies[1]"]
     assert twice.status == MISMATCH and "which an earlier item matched already: lagsolve has it once" in twice.note
+
+
+def test_a_numeric_equilibrium_given_to_float_digits_is_not_called_no_equilibrium() -> None:
+    """y = cos y has the root 0.7390851332151607 (here k(y − cos y) = 0, with a free pair beside it, x1 = x2): given
+    to those digits (read as that exact decimal), F(q, 0) is zero there up to rounding, not 'no equilibrium' (a
+    mismatch); and a list found only numerically (from starting points, one point of the continuum) is not complete,
+    so the point it does not list is 'not checked', not a mismatch."""
+    from lagsolve.check.compare import NOT_DERIVED
+
+    text = """name: Free pair and a transcendental well
+parameters: {m: mass, K: stiffness, k: well}
+coordinates: [x1, x2, y]
+particles:
+  a: {mass: m, position: [x1, 0]}
+  b: {mass: m, position: [x2, 0]}
+  c: {mass: m, position: [0, y]}
+potential: K*(x1 - x2)**2/2 + k*(y**2/2 - sin(y))
+expected:
+  normal_modes:
+    - {at: {x1: x2, y: 0.7390851332151607}}
+    - {at: {x1: x2, y: 0.7390851}}
+simulation:
+  values: {m: 1.0, K: 0.5, k: 2.0}
+  initial: {x1: 0.1, x2: 0, y: 0.7}
+  t_end: 1
+"""
+    found = {v.name: v for v in check(derive(load_text(text, "well.yaml"))).verdicts}
+    assert (found["normal_modes[0].at"].status, found["normal_modes[0].at"].reason) == (UNCHECKED, NOT_DERIVED)
+    assert "F(q, 0) = 0 there" in found["normal_modes[0].at"].note
+    assert (found["normal_modes[1].at"].status, found["normal_modes[1].at"].reason) == (MISMATCH, NOT_EQUILIBRIUM)

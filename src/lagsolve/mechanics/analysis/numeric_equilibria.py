@@ -54,7 +54,8 @@ def numeric_linearization(system: MotionSystem, values: dict[str, float], initia
         raise NoEquilibriumFound(f"no equilibrium found numerically from {STARTS} starting points")
     found.sort(key=lambda p: (float(np.sum(p**2)), tuple(p)))
     modes = [_numeric_mode(functions, point) for point in found[:MAX_EQUILIBRIA]]
-    return Linearization(model.coordinates, tuple(modes))
+    # a search from starting points proves no list complete (a continuum is found as some of its points)
+    return Linearization(model.coordinates, tuple(modes), complete=False)
 
 
 @dataclasses.dataclass(frozen=True)
