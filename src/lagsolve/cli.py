@@ -86,6 +86,16 @@ def _fail(error: LagsolveError) -> int:
     return 1
 
 
+def _sweep_warnings(file: Path, frame: Any) -> tuple[str, ...]:
+    """A sweep's angle warnings: its swept values of an angle, and the file's values it does not sweep
+    (:func:`lagsolve.mechanics.units.angles.angle_warnings`)."""
+    from lagsolve.mechanics.units.angles import angle_warnings
+    from lagsolve.problem.load import load_problem
+
+    swept = {name: frame[name].tolist() for name in frame.attrs.get("swept", ()) if name in frame}
+    return angle_warnings(load_problem(file), swept=swept)
+
+
 def _warn(source: str, warning: str) -> None:
     """A warning about the file ``source`` on stderr, prefixed with the file unless it names it (with its line)."""
     _note(f"warning: {warning}" if warning.startswith(f"{source}:") else f"warning: {source}: {warning}", err=True)
@@ -621,6 +631,7 @@ def sweep(file: Path, grid: tuple[str, ...], random_: tuple[str, ...], runs: int
                           chunk_size=chunk_size, progress=_sweep_progress(), engine=engine,
                           before=lambda numeric: check_color(color, numeric))
         written = [write_file(output.parent, output.name, table_bytes(frame, output.suffix))]
+        warnings = _sweep_warnings(file, frame)
         if plot or color:
             from lagsolve.sweep.figures import figures, png
 
@@ -631,6 +642,8 @@ def sweep(file: Path, grid: tuple[str, ...], random_: tuple[str, ...], runs: int
     except ImportError as error:
         click.echo(f"error: {error}", err=True)
         sys.exit(1)
+    for warning in warnings:
+        _warn(str(file), warning)
     counts = frame["outcome"].value_counts()
     _note(f"{file}: {len(frame)} runs (" + ", ".join(f"{k} {v}" for k, v in counts.items()) + ")")
     for target in written:

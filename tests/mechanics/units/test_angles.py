@@ -82,3 +82,17 @@ def test_the_command_lines_values_replace_the_files(tmp_path: Path) -> None:
     assert result.exit_code == 0, result.output
     assert "alpha = 30" not in result.stderr
     assert f"warning: {path}: --initial theta: theta = 60 is an angle in radians" in result.stderr
+
+
+def test_a_sweep_over_an_angle_in_degrees_is_warned_of(tmp_path: Path) -> None:
+    """--grid alpha=0:45:4 sweeps the incline 7 turns round (it was silent); the file's alpha, replaced by the
+    sweep, gets no warning, its theta (not swept) does; a sweep of a rate (Omega) does not."""
+    path = tmp_path / "p.yaml"
+    path.write_text(INCLINE.replace("ALPHA", "30").replace("THETA", "60"), encoding="utf-8")
+    result = CliRunner().invoke(main, ["sweep", str(path), "--grid", "alpha=0:45:4", "--t-end", "0.1",
+                                       "-o", str(tmp_path / "s.csv")])
+    assert result.exit_code == 0, result.output
+    assert f"warning: {path}: the swept alpha reaches 45, an angle in radians, 7.16 turns" in result.stderr
+    assert "alpha = 30" not in result.stderr and "theta = 60" in result.stderr
+    assert angle_warnings(load_text(INCLINE.replace("ALPHA", "0.5").replace("THETA", "0.1"), "p.yaml"),
+                          swept={"Omega": [10.0, 40.0]}) == ()

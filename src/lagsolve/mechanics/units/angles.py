@@ -15,7 +15,7 @@ sines and cosines (and tangents), each time added to the argument with a numeric
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import fields, is_dataclass
 from typing import Any
 
@@ -27,35 +27,51 @@ _TRIG = (sympy.sin, sympy.cos, sympy.tan)
 
 
 def angle_warnings(problem: Problem, values: Mapping[str, float] | None = None,
-                   initial: Mapping[str, float] | None = None) -> tuple[str, ...]:
+                   initial: Mapping[str, float] | None = None, swept: Mapping[str, Iterable[float]] | None = None
+                   ) -> tuple[str, ...]:
     """One warning per value (a parameter's, an initial coordinate's) more than a whole turn on an angle.
 
     ``values`` and ``initial`` are the command line's (``--set``, ``--initial``): they replace the file's, so a
-    file's value they override gets no warning and theirs are checked instead."""
+    file's value they override gets no warning and theirs are checked instead. ``swept`` are a sweep's values of
+    each name it varies (``--grid``, ``--random``): they replace the file's too, and one warning says how far the
+    sweep goes."""
     angles = _angles(problem)
     if not angles:
         return ()
-    given, start = dict(values or {}), dict(initial or {})
-    spec = problem.simulation
-    found: list[tuple[str, str, float]] = [(f"parameters.{p.name}.value", p.name, p.value)
-                                           for p in problem.parameters if p.value is not None and p.name not in given]
-    if spec is not None:
-        found += [(f"simulation.values.{name}", name, value) for name, value in spec.values.items()
-                  if name not in given]
-        found += [(f"simulation.initial.{name}", name, value) for name, value in spec.initial.items()
-                  if name not in start]
-    found += [("--set", name, value) for name, value in given.items()]
-    found += [("--initial", name, value) for name, value in start.items()]
-    out = []
-    for field, name, value in found:
+    ranges = {name: max((abs(v) for v in vs if math.isfinite(v)), default=0.0) for name, vs in (swept or {}).items()}
+    out = [f"{problem.source}: the swept {name} reaches {far:g}, an angle in radians, {far / (2 * math.pi):.3g} turns; "
+           f"if you meant degrees, {far:g}° is {math.radians(far):.6g}"
+           for name, far in ranges.items() if name in angles and far > 2 * math.pi]
+    for field, name, value in _values(problem, dict(values or {}), dict(initial or {}), set(ranges)):
         if name in angles and math.isfinite(value) and abs(value) > 2 * math.pi:
-            where = (f"{problem.source}: {field} {name}" if field.startswith("--") else
-                     f"{problem.source}:{problem.lines.get(field, problem.lines.get(field.rsplit('.', 1)[0], 0))}: "
-                     f"{field}")
-            out.append(f"{where}: {name} = {value:g} is an angle in radians, "
+            out.append(f"{_where(problem, field, name)}: {name} = {value:g} is an angle in radians, "
                        f"{abs(value) / (2 * math.pi):.3g} turns; if you meant {value:g}°, write "
                        f"{math.radians(value):.6g}")
     return tuple(out)
+
+
+def _values(problem: Problem, values: dict[str, float], initial: dict[str, float], swept: set[str]
+            ) -> list[tuple[str, str, float]]:
+    """(field, name, value) of every number a run uses: the file's, unless the command line's or a sweep's
+    replace it, and the command line's."""
+    spec = problem.simulation
+    found = [(f"parameters.{p.name}.value", p.name, p.value) for p in problem.parameters
+             if p.value is not None and p.name not in values and p.name not in swept]
+    if spec is not None:
+        found += [(f"simulation.values.{name}", name, value) for name, value in spec.values.items()
+                  if name not in values and name not in swept]
+        found += [(f"simulation.initial.{name}", name, value) for name, value in spec.initial.items()
+                  if name not in initial and name not in swept]
+    found += [("--set", name, value) for name, value in values.items() if name not in swept]
+    found += [("--initial", name, value) for name, value in initial.items() if name not in swept]
+    return found
+
+
+def _where(problem: Problem, field: str, name: str) -> str:
+    """``FILE:LINE: field`` of a file's value, ``FILE: --set name`` of the command line's."""
+    if field.startswith("--"):
+        return f"{problem.source}: {field} {name}"
+    return f"{problem.source}:{problem.lines.get(field, problem.lines.get(field.rsplit('.', 1)[0], 0))}: {field}"
 
 
 def _angles(problem: Problem) -> set[str]:
