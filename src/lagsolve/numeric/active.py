@@ -124,6 +124,6 @@ class ActiveSystem:
         back = self.solve(t, np.concatenate([q, -qd]))[0]
         applied = float(system.speeds(t, q, (ahead + back) / 2, p)[index])
         friction = float(system.speeds(t, q, (ahead - back) / 2, p)[index])
-        contact = [c for c, sticks in enumerate(system.sticks) if not sticks][index]
+        contact = system.planar[index]
         mu_s, mu = system.contact_values(t, q, qd, p)[2 * contact: 2 * contact + 2]
         return bool(mu > 0 and applied * mu > (1 + 1e-9) * mu_s * friction)

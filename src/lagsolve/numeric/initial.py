@@ -89,12 +89,12 @@ AT_REST = 1e-12
 
 def at_rest(system: NumericSystem, t: float, q: np.ndarray, qd: np.ndarray) -> list[str]:
     """The contacts that slide in a plane and are at rest at the state (their friction is undefined there)."""
-    if all(system.sticks):
+    if not system.planar:
         return []
     speeds = system.speeds(t, q, qd, system.parameters)
-    planar = [name for name, sticks in zip(system.contact_names, system.sticks, strict=True) if not sticks]
     scale = float(np.max(np.abs(qd), initial=0.0))
-    return [name for name, speed in zip(planar, speeds, strict=True) if not speed > AT_REST * scale]
+    return [system.contact_names[c] for c, speed in zip(system.planar, speeds, strict=True)
+            if not speed > AT_REST * scale]
 
 
 #: starting values tried, in order, for the coordinates the user left free (0 first; below before above)

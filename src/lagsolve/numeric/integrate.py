@@ -55,8 +55,6 @@ PROJECTED = 1e-15
 #: how far (relative to its scale) a released unilateral constraint's ψ must go below zero to count as reached
 #: again: at the release ψ leaves zero with its first two rates zero, and rounding must not count as a return
 RETURN_DEPTH = 1e-9
-
-
 #: a contact that slides in a plane counts as at rest once its speed is this fraction of the one at the start
 REST = 1e-9
 
@@ -214,9 +212,9 @@ def integrate_motion(system: NumericSystem, q0: np.ndarray, qd0: np.ndarray, t_e
         raise ValueError("t_end must be a positive number")
     m, k = system.m, len(system.contacts)
     run = ActiveSystem(system, np.ones(m, dtype=bool), np.zeros(k, dtype=bool), np.zeros(k), project,
-               floor=projection_floors(system.surface_scales(0.0, q0, qd0)),
-               resting=REST * system.speeds(0.0, q0, qd0, system.parameters))
-    run.turning = np.zeros(run.resting.size, dtype=bool)
+                       floor=projection_floors(system.surface_scales(0.0, q0, qd0)),
+                       resting=REST * system.speeds(0.0, q0, qd0, system.parameters),
+                       turning=np.zeros(len(system.planar), dtype=bool))
     coordinates = _coordinates(run, q0, qd0, minimal)
     options = _Options(method, t_end, rtol, atol, max_step, project, after_release, progress)
     record = _Record(np.linspace(0.0, t_end, samples), t_end)
@@ -582,8 +580,7 @@ def _handle(run: ActiveSystem, event: tuple, dense: Any, events: list[Event], af
         run.turning[index] = True
         return t, y, False  # its velocity only passes through zero, and kinetic friction turns with it
     if kind in (EventKind.CONTACT, EventKind.REST):
-        planar = [c for c, sticks in zip(system.contact_names, system.sticks, strict=True) if not sticks]
-        name = system.constraints[index] if kind == EventKind.CONTACT else planar[index]
+        name = system.constraints[index] if kind == EventKind.CONTACT else system.contact_names[system.planar[index]]
         events.append(Event(float(t), kind, name, _state(system, y), "stopped"))
         return t, y, True
     if kind == EventKind.STICK:

@@ -109,6 +109,11 @@ class NumericSystem:
     def m(self) -> int:
         return len(self.constraints)
 
+    @property
+    def planar(self) -> tuple[int, ...]:
+        """The contacts that slide in a plane (not :attr:`sticks`), in the order of :attr:`speeds`."""
+        return tuple(c for c, sticks in enumerate(self.sticks) if not sticks)
+
     def solve(self, t: float, q: np.ndarray, qd: np.ndarray,
               active: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Accelerations and multipliers at a state (inactive constraints get λ = 0)."""
